@@ -1,0 +1,31 @@
+// ibfvs: dense, animated, flow-aligned texture on curved surfaces
+// (van Wijk, Image Based Flow Visualization for Curved Surfaces, 2003).
+
+#include <cstdio>
+#include <exception>
+#include <memory>
+
+#include <CLI/CLI.hpp>
+
+#include "ibfvs/render_command.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"ibfvs: image based flow visualization for curved surfaces"};
+  app.require_subcommand(1, 1);
+  auto render_options = std::make_unique<ibfvs::app::RenderOptions>();
+  CLI::App* render = app.add_subcommand(
+      "render", "Render IBFVS texture on a mesh headless (EGL) to a video or PNG");
+  ibfvs::app::add_render_options(*render, *render_options);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  try {
+    if (*render) return ibfvs::app::run_render(*render_options);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "ibfvs: error: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

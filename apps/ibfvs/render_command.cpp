@@ -1,0 +1,321 @@
+#include "ibfvs/render_command.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <optional>
+
+#include <CLI/CLI.hpp>
+
+#include "ibfvs/core/camera.h"
+#include "ibfvs/core/displacement.h"
+#include "ibfvs/core/error.h"
+#include "ibfvs/core/image.h"
+#include "ibfvs/core/mesh_io.h"
+#include "ibfvs/core/procedural.h"
+#include "ibfvs/core/subdivision.h"
+#include "ibfvs/core/vector_field.h"
+#include "ibfvs/data_paths.h"
+#include "ibfvs/gl/context.h"
+#include "ibfvs/progress.h"
+#include "ibfvs/render/ibfvs_renderer.h"
+#include "ibfvs/video_writer.h"
+
+namespace ibfvs::app {
+namespace fs = std::filesystem;
+
+void add_render_options(CLI::App& cmd, RenderOptions& o) {
+  cmd.add_option("--mesh", o.mesh,
+                 "Triangle mesh: .off .obj .ply .stl (PLY vertex properties vx vy vz are a "
+                 "vector field). Default: the demo, data/meshes/bunny00.off, else cow.off, else "
+                 "a procedural torus");
+  cmd.add_option("--field", o.field,
+                 "Vector field: file (PLY vx vy vz), uniform:X,Y,Z, or rotate:X,Y,Z (rotation about "
+                 "axis X,Y,Z through the bounding-box centre). Default: file when the mesh has "
+                 "vectors, else rotate:0,1,0");
+  cmd.add_option("--tangent", o.tangent,
+                 "project: project vectors on the tangent plane; 3d: use them as given (paper 3.8)")
+      ->capture_default_str();
+  cmd.add_option("--size", o.size, "Image size WxH in pixels")->capture_default_str();
+  cmd.add_option("--frames", o.frames, "Number of frames to render")->capture_default_str();
+  cmd.add_option("--out", o.out,
+                 "Output: .mp4/.mkv/.webm/.mov/.gif video (needs the ffmpeg program), .png "
+                 "(last frame) or a %04d .png pattern (every frame). Default: <mesh>.mp4, "
+                 "ibfvs-demo.mp4 for the demo");
+  cmd.add_option("--texture-out", o.texture_out,
+                 "Also write the raw texture image F_t of the last frame as a 16-bit PNG");
+  cmd.add_option("--alpha", o.alpha, "Blend weight of fresh noise (eq. 5/12), 0..1")
+      ->capture_default_str();
+  cmd.add_option("--beta", o.beta, "Strength of the texture against shading (eq. 11), 0..1")
+      ->capture_default_str();
+  cmd.add_option("--scale", o.scale, "Noise scale s: pixels per noise grid cell (eq. 6)")
+      ->capture_default_str();
+  cmd.add_option("--profile", o.profile, "Noise time profile w: square, sawtooth, sine, spike")
+      ->capture_default_str();
+  cmd.add_option("--vg", o.vg, "Image-change rate v_g: noise periods per frame (eq. 8)")
+      ->capture_default_str();
+  cmd.add_option("--spike-width", o.spike_width,
+                 "Fraction of the period a spike is on (profile spike)")
+      ->capture_default_str();
+  cmd.add_option("--seed", o.seed, "Seed of the noise phases")->capture_default_str();
+  cmd.add_option("--step", o.step,
+                 "Largest image-space displacement per frame in pixels (sets dt); keep it below "
+                 "the noise scale")
+      ->capture_default_str();
+  cmd.add_option("--dt", o.dt, "Time step in world units per frame; overrides --step when > 0")
+      ->capture_default_str();
+  cmd.add_option("--inject", o.inject,
+                 "How noise enters the texture: blend (eq. 10) or add (bright particles with "
+                 "--profile spike)")
+      ->capture_default_str();
+  cmd.add_option("--background", o.background, "Background colour B as R,G,B in 0..1")
+      ->capture_default_str();
+  cmd.add_option("--surface-color", o.surface_color, "Diffuse colour of the shaded surface, R,G,B")
+      ->capture_default_str();
+  cmd.add_option("--camera", o.camera,
+                 "AZIMUTH,ELEVATION,DISTANCE: degrees about +Y and above the horizon, distance in "
+                 "bounding-box diagonals (0 fits the mesh). Default 0,0,0: from +Z, +Y up, fitted");
+  cmd.add_flag("--ortho", o.ortho, "Orthographic instead of perspective projection");
+  cmd.add_option("--fov", o.fov, "Vertical field of view in degrees")->capture_default_str();
+  cmd.add_option("--orbit", o.orbit,
+                 "Turn the camera about the vertical axis by this many degrees per frame")
+      ->capture_default_str();
+  cmd.add_option("--advect-view", o.advect_view,
+                 "Transform for texture coordinates: previous (T_{k-1}: texture stays on the "
+                 "surface under camera motion) or current (T_k, as the 2003 paper)")
+      ->capture_default_str();
+  cmd.add_option("--subdivide", o.subdivide, "Loop subdivision levels (0..8)")
+      ->capture_default_str();
+  cmd.add_option("--fps", o.fps, "Frame rate of the video")->capture_default_str();
+  cmd.add_flag("--quiet,-q", o.quiet, "No progress bar and no summary");
+}
+
+namespace {
+
+struct Size {
+  int width, height;
+};
+
+Size parse_size(const std::string& text) {
+  const std::size_t x = text.find('x');
+  try {
+    if (x != std::string::npos) {
+      std::size_t used_w = 0, used_h = 0;
+      const int w = std::stoi(text.substr(0, x), &used_w);
+      const int h = std::stoi(text.substr(x + 1), &used_h);
+      if (used_w == x && used_h == text.size() - x - 1 && w > 0 && h > 0 && w <= 16384 &&
+          h <= 16384)
+        return {w, h};
+    }
+  } catch (const std::exception&) {
+  }
+  throw InputError("--size: expected WxH with 1..16384 pixels each, got '" + text + "'");
+}
+
+glm::vec3 parse_colour(const std::string& text, const char* option) {
+  const glm::vec3 c = parse_vec3(text, option);
+  for (int i = 0; i < 3; ++i)
+    if (c[i] < 0.0f || c[i] > 1.0f)
+      throw InputError(std::string(option) + ": components must be in [0, 1], got '" + text + "'");
+  return c;
+}
+
+InjectMode parse_inject(const std::string& text) {
+  if (text == "blend") return InjectMode::Blend;
+  if (text == "add") return InjectMode::Add;
+  throw InputError("--inject: expected blend or add, got '" + text + "'");
+}
+
+enum class OutputKind { Video, Png, PngSequence };
+
+OutputKind output_kind(const fs::path& out) {
+  if (is_video_path(out)) return OutputKind::Video;
+  std::string ext = out.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (ext != ".png")
+    throw InputError("--out: unknown output type '" + out.string() +
+                     "' (expected .mp4, .mkv, .webm, .mov, .avi, .gif or .png)");
+  return out.string().find('%') != std::string::npos ? OutputKind::PngSequence : OutputKind::Png;
+}
+
+std::string frame_path(const std::string& pattern, int frame) {
+  // Only one integer conversion is allowed in the pattern (checked before rendering).
+  std::vector<char> buf(pattern.size() + 32);
+  std::snprintf(buf.data(), buf.size(), pattern.c_str(), frame);
+  return buf.data();
+}
+
+void check_pattern(const std::string& pattern) {
+  const std::size_t p = pattern.find('%');
+  const std::size_t d = pattern.find_first_of("d", p);
+  bool ok = p != std::string::npos && d != std::string::npos &&
+            pattern.find('%', p + 1) == std::string::npos;
+  for (std::size_t i = p + 1; ok && i < d; ++i) ok = std::isdigit(static_cast<unsigned char>(pattern[i]));
+  if (!ok) throw InputError("--out: a frame pattern needs exactly one %d or %0Nd, got '" + pattern + "'");
+}
+
+void ensure_parent(const fs::path& out, const char* option) {
+  const fs::path parent = out.parent_path();
+  std::error_code ec;
+  if (!parent.empty() && !fs::is_directory(parent, ec))
+    throw InputError(std::string(option) + ": the folder '" + parent.string() + "' does not exist");
+}
+
+}  // namespace
+
+int run_render(const RenderOptions& o) {
+  // ---- options that need no file
+  const Size size = parse_size(o.size);
+  if (o.frames < 1 || o.frames > 1000000) throw InputError("--frames: must be between 1 and 1000000");
+  if (!(o.step > 0.0f) || !std::isfinite(o.step)) throw InputError("--step: must be a positive number of pixels");
+  if (!(o.dt >= 0.0f) || !std::isfinite(o.dt)) throw InputError("--dt: must be a non-negative number");
+  if (!std::isfinite(o.orbit) || std::abs(o.orbit) > 360.0f) throw InputError("--orbit: must be within -360..360 degrees per frame");
+  if (!(o.fps > 0.0) || o.fps > 1000.0) throw InputError("--fps: must be in (0, 1000]");
+  if (o.subdivide < 0 || o.subdivide > 8) throw InputError("--subdivide: levels must be between 0 and 8");
+
+  RenderSettings settings;
+  settings.width = size.width;
+  settings.height = size.height;
+  settings.alpha = o.alpha;
+  settings.beta = o.beta;
+  settings.noise.scale = o.scale;
+  settings.noise.profile = parse_noise_profile(o.profile);
+  settings.noise.rate = o.vg;
+  settings.noise.seed = o.seed;
+  settings.noise.spike_width = o.spike_width;
+  settings.inject = parse_inject(o.inject);
+  settings.background = parse_colour(o.background, "--background");
+  settings.surface_color = parse_colour(o.surface_color, "--surface-color");
+  settings.advect_view = parse_advect_view(o.advect_view);
+  settings.validate();
+  const TangentMode tangent = parse_tangent_mode(o.tangent);
+  std::optional<FieldSpec> field_spec;
+  if (!o.field.empty()) field_spec = FieldSpec::parse(o.field);
+  CameraParams cam;
+  if (!o.camera.empty()) {
+    const glm::vec3 c = parse_vec3(o.camera, "--camera");
+    cam.azimuth_deg = c.x;
+    cam.elevation_deg = c.y;
+    cam.distance = c.z;
+    if (c.z < 0.0f) throw InputError("--camera: the distance must not be negative");
+  }
+  cam.orthographic = o.ortho;
+  cam.fov_deg = o.fov;
+
+  // ---- mesh
+  TriMesh mesh;
+  std::string mesh_name;
+  const bool demo = o.mesh.empty();
+  if (demo) {
+    std::optional<fs::path> path = find_data_file("meshes/bunny00.off");
+    if (!path) path = find_data_file("meshes/cow.off");
+    if (path) {
+      mesh = read_mesh(*path);
+      mesh_name = path->filename().string();
+    } else {
+      std::fprintf(stderr,
+                   "ibfvs: the fetched meshes are missing (%s); rendering a procedural torus "
+                   "instead. Run scripts/fetch_data.sh for the bunny.\n",
+                   (data_dir() / "meshes").c_str());
+      mesh = make_torus(1.0f, 0.4f, 160, 64);
+      mesh_name = "procedural torus";
+    }
+  } else {
+    MeshReadReport report;
+    mesh = read_mesh(o.mesh, &report);
+    for (const std::string& w : report.warnings) std::fprintf(stderr, "ibfvs: warning: %s\n", w.c_str());
+    mesh_name = fs::path(o.mesh).filename().string();
+  }
+  if (o.subdivide > 0) mesh = loop_subdivide(mesh, o.subdivide);
+
+  // ---- field
+  if (!field_spec) {
+    field_spec = mesh.vectors.size() == mesh.positions.size() ? FieldSpec::parse("file")
+                                                               : FieldSpec::parse("rotate:0,1,0");
+  }
+  FieldReport field_report;
+  std::vector<glm::vec3> field;
+  try {
+    field = evaluate_field(mesh, *field_spec, tangent, &field_report);
+  } catch (const InputError& e) {
+    throw InputError((demo ? mesh_name : o.mesh) + ": " + e.what());
+  }
+  if (field_report.non_finite_zeroed > 0)
+    std::fprintf(stderr, "ibfvs: warning: %s: %zu vectors were NaN or infinite and are set to zero\n",
+                 (demo ? mesh_name : o.mesh).c_str(), field_report.non_finite_zeroed);
+
+  // ---- output paths (checked before the long part)
+  const fs::path out = !o.out.empty() ? fs::path(o.out)
+                       : demo         ? fs::path("ibfvs-demo.mp4")
+                                      : fs::path(fs::path(o.mesh).stem().string() + ".mp4");
+  const OutputKind kind = output_kind(out);
+  if (kind == OutputKind::PngSequence) check_pattern(out.string());
+  ensure_parent(out, "--out");
+  if (!o.texture_out.empty()) {
+    if (output_kind(o.texture_out) != OutputKind::Png)
+      throw InputError("--texture-out: must be a .png file, got '" + o.texture_out + "'");
+    ensure_parent(o.texture_out, "--texture-out");
+  }
+
+  // ---- camera and displacement
+  const Bounds bounds = mesh_bounds(mesh);
+  Camera camera(bounds, cam, static_cast<float>(size.width) / static_cast<float>(size.height));
+  float dt = o.dt;
+  if (dt == 0.0f)
+    dt = dt_for_pixel_step(mesh.positions, field, camera.view_projection(), size.width,
+                           size.height, o.step);
+  const float max_px = max_pixel_speed(mesh.positions, field, camera.view_projection(),
+                                       size.width, size.height) * dt;
+  if (max_px > settings.noise.scale)
+    std::fprintf(stderr,
+                 "ibfvs: warning: the largest displacement is %.1f pixels per frame, more than "
+                 "the noise scale %.1f: expect broken streaks (lower --step or --dt)\n",
+                 max_px, settings.noise.scale);
+
+  // ---- render
+  gl::HeadlessContext context;
+  IbfvsRenderer renderer(settings);
+  renderer.set_mesh(mesh, field);
+  std::unique_ptr<VideoWriter> video;
+  if (kind == OutputKind::Video)
+    video = std::make_unique<VideoWriter>(out, size.width, size.height, o.fps);
+  Progress progress(o.frames, !o.quiet);
+  const auto start = std::chrono::steady_clock::now();
+  for (int k = 0; k < o.frames; ++k) {
+    if (k > 0 && o.orbit != 0.0f) camera.orbit(o.orbit);
+    renderer.render_frame({camera.view(), camera.projection()}, dt);
+    if (kind == OutputKind::Video) video->write(renderer.read_output());
+    if (kind == OutputKind::PngSequence) write_png(renderer.read_output(), frame_path(out.string(), k));
+    progress.update(k + 1);
+  }
+  renderer.finish();
+  context.throw_if_errors();
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  progress.finish();
+  if (kind == OutputKind::Png) write_png(renderer.read_output(), out);
+  if (video) video->close();
+  if (!o.texture_out.empty()) {
+    const ImageF tex = renderer.read_texture();
+    ImageF rgb;
+    rgb.width = tex.width;
+    rgb.height = tex.height;
+    rgb.channels = 3;
+    rgb.pixels.reserve(static_cast<std::size_t>(tex.width) * tex.height * 3);
+    for (std::size_t i = 0; i < tex.pixels.size(); i += 4)
+      rgb.pixels.insert(rgb.pixels.end(), {tex.pixels[i], tex.pixels[i + 1], tex.pixels[i + 2]});
+    write_png16(rgb, o.texture_out);
+  }
+  if (!o.quiet) {
+    std::printf("ibfvs: wrote %s (%d frames, %dx%d) from %s: %zu vertices, %zu triangles, field %s, "
+                "dt %.4g (max %.2f px/frame), %.1f fps on %s\n",
+                out.c_str(), o.frames, size.width, size.height, mesh_name.c_str(),
+                mesh.vertex_count(), mesh.triangle_count(), field_spec->to_string().c_str(), dt,
+                max_px, o.frames / seconds, context.renderer().c_str());
+    if (!o.texture_out.empty()) std::printf("ibfvs: wrote texture image %s\n", o.texture_out.c_str());
+  }
+  return 0;
+}
+
+}  // namespace ibfvs::app

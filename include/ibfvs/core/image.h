@@ -1,0 +1,49 @@
+#pragma once
+// Images on the CPU: what the renderer reads back and what PNG files hold.
+// Rows are stored bottom-up, as OpenGL reads them; PNG writing flips.
+
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+namespace ibfvs {
+
+/// 8-bit image, `channels` interleaved (1, 3 or 4), rows bottom-up.
+struct ImageU8 {
+  int width = 0;
+  int height = 0;
+  int channels = 4;
+  std::vector<std::uint8_t> pixels;
+  [[nodiscard]] std::uint8_t at(int x, int y, int c) const {
+    return pixels[(static_cast<std::size_t>(y) * width + x) * channels + c];
+  }
+};
+
+/// Float image, `channels` interleaved, rows bottom-up.
+struct ImageF {
+  int width = 0;
+  int height = 0;
+  int channels = 1;
+  std::vector<float> pixels;
+  [[nodiscard]] float at(int x, int y, int c = 0) const {
+    return pixels[(static_cast<std::size_t>(y) * width + x) * channels + c];
+  }
+  float& at(int x, int y, int c = 0) {
+    return pixels[(static_cast<std::size_t>(y) * width + x) * channels + c];
+  }
+};
+
+/// Writes a PNG (8 bits per channel). Throws InputError naming the path.
+void write_png(const ImageU8& image, const std::filesystem::path& path);
+
+/// Writes a float image as a 16-bit PNG, values clamped to [0, 1]
+/// (the raw texture F_t, without 8-bit rounding).
+void write_png16(const ImageF& image, const std::filesystem::path& path);
+
+/// Reads an 8-bit PNG (grey, RGB or RGBA) into bottom-up rows. Throws InputError.
+ImageU8 read_png(const std::filesystem::path& path);
+
+/// One channel of an 8-bit image as floats in [0, 1].
+ImageF to_float_channel(const ImageU8& image, int channel);
+
+}  // namespace ibfvs

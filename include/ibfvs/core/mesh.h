@@ -1,0 +1,55 @@
+#pragma once
+// The CPU triangle mesh every other part of ibfvs works on: flat arrays that
+// map one to one onto GPU vertex and index buffers.
+
+#include <array>
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+namespace ibfvs {
+
+using Triangle = std::array<std::uint32_t, 3>;
+
+/// A triangle mesh with optional per-vertex data.
+struct TriMesh {
+  std::vector<glm::vec3> positions;  ///< one per vertex
+  std::vector<glm::vec3> normals;    ///< unit, one per vertex (empty until computed)
+  std::vector<Triangle> triangles;   ///< counter-clockwise vertex indices
+  std::vector<glm::vec3> vectors;    ///< per-vertex vector field from the file (may be empty)
+  std::map<std::string, std::vector<float>> scalars;  ///< other per-vertex properties by name
+
+  [[nodiscard]] std::size_t vertex_count() const { return positions.size(); }
+  [[nodiscard]] std::size_t triangle_count() const { return triangles.size(); }
+};
+
+/// Axis-aligned bounding box.
+struct Bounds {
+  glm::vec3 min{0.0f};
+  glm::vec3 max{0.0f};
+  float radius = 0.0f;  ///< largest distance of a vertex from centre() (0: unknown, use diagonal/2)
+  [[nodiscard]] glm::vec3 centre() const { return 0.5f * (min + max); }
+  [[nodiscard]] float diagonal() const;
+};
+
+/// Bounding box of the vertices that some triangle references (unreferenced
+/// vertices do not move the camera), with the radius of the sphere about its
+/// centre that holds them (what a camera must fit, whatever its direction). Throws InputError for a mesh without triangles.
+Bounds mesh_bounds(const TriMesh& mesh);
+
+/// Angle-weighted vertex normals (Thuermer and Wuethrich). Degenerate
+/// triangles contribute nothing; a vertex with no valid triangle gets +Z.
+void compute_vertex_normals(TriMesh& mesh);
+
+/// Checks the invariants the renderer relies on: indices in range, finite
+/// coordinates, per-vertex arrays of the right length. Throws InputError
+/// whose message starts with `source`.
+void validate_mesh(const TriMesh& mesh, const std::string& source);
+
+/// Drops triangles with a repeated vertex index or zero area; returns how many.
+std::size_t remove_degenerate_triangles(TriMesh& mesh);
+
+}  // namespace ibfvs

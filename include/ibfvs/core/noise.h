@@ -1,0 +1,66 @@
+#pragma once
+// The fresh-ink image G of IBFV (paper equations 6-8): a grid of random phases
+// phi_ij, spaced s pixels apart, whose values cycle with a time profile w and
+// are interpolated bilinearly (the triangular pulse h). The GPU shader and the
+// CPU reference both evaluate exactly this.
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace ibfvs {
+
+/// The periodic time profile w(t), period 1.
+enum class NoiseProfile {
+  Square,    ///< 1 for the first half of the period, 0 for the second
+  Sawtooth,  ///< frac(t)
+  Sine,      ///< 0.5 + 0.5 sin(2 pi t)
+  Spike,     ///< 1 during the first `spike_width` of the period, else 0 (particles)
+};
+
+NoiseProfile parse_noise_profile(std::string_view text);  ///< throws InputError
+std::string to_string(NoiseProfile profile);
+
+/// Parameters of G.
+struct NoiseParams {
+  float scale = 4.0f;                           ///< s: pixels per grid cell
+  NoiseProfile profile = NoiseProfile::Square;  ///< w
+  float rate = 0.05f;                           ///< v_g: profile periods per frame
+  std::uint32_t seed = 1;                       ///< seeds the phases phi_ij
+  float spike_width = 0.1f;                     ///< fraction of the period a spike is on
+};
+
+/// w(t) for the given profile.
+float noise_profile_value(NoiseProfile profile, float t, float spike_width);
+
+/// The phase grid of one image size, and G evaluated from it.
+class NoiseGrid {
+ public:
+  /// Covers pixels [0, width) x [0, height): grid points i*s for
+  /// i = 0 .. floor(width/s) + 1. Throws InputError for a scale <= 0.
+  NoiseGrid(int width, int height, const NoiseParams& params);
+
+  [[nodiscard]] int columns() const { return columns_; }
+  [[nodiscard]] int rows() const { return rows_; }
+  /// phi_ij in [0, 1), row-major (j * columns + i): uploaded as a texture.
+  [[nodiscard]] const std::vector<float>& phases() const { return phases_; }
+  [[nodiscard]] const NoiseParams& params() const { return params_; }
+
+  /// G_ij;k = w(v_g k + phi_ij) (equation 8).
+  [[nodiscard]] float grid_value(int i, int j, int frame) const;
+  /// G(x; k) at image point (x, y) in pixels (equations 6-7).
+  [[nodiscard]] float sample(float x, float y, int frame) const;
+
+ private:
+  NoiseParams params_;
+  int columns_ = 0;
+  int rows_ = 0;
+  std::vector<float> phases_;
+};
+
+/// Deterministic uniform numbers in [0, 1) from (seed, index): the same on
+/// every platform, unlike std::uniform_real_distribution.
+float hash_uniform(std::uint32_t seed, std::uint64_t index);
+
+}  // namespace ibfvs

@@ -1,0 +1,58 @@
+#pragma once
+// Per-vertex vector fields: from the mesh file, uniform, or a rigid rotation
+// (paper section 3.2: one velocity v_i per vertex), and the choice between
+// projecting them on the tangent plane or using them in 3D (section 3.8).
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "ibfvs/core/mesh.h"
+
+namespace ibfvs {
+
+/// Where the vectors come from.
+enum class FieldKind {
+  File,     ///< PLY vertex properties vx vy vz
+  Uniform,  ///< a constant 3D vector
+  Rotate,   ///< v = w x (r - c), c the centre of the bounding box
+};
+
+/// A parsed `--field` value: `file`, `uniform:X,Y,Z` or `rotate:X,Y,Z`.
+struct FieldSpec {
+  FieldKind kind = FieldKind::Rotate;
+  glm::vec3 value{0.0f, 1.0f, 0.0f};  ///< the uniform vector or the rotation axis w
+
+  /// Parses the textual form; throws InputError naming the text.
+  static FieldSpec parse(std::string_view text);
+  [[nodiscard]] std::string to_string() const;
+};
+
+/// How vectors with a normal component are used (section 3.8).
+enum class TangentMode {
+  Project,  ///< v - (v.n) n: the flow confined to the surface (default)
+  Full3D,   ///< as given: "a wire mesh with little hairs aligned with the 3D flow"
+};
+
+/// Parses "project" or "3d"; throws InputError.
+TangentMode parse_tangent_mode(std::string_view text);
+
+/// What evaluate_field repaired.
+struct FieldReport {
+  std::size_t non_finite_zeroed = 0;  ///< vectors with NaN/inf set to zero
+  float max_magnitude = 0.0f;         ///< after projection
+};
+
+/// Evaluates the field at every vertex. Needs `mesh.normals` for projection.
+/// Non-finite vectors are set to zero and counted in the report. Throws
+/// InputError when `spec.kind == File` and the mesh carries no vectors, or
+/// when every vector is non-finite.
+std::vector<glm::vec3> evaluate_field(const TriMesh& mesh, const FieldSpec& spec, TangentMode mode,
+                                      FieldReport* report = nullptr);
+
+/// Parses "X,Y,Z" (three finite numbers). `what` names the option in errors.
+glm::vec3 parse_vec3(std::string_view text, std::string_view what);
+
+}  // namespace ibfvs

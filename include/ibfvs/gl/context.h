@@ -1,0 +1,52 @@
+#pragma once
+// The one place that creates OpenGL contexts. Headless: EGL without a display
+// server, on the NVIDIA EGL device when there is one, else on Mesa (llvmpipe
+// through EGL_MESA_platform_surfaceless). OpenGL 4.5 core profile.
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace ibfvs::gl {
+
+/// Options for a headless context.
+struct ContextOptions {
+  /// Record KHR_debug errors; throw_if_errors() turns them into exceptions.
+  /// Defaults to on in debug builds (and with IBFVS_GL_DEBUG=1 in the environment).
+  bool debug = default_debug();
+  static bool default_debug();
+};
+
+/// An OpenGL 4.5 core context, current on the creating thread, with no
+/// default framebuffer (render into framebuffer objects). Move-only.
+class HeadlessContext {
+ public:
+  /// Throws GraphicsError when no EGL display or GL 4.5 context can be made;
+  /// the message lists what was tried.
+  explicit HeadlessContext(const ContextOptions& options = {});
+  ~HeadlessContext();
+  HeadlessContext(HeadlessContext&&) noexcept;
+  HeadlessContext& operator=(HeadlessContext&&) noexcept;
+  HeadlessContext(const HeadlessContext&) = delete;
+  HeadlessContext& operator=(const HeadlessContext&) = delete;
+
+  void make_current();
+  /// "Mesa llvmpipe (LLVM 15.0.6, 256 bits) | OpenGL 4.5 (Core Profile) ..."
+  [[nodiscard]] std::string renderer() const;
+  /// Which EGL platform: "device" or "surfaceless".
+  [[nodiscard]] const std::string& platform() const;
+
+  /// Throws GraphicsError listing the GL errors recorded since the last call
+  /// (only records with debug on). Cheap when there are none.
+  void throw_if_errors();
+
+  struct Impl;
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+
+/// Errors recorded by the KHR_debug callback of the current thread's context.
+std::vector<std::string> take_recorded_gl_errors();
+
+}  // namespace ibfvs::gl

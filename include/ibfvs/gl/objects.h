@@ -1,0 +1,163 @@
+#pragma once
+// Move-only RAII wrappers of the OpenGL objects ibfvs uses (in the manner of
+// Magnum's GL library): copy deleted, move noexcept, release() hands the name
+// over, a default-constructed object owns nothing. All use direct state access
+// (OpenGL 4.5), so creating or filling an object never disturbs bindings.
+// Names are plain unsigned ints here so that this header needs no GL loader.
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <utility>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+namespace ibfvs::gl {
+
+/// Owns one GL name; `Deleter` frees it. Base of every wrapper below.
+template <void (*Deleter)(unsigned)>
+class Object {
+ public:
+  Object() = default;
+  explicit Object(unsigned id) : id_(id) {}
+  ~Object() { reset(); }
+  Object(Object&& o) noexcept : id_(std::exchange(o.id_, 0u)) {}
+  Object& operator=(Object&& o) noexcept {
+    if (this != &o) {
+      reset();
+      id_ = std::exchange(o.id_, 0u);
+    }
+    return *this;
+  }
+  Object(const Object&) = delete;
+  Object& operator=(const Object&) = delete;
+
+  [[nodiscard]] unsigned id() const { return id_; }
+  [[nodiscard]] explicit operator bool() const { return id_ != 0; }
+  /// Gives up ownership; the caller must delete the name.
+  unsigned release() { return std::exchange(id_, 0u); }
+
+ protected:
+  void reset() {
+    if (id_) Deleter(id_);
+    id_ = 0;
+  }
+
+ private:
+  unsigned id_ = 0;
+};
+
+void delete_buffer(unsigned id);
+void delete_vertex_array(unsigned id);
+void delete_texture(unsigned id);
+void delete_renderbuffer(unsigned id);
+void delete_framebuffer(unsigned id);
+void delete_program(unsigned id);
+
+/// Immutable-storage buffer (glNamedBufferStorage).
+class Buffer : public Object<delete_buffer> {
+ public:
+  Buffer() = default;
+  /// Creates a buffer holding `bytes`; `dynamic` allows later update().
+  Buffer(std::span<const std::byte> bytes, bool dynamic = false);
+  void update(std::size_t offset, std::span<const std::byte> bytes);
+  [[nodiscard]] std::size_t size() const { return size_; }
+
+ private:
+  std::size_t size_ = 0;
+};
+
+/// Vertex array object describing float attributes in one or more buffers.
+class VertexArray : public Object<delete_vertex_array> {
+ public:
+  using Object::Object;
+  static VertexArray create();
+  /// Attribute `location` reads `components` floats at `offset` in `buffer`,
+  /// `stride` bytes per vertex, through binding point `binding`.
+  void attribute(unsigned location, const Buffer& buffer, unsigned binding, int components,
+                 std::size_t offset, std::size_t stride);
+  /// Same with normalised signed 10-10-10-2 data (GL_INT_2_10_10_10_REV).
+  void attribute_packed_snorm(unsigned location, const Buffer& buffer, unsigned binding,
+                              std::size_t offset, std::size_t stride);
+  void index_buffer(const Buffer& buffer);
+  void bind() const;
+};
+
+/// Pixel formats used by ibfvs.
+enum class Format {
+  RGBA8,    ///< output images
+  RGBA16F,  ///< the texture image F_t (16-bit float per channel)
+  RGBA32F,  ///< exact read-back in tests
+  R32F,     ///< noise phases
+  Depth24,  ///< depth renderbuffer
+};
+
+/// 2D texture with immutable storage, linear filtering, clamped edges.
+class Texture2D : public Object<delete_texture> {
+ public:
+  Texture2D() = default;
+  Texture2D(int width, int height, Format format, bool linear = true);
+  /// Uploads float data (channels matching the format) for the whole texture.
+  void upload_float(std::span<const float> data, int channels);
+  void bind(unsigned unit) const;
+  /// Reads the whole texture as floats, `channels` per pixel (1 or 4), rows bottom-up.
+  void read_float(std::span<float> out, int channels) const;
+  [[nodiscard]] int width() const { return width_; }
+  [[nodiscard]] int height() const { return height_; }
+  [[nodiscard]] Format format() const { return format_; }
+
+ private:
+  int width_ = 0, height_ = 0;
+  Format format_ = Format::RGBA8;
+};
+
+/// Renderbuffer (used for depth).
+class Renderbuffer : public Object<delete_renderbuffer> {
+ public:
+  Renderbuffer() = default;
+  Renderbuffer(int width, int height, Format format);
+};
+
+/// Framebuffer object with colour attachments and a depth attachment.
+class Framebuffer : public Object<delete_framebuffer> {
+ public:
+  using Object::Object;
+  static Framebuffer create();
+  void attach_color(unsigned index, const Texture2D& texture);
+  void attach_depth(const Renderbuffer& depth);
+  /// Enables colour attachments 0..count-1 as draw buffers; throws GraphicsError if incomplete.
+  void finish(unsigned color_count);
+  void bind() const;
+  void clear_color(unsigned index, const glm::vec4& rgba);
+  void clear_depth(float depth = 1.0f);
+  /// Reads colour attachment `index` as RGBA8, rows bottom-up.
+  void read_rgba8(unsigned index, int width, int height, std::span<std::uint8_t> out) const;
+};
+
+/// Linked shader program, with uniform setters by name (locations cached by GL).
+class Program : public Object<delete_program> {
+ public:
+  Program() = default;
+  /// Compiles and links; throws GraphicsError with the info log.
+  Program(const std::string& vertex_source, const std::string& fragment_source);
+  void use() const;
+  [[nodiscard]] int location(const char* name) const;
+  void set(int location, float v) const;
+  void set(int location, int v) const;
+  void set(int location, const glm::vec2& v) const;
+  void set(int location, const glm::ivec2& v) const;
+  void set(int location, const glm::vec3& v) const;
+  void set(int location, const glm::mat4& v) const;
+};
+
+/// Global render state for the IBFVS passes.
+void set_viewport(int width, int height);
+void enable_depth_test(bool on);
+void draw_triangles(std::size_t index_count, bool index32);
+void finish();
+
+}  // namespace ibfvs::gl

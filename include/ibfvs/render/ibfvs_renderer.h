@@ -1,0 +1,116 @@
+#pragma once
+// The IBFVS texture synthesis on OpenGL 4.5 (paper sections 3.2-3.3,
+// equations 10-13), one geometry pass per frame:
+//
+//   clear F_t' and F to the background B, clear depth            (steps 2, 4)
+//   draw the mesh once into two colour attachments (MRT):
+//     t_i = T(r_i - v_i dt) computed in the vertex shader         (step 3, eq. 13)
+//     F_t'(x) = (1 - alpha) F_t(t(x)) + alpha G(x; k)             (steps 4-5, eq. 10)
+//     F(x)    = beta F_t'(x) + (1 - beta) F_s(x)                  (step 7, eq. 11)
+//   swap F_t and F_t' (ping-pong)                                 (step 6)
+//
+// The depth test keeps only the nearest surface per pixel, so gamma = alpha
+// exactly on the projected surface and 0 on the background (eq. 12) without
+// the paper's reversed-z noise rectangle. Beyond the 2003 implementation:
+// texture coordinates on the GPU (moving camera costs nothing), interpolated
+// without perspective correction (section 3.9), F_t in 16-bit float, and an
+// option to advect with the previous frame's transform (section 3.7).
+
+#include <span>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+
+#include "ibfvs/core/image.h"
+#include "ibfvs/core/mesh.h"
+#include "ibfvs/core/noise.h"
+#include "ibfvs/core/reference.h"
+#include "ibfvs/gl/objects.h"
+
+namespace ibfvs {
+
+/// Which transform projects the advected point r - v dt (equation 13).
+enum class AdvectView {
+  Current,   ///< T_k, as the paper: under camera motion the texture stays in image space
+  Previous,  ///< T_{k-1}: the texture follows the surface; same as Current for a still view
+};
+
+AdvectView parse_advect_view(std::string_view text);  ///< "current" or "previous"; throws InputError
+
+/// Everything that shapes the picture apart from mesh, field and camera.
+struct RenderSettings {
+  int width = 512;                            ///< image width in pixels
+  int height = 512;                           ///< image height in pixels
+  float alpha = 0.1f;                         ///< blend weight of fresh noise (eq. 5, 12)
+  float beta = 0.5f;                          ///< texture strength against shading (eq. 11)
+  NoiseParams noise;                          ///< G (eq. 6-8)
+  InjectMode inject = InjectMode::Blend;      ///< blend (eq. 10) or add (particles)
+  glm::vec3 background{0.5f};                 ///< B, grey by default (section 3.5)
+  glm::vec3 surface_color{0.82f, 0.80f, 0.76f};  ///< diffuse colour of the shaded surface F_s
+  AdvectView advect_view = AdvectView::Previous;  ///< see AdvectView
+
+  /// Throws InputError naming the first impossible value.
+  void validate() const;
+};
+
+/// One camera state.
+struct ViewState {
+  glm::mat4 view{1.0f};
+  glm::mat4 projection{1.0f};
+};
+
+/// The IBFVS engine. Needs a current OpenGL 4.5 context for its whole life.
+class IbfvsRenderer {
+ public:
+  explicit IbfvsRenderer(const RenderSettings& settings);
+
+  /// Uploads positions, normals and the per-vertex field `field` (one vector
+  /// per vertex, already projected or not). Resets the texture.
+  void set_mesh(const TriMesh& mesh, std::span<const glm::vec3> field);
+  /// Replaces the field (same vertex count); keeps the texture.
+  void set_field(std::span<const glm::vec3> field);
+  /// Changes alpha, beta, noise profile/rate, colours and advect view. The
+  /// image size and noise scale/seed need a new renderer.
+  void update_settings(const RenderSettings& settings);
+
+  /// F_t := B everywhere, frame counter 0 (algorithm steps 1-2).
+  void reset();
+  /// One frame with displacement dt (world units per frame).
+  void render_frame(const ViewState& view, float dt);
+
+  [[nodiscard]] int frame() const { return frame_; }
+  [[nodiscard]] const RenderSettings& settings() const { return settings_; }
+  /// The composed image F, RGBA8, rows bottom-up.
+  [[nodiscard]] ImageU8 read_output() const;
+  /// The texture image F_t, RGBA float (values as stored in 16-bit float).
+  [[nodiscard]] ImageF read_texture() const;
+  /// Blocks until the GPU has finished every submitted frame.
+  void finish() const;
+
+ private:
+  RenderSettings settings_;
+  gl::Program program_;
+  gl::Texture2D texture_[2];  // F_t ping-pong
+  gl::Texture2D output_;      // F
+  gl::Texture2D phases_;      // phi_ij
+  gl::Renderbuffer depth_;
+  gl::Framebuffer framebuffer_[2];  // [i] draws into texture_[i] and output_
+  gl::Buffer vertices_;
+  gl::Buffer field_;
+  gl::Buffer indices_;
+  gl::VertexArray vao_;
+  std::size_t index_count_ = 0;
+  std::size_t vertex_count_ = 0;
+  int current_ = 0;  // texture_[current_] holds F_t of the last frame
+  int frame_ = 0;
+  bool has_previous_ = false;
+  glm::mat4 previous_view_projection_{1.0f};
+
+  struct Uniforms {
+    int view_projection, advect_view_projection, view, dt, alpha, beta, inject, noise_time,
+        noise_scale, profile, spike_width, background, surface_color, phase_size;
+  } u_{};
+  void apply_settings_uniforms();
+};
+
+}  // namespace ibfvs

@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages ibfvs builds, tests and renders with.
+# Runs as root (CI) or through sudo. Idempotent.
+set -euo pipefail
+packages=(
+  build-essential cmake pkg-config git
+  libopenmesh-dev libglm-dev libepoxy-dev libpng-dev libcli11-dev
+  libegl-dev libegl-mesa0 libgl1-mesa-dri libgbm1
+  libgtest-dev googletest libbenchmark-dev
+  ffmpeg
+)
+sudo=""
+if [[ $(id -u) -ne 0 ]]; then sudo="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  $sudo apt-get update -qq
+  $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi

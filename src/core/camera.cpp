@@ -1,0 +1,75 @@
+#include "ibfvs/core/camera.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/trigonometric.hpp>
+
+#include "ibfvs/core/error.h"
+
+namespace ibfvs {
+
+Camera::Camera(const Bounds& bounds, const CameraParams& params, float aspect)
+    : bounds_(bounds), params_(params), aspect_(aspect) {
+  if (!(params.fov_deg > 0.0f && params.fov_deg < 180.0f))
+    throw InputError("--fov: the field of view must be between 0 and 180 degrees");
+  if (!(params.distance >= 0.0f) || !std::isfinite(params.distance))
+    throw InputError("--camera: the distance must be a positive number of diagonals");
+  if (!(aspect > 0.0f)) throw InputError("camera: the aspect ratio must be positive");
+}
+
+float Camera::distance_world() const {
+  const float diag = std::max(bounds_.diagonal(), 1e-6f);
+  if (params_.distance > 0.0f) return params_.distance * diag;
+  // Fit the sphere about the box centre that holds every vertex in the
+  // narrower field of view, with 3% margin. A sphere, not the box, so that an
+  // orbiting camera keeps the whole mesh in view at a constant distance.
+  const float radius = bounds_.radius > 0.0f ? bounds_.radius : 0.5f * diag;
+  const float half_v = glm::radians(params_.fov_deg) * 0.5f;
+  const float half_h = std::atan(std::tan(half_v) * aspect_);
+  return 1.03f * radius / std::sin(std::min(half_v, half_h));
+}
+
+glm::vec3 Camera::eye() const {
+  const float az = glm::radians(params_.azimuth_deg);
+  const float el = glm::radians(params_.elevation_deg);
+  const glm::vec3 dir(std::sin(az) * std::cos(el), std::sin(el), std::cos(az) * std::cos(el));
+  return bounds_.centre() + distance_world() * dir;
+}
+
+glm::mat4 Camera::view() const {
+  const glm::vec3 eye_pos = eye();
+  const glm::vec3 forward = glm::normalize(bounds_.centre() - eye_pos);
+  // Looking straight up or down: +Y is degenerate, take the azimuth direction.
+  glm::vec3 up(0, 1, 0);
+  if (std::abs(glm::dot(forward, up)) > 0.999f) {
+    const float az = glm::radians(params_.azimuth_deg);
+    up = glm::vec3(-std::sin(az), 0, -std::cos(az)) * (forward.y < 0 ? 1.0f : -1.0f);
+  }
+  return glm::lookAt(eye_pos, bounds_.centre(), up);
+}
+
+glm::mat4 Camera::projection() const {
+  const float diag = std::max(bounds_.diagonal(), 1e-6f);
+  const float radius = bounds_.radius > 0.0f ? bounds_.radius : 0.5f * diag;
+  const float dist = distance_world();
+  const float far_plane = dist + 1.5f * radius;
+  const float near_plane = std::max(dist - 1.5f * radius, 1e-3f * radius);
+  if (params_.orthographic) {
+    // The same framing as the fitted perspective view at the centre's depth.
+    const float half_h = dist * std::tan(glm::radians(params_.fov_deg) * 0.5f);
+    const float half_w = half_h * aspect_;
+    return glm::ortho(-half_w, half_w, -half_h, half_h, near_plane, far_plane);
+  }
+  return glm::perspective(glm::radians(params_.fov_deg), aspect_, near_plane, far_plane);
+}
+
+glm::vec2 project_to_pixels(const glm::mat4& vp, const glm::vec3& p, int width, int height) {
+  const glm::vec4 c = vp * glm::vec4(p, 1.0f);
+  const float w = std::max(c.w, 1e-12f);
+  return {(c.x / w * 0.5f + 0.5f) * static_cast<float>(width),
+          (c.y / w * 0.5f + 0.5f) * static_cast<float>(height)};
+}
+
+}  // namespace ibfvs

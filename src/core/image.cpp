@@ -1,0 +1,111 @@
+#include "ibfvs/core/image.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <memory>
+
+#include <png.h>
+
+#include "ibfvs/core/error.h"
+
+namespace ibfvs {
+namespace {
+
+struct FileCloser {
+  void operator()(std::FILE* f) const { std::fclose(f); }
+};
+using FilePtr = std::unique_ptr<std::FILE, FileCloser>;
+
+[[noreturn]] void png_fail(const std::filesystem::path& path, const char* what) {
+  throw InputError(path.string() + ": " + what);
+}
+
+// libpng reports errors through longjmp by default; an error callback that
+// throws lets RAII clean up instead.
+void png_throw(png_structp, png_const_charp message) { throw InputError(message); }
+void png_quiet(png_structp, png_const_charp) {}
+
+void write_rows(const std::filesystem::path& path, int width, int height, int color_type,
+                int bit_depth, const std::vector<png_bytep>& rows) {
+  FilePtr file(std::fopen(path.c_str(), "wb"));
+  if (!file) png_fail(path, "cannot open for writing");
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, png_throw, png_quiet);
+  png_infop info = png_create_info_struct(png);
+  try {
+    png_init_io(png, file.get());
+    png_set_IHDR(png, info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height),
+                 bit_depth, color_type, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
+                 PNG_FILTER_TYPE_DEFAULT);
+    png_write_info(png, info);
+    if (bit_depth == 16) png_set_swap(png);  // our 16-bit samples are little-endian
+    png_write_image(png, const_cast<png_bytepp>(rows.data()));
+    png_write_end(png, nullptr);
+  } catch (const InputError& e) {
+    png_destroy_write_struct(&png, &info);
+    throw InputError(path.string() + ": " + e.what());
+  }
+  png_destroy_write_struct(&png, &info);
+}
+
+}  // namespace
+
+void write_png(const ImageU8& image, const std::filesystem::path& path) {
+  const int types[] = {0, PNG_COLOR_TYPE_GRAY, PNG_COLOR_TYPE_GRAY_ALPHA, PNG_COLOR_TYPE_RGB,
+                       PNG_COLOR_TYPE_RGBA};
+  if (image.channels < 1 || image.channels > 4) png_fail(path, "unsupported channel count");
+  std::vector<png_bytep> rows(static_cast<std::size_t>(image.height));
+  const std::size_t stride = static_cast<std::size_t>(image.width) * image.channels;
+  for (int y = 0; y < image.height; ++y)  // PNG is top-down
+    rows[static_cast<std::size_t>(y)] = const_cast<png_bytep>(
+        image.pixels.data() + static_cast<std::size_t>(image.height - 1 - y) * stride);
+  write_rows(path, image.width, image.height, types[image.channels], 8, rows);
+}
+
+void write_png16(const ImageF& image, const std::filesystem::path& path) {
+  const int types[] = {0, PNG_COLOR_TYPE_GRAY, PNG_COLOR_TYPE_GRAY_ALPHA, PNG_COLOR_TYPE_RGB,
+                       PNG_COLOR_TYPE_RGBA};
+  if (image.channels < 1 || image.channels > 4) png_fail(path, "unsupported channel count");
+  std::vector<std::uint16_t> data(image.pixels.size());
+  std::transform(image.pixels.begin(), image.pixels.end(), data.begin(), [](float v) {
+    return static_cast<std::uint16_t>(std::clamp(v, 0.0f, 1.0f) * 65535.0f + 0.5f);
+  });
+  std::vector<png_bytep> rows(static_cast<std::size_t>(image.height));
+  const std::size_t stride = static_cast<std::size_t>(image.width) * image.channels;
+  for (int y = 0; y < image.height; ++y)
+    rows[static_cast<std::size_t>(y)] = reinterpret_cast<png_bytep>(
+        data.data() + static_cast<std::size_t>(image.height - 1 - y) * stride);
+  write_rows(path, image.width, image.height, types[image.channels], 16, rows);
+}
+
+ImageU8 read_png(const std::filesystem::path& path) {
+  png_image img{};
+  img.version = PNG_IMAGE_VERSION;
+  if (!png_image_begin_read_from_file(&img, path.c_str()))
+    png_fail(path, "cannot read as PNG");
+  img.format = PNG_FORMAT_RGBA;
+  ImageU8 out;
+  out.width = static_cast<int>(img.width);
+  out.height = static_cast<int>(img.height);
+  out.channels = 4;
+  out.pixels.resize(PNG_IMAGE_SIZE(img));
+  // A negative stride stores the rows bottom-up.
+  const int stride = -static_cast<int>(PNG_IMAGE_ROW_STRIDE(img));
+  if (!png_image_finish_read(&img, nullptr, out.pixels.data(), stride, nullptr)) {
+    png_image_free(&img);
+    png_fail(path, "corrupt PNG data");
+  }
+  return out;
+}
+
+ImageF to_float_channel(const ImageU8& image, int channel) {
+  ImageF out;
+  out.width = image.width;
+  out.height = image.height;
+  out.channels = 1;
+  out.pixels.resize(static_cast<std::size_t>(image.width) * image.height);
+  for (std::size_t i = 0; i < out.pixels.size(); ++i)
+    out.pixels[i] = image.pixels[i * image.channels + channel] / 255.0f;
+  return out;
+}
+
+}  // namespace ibfvs

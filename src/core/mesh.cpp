@@ -1,0 +1,95 @@
+#include "ibfvs/core/mesh.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <glm/geometric.hpp>
+
+#include "ibfvs/core/error.h"
+
+namespace ibfvs {
+
+float Bounds::diagonal() const { return glm::length(max - min); }
+
+Bounds mesh_bounds(const TriMesh& mesh) {
+  if (mesh.triangles.empty()) throw InputError("mesh has no triangles");
+  Bounds b;
+  b.min = glm::vec3(std::numeric_limits<float>::max());
+  b.max = glm::vec3(std::numeric_limits<float>::lowest());
+  for (const Triangle& t : mesh.triangles) {
+    for (std::uint32_t i : t) {
+      b.min = glm::min(b.min, mesh.positions[i]);
+      b.max = glm::max(b.max, mesh.positions[i]);
+    }
+  }
+  const glm::vec3 c = b.centre();
+  float r2 = 0.0f;
+  for (const Triangle& t : mesh.triangles)
+    for (std::uint32_t i : t) {
+      const glm::vec3 d = mesh.positions[i] - c;
+      r2 = std::max(r2, glm::dot(d, d));
+    }
+  b.radius = std::sqrt(r2);
+  return b;
+}
+
+void compute_vertex_normals(TriMesh& mesh) {
+  std::vector<glm::vec3> acc(mesh.positions.size(), glm::vec3(0.0f));
+  for (const Triangle& t : mesh.triangles) {
+    const glm::vec3 p[3] = {mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]};
+    const glm::vec3 n = glm::cross(p[1] - p[0], p[2] - p[0]);
+    const float len = glm::length(n);
+    if (!(len > 0.0f) || !std::isfinite(len)) continue;
+    const glm::vec3 unit = n / len;
+    for (int k = 0; k < 3; ++k) {
+      const glm::vec3 a = p[(k + 1) % 3] - p[k];
+      const glm::vec3 b = p[(k + 2) % 3] - p[k];
+      const float la = glm::length(a), lb = glm::length(b);
+      if (!(la > 0.0f && lb > 0.0f)) continue;
+      const float c = std::clamp(glm::dot(a, b) / (la * lb), -1.0f, 1.0f);
+      acc[t[k]] += std::acos(c) * unit;
+    }
+  }
+  mesh.normals.resize(acc.size());
+  for (std::size_t i = 0; i < acc.size(); ++i) {
+    const float len = glm::length(acc[i]);
+    mesh.normals[i] = (len > 0.0f && std::isfinite(len)) ? acc[i] / len : glm::vec3(0, 0, 1);
+  }
+}
+
+void validate_mesh(const TriMesh& mesh, const std::string& source) {
+  const std::size_t n = mesh.positions.size();
+  if (mesh.triangles.empty()) throw InputError(source + ": the mesh has no triangles");
+  for (std::size_t i = 0; i < n; ++i) {
+    const glm::vec3& p = mesh.positions[i];
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+      throw InputError(source + ": vertex " + std::to_string(i) +
+                       " has a non-finite coordinate (NaN or infinity)");
+  }
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f)
+    for (std::uint32_t i : mesh.triangles[f])
+      if (i >= n)
+        throw InputError(source + ": triangle " + std::to_string(f) + " references vertex " +
+                         std::to_string(i) + " but there are only " + std::to_string(n));
+  if (!mesh.normals.empty() && mesh.normals.size() != n)
+    throw InputError(source + ": normal count differs from vertex count");
+  if (!mesh.vectors.empty() && mesh.vectors.size() != n)
+    throw InputError(source + ": vector count differs from vertex count");
+  for (const auto& [name, values] : mesh.scalars)
+    if (values.size() != n)
+      throw InputError(source + ": property '" + name + "' count differs from vertex count");
+}
+
+std::size_t remove_degenerate_triangles(TriMesh& mesh) {
+  const std::size_t before = mesh.triangles.size();
+  std::erase_if(mesh.triangles, [&](const Triangle& t) {
+    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) return true;
+    const glm::vec3 n = glm::cross(mesh.positions[t[1]] - mesh.positions[t[0]],
+                                   mesh.positions[t[2]] - mesh.positions[t[0]]);
+    return !(glm::dot(n, n) > 0.0f);
+  });
+  return before - mesh.triangles.size();
+}
+
+}  // namespace ibfvs

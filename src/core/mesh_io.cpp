@@ -1,0 +1,398 @@
+#include "ibfvs/core/mesh_io.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <fstream>
+#include <iostream>
+#include <new>
+#include <optional>
+#include <set>
+#include <sstream>
+
+#include <OpenMesh/Core/IO/MeshIO.hh>
+#include <glm/geometric.hpp>
+#include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
+
+#include "ibfvs/core/error.h"
+
+namespace ibfvs {
+namespace {
+
+using PolyMesh = OpenMesh::PolyMesh_ArrayKernelT<>;
+namespace fs = std::filesystem;
+
+// OpenMesh reports problems on its global omerr stream and then carries on with
+// what it could read. Capture those lines for the duration of one read, so they
+// can be classified (fatal: an index out of range; repairable: a face with
+// repeated vertices) instead of being lost on stderr.
+class OmErrCapture {
+ public:
+  OmErrCapture() {
+    omerr().disconnect(std::cerr);
+    omerr().connect(buffer_);
+  }
+  ~OmErrCapture() {
+    omerr().flush();
+    omerr().disconnect(buffer_);
+    omerr().connect(std::cerr);
+  }
+  OmErrCapture(const OmErrCapture&) = delete;
+  OmErrCapture& operator=(const OmErrCapture&) = delete;
+  std::vector<std::string> lines() {
+    omerr().flush();
+    std::vector<std::string> out;
+    std::istringstream in(buffer_.str());
+    for (std::string line; std::getline(in, line);)
+      if (!line.empty()) out.push_back(line);
+    return out;
+  }
+
+ private:
+  std::ostringstream buffer_;
+};
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+  return s;
+}
+
+// Counts the file declares, where the format declares them (OFF, PLY).
+struct DeclaredCounts {
+  std::optional<std::size_t> vertices;
+  std::optional<std::size_t> faces;
+  bool ascii = true;
+};
+
+[[noreturn]] void fail(const fs::path& path, const std::string& problem) {
+  throw InputError(path.string() + ": " + problem);
+}
+
+std::size_t parse_count(const fs::path& path, const std::string& token, const char* what) {
+  if (token.empty() || !std::all_of(token.begin(), token.end(), [](unsigned char c) {
+        return std::isdigit(c) != 0;
+      }))
+    fail(path, std::string("bad ") + what + " count '" + token + "' in the header");
+  try {
+    return std::stoull(token);
+  } catch (const std::exception&) {
+    fail(path, std::string("bad ") + what + " count '" + token + "' in the header");
+  }
+}
+
+DeclaredCounts off_header(const fs::path& path, std::istream& in) {
+  DeclaredCounts counts;
+  std::string magic;
+  in >> magic;
+  if (magic.find("OFF") == std::string::npos)
+    fail(path, "not an OFF file (the first word is not OFF)");
+  if (magic.find('4') != std::string::npos || magic.find('n') == 0)
+    return counts;  // 4D or n-dimensional variants: leave the checks to the reader
+  std::string rest;
+  std::getline(in, rest);
+  if (rest.find("BINARY") != std::string::npos) {
+    counts.ascii = false;
+    return counts;
+  }
+  std::vector<std::string> tokens;
+  std::istringstream head(rest);
+  for (std::string t; head >> t;) tokens.push_back(t);
+  // The counts may be on the magic line or on the next non-comment line.
+  while (tokens.size() < 2) {
+    std::string line;
+    if (!std::getline(in, line)) fail(path, "truncated OFF header (no vertex and face counts)");
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream ls(line);
+    for (std::string t; ls >> t;) tokens.push_back(t);
+  }
+  counts.vertices = parse_count(path, tokens[0], "vertex");
+  counts.faces = parse_count(path, tokens[1], "face");
+  return counts;
+}
+
+DeclaredCounts ply_header(const fs::path& path, std::istream& in) {
+  DeclaredCounts counts;
+  std::string line;
+  std::getline(in, line);
+  if (lower(line).rfind("ply", 0) != 0) fail(path, "not a PLY file (the first line is not 'ply')");
+  bool ended = false;
+  while (std::getline(in, line)) {
+    std::istringstream ls(line);
+    std::string key;
+    ls >> key;
+    if (key == "format") {
+      std::string fmt;
+      ls >> fmt;
+      counts.ascii = fmt == "ascii";
+    } else if (key == "element") {
+      std::string name, n;
+      ls >> name >> n;
+      if (name == "vertex") counts.vertices = parse_count(path, n, "vertex");
+      if (name == "face") counts.faces = parse_count(path, n, "face");
+    } else if (key == "end_header") {
+      ended = true;
+      break;
+    }
+  }
+  if (!ended) fail(path, "truncated PLY header (no end_header)");
+  if (!counts.vertices) fail(path, "the PLY header declares no vertex element");
+  return counts;
+}
+
+bool is_non_finite_token(std::string t) {
+  t = lower(t);
+  if (!t.empty() && (t[0] == '-' || t[0] == '+')) t.erase(0, 1);
+  return t.rfind("nan", 0) == 0 || t == "inf" || t == "infinity";
+}
+
+// iostream extraction stops at a "nan" token and the readers then misparse the
+// rest; scan the numbers of ASCII files first so the error says what is wrong.
+void reject_non_finite_text(const fs::path& path) {
+  std::ifstream in(path);
+  std::size_t line_no = 0;
+  for (std::string line; std::getline(in, line);) {
+    ++line_no;
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream ls(line);
+    for (std::string t; ls >> t;)
+      if (is_non_finite_token(t))
+        fail(path, "line " + std::to_string(line_no) + " holds a non-finite number '" + t + "'");
+  }
+}
+
+bool stl_is_ascii(const fs::path& path, std::uintmax_t size) {
+  std::ifstream in(path, std::ios::binary);
+  char head[5] = {};
+  in.read(head, 5);
+  if (std::string(head, 5) != "solid") return false;
+  // Binary STLs may start with "solid" too; their size is 84 + 50 * count.
+  if (size >= 84) {
+    in.seekg(80);
+    std::uint32_t n = 0;
+    in.read(reinterpret_cast<char*>(&n), 4);
+    if (84 + 50 * static_cast<std::uintmax_t>(n) == size) return false;
+  }
+  return true;
+}
+
+template <class T>
+bool copy_scalar_property(PolyMesh& pm, OpenMesh::BaseProperty* base, std::vector<float>& out) {
+  auto* prop = dynamic_cast<OpenMesh::PropertyT<T>*>(base);
+  if (!prop) return false;
+  out.resize(pm.n_vertices());
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] = static_cast<float>((*prop)[i]);
+  return true;
+}
+
+bool copy_any_scalar(PolyMesh& pm, OpenMesh::BaseProperty* base, std::vector<float>& out) {
+  return copy_scalar_property<float>(pm, base, out) || copy_scalar_property<double>(pm, base, out) ||
+         copy_scalar_property<int>(pm, base, out) ||
+         copy_scalar_property<unsigned int>(pm, base, out) ||
+         copy_scalar_property<short>(pm, base, out) ||
+         copy_scalar_property<unsigned short>(pm, base, out) ||
+         copy_scalar_property<signed char>(pm, base, out) ||
+         copy_scalar_property<unsigned char>(pm, base, out) ||
+         copy_scalar_property<char>(pm, base, out);
+}
+
+}  // namespace
+
+TriMesh read_mesh(const fs::path& path, MeshReadReport* report_out) {
+  MeshReadReport report;
+  std::error_code ec;
+  if (!fs::exists(path, ec)) fail(path, "no such file");
+  if (!fs::is_regular_file(path, ec)) fail(path, "not a regular file");
+  const std::uintmax_t size = fs::file_size(path, ec);
+  if (ec) fail(path, "cannot read the file size: " + ec.message());
+  if (size == 0) fail(path, "the file is empty");
+  {
+    std::ifstream probe(path, std::ios::binary);
+    if (!probe) fail(path, "cannot open the file for reading");
+  }
+  const std::string ext = lower(path.extension().string());
+  DeclaredCounts declared;
+  {
+    std::ifstream in(path, std::ios::binary);
+    if (ext == ".off") {
+      declared = off_header(path, in);
+    } else if (ext == ".ply") {
+      declared = ply_header(path, in);
+    } else if (ext == ".stl") {
+      declared.ascii = stl_is_ascii(path, size);
+      if (!declared.ascii && (size < 84 || (size - 84) % 50 != 0))
+        fail(path, "truncated or malformed binary STL (size is not 84 + 50 * triangles)");
+    } else if (ext != ".obj") {
+      fail(path, "unknown mesh format '" + ext + "' (expected .off, .obj, .ply or .stl)");
+    }
+  }
+  // A count larger than the bytes that could hold it is a corrupt header; refuse
+  // it before the reader tries to allocate it.
+  if ((declared.vertices && *declared.vertices > size) || (declared.faces && *declared.faces > size))
+    fail(path, "the header declares " + std::to_string(declared.vertices.value_or(0)) +
+                   " vertices and " + std::to_string(declared.faces.value_or(0)) +
+                   " faces, more than a file of " + std::to_string(size) + " bytes can hold");
+  if (declared.ascii) reject_non_finite_text(path);
+
+  PolyMesh pm;
+  pm.request_vertex_normals();
+  OpenMesh::IO::Options opt = OpenMesh::IO::Options::Custom;
+  opt += OpenMesh::IO::Options::VertexNormal;
+  std::vector<std::string> messages;
+  bool ok = false;
+  {
+    OmErrCapture capture;
+    try {
+      ok = OpenMesh::IO::read_mesh(pm, path.string(), opt);
+    } catch (const std::bad_alloc&) {
+      fail(path, "malformed file (the reader ran out of memory on its counts)");
+    } catch (const std::exception& e) {
+      fail(path, std::string("malformed file: ") + e.what());
+    }
+    messages = capture.lines();
+  }
+  const auto has = [&](const char* needle) {
+    return std::any_of(messages.begin(), messages.end(),
+                       [&](const std::string& m) { return m.find(needle) != std::string::npos; });
+  };
+  if (has("invalid vertex index"))
+    fail(path, "a face references a vertex index out of range (or the file is truncated)");
+  if (!ok) {
+    const std::string why = messages.empty() ? "the reader rejected it" : messages.front();
+    fail(path, "cannot parse the mesh: " + why);
+  }
+  for (const std::string& m : messages)
+    if (m.find("equal vertices") != std::string::npos) ++report.faces_skipped;
+
+  if (declared.vertices && pm.n_vertices() < *declared.vertices)
+    fail(path, "truncated or malformed: the header declares " + std::to_string(*declared.vertices) +
+                   " vertices but " + std::to_string(pm.n_vertices()) + " were read");
+  if (declared.faces && pm.n_faces() + report.faces_skipped < *declared.faces)
+    fail(path, "truncated or malformed: the header declares " + std::to_string(*declared.faces) +
+                   " faces but " + std::to_string(pm.n_faces()) + " were read");
+  if (pm.n_faces() == 0) fail(path, "no faces could be read: not a surface mesh");
+
+  TriMesh mesh;
+  const std::size_t nv = pm.n_vertices();
+  mesh.positions.resize(nv);
+  for (std::size_t i = 0; i < nv; ++i) {
+    const auto& p = pm.point(PolyMesh::VertexHandle(static_cast<int>(i)));
+    mesh.positions[i] = glm::vec3(p[0], p[1], p[2]);
+  }
+  // Fan triangulation of convex polygons keeps the vertex order and needs no
+  // geometry; non-convex polygons are rare in the formats we read.
+  mesh.triangles.reserve(pm.n_faces());
+  for (const auto fh : pm.faces()) {
+    std::vector<std::uint32_t> ids;
+    for (const auto vh : pm.fv_range(fh)) ids.push_back(static_cast<std::uint32_t>(vh.idx()));
+    if (ids.size() > 3) ++report.polygons_triangulated;
+    for (std::size_t k = 1; k + 1 < ids.size(); ++k) mesh.triangles.push_back({ids[0], ids[k], ids[k + 1]});
+  }
+
+  // Per-vertex properties from the file (PLY custom properties).
+  static const std::set<std::string> kStandard = {"x", "y", "z", "nx", "ny", "nz", "red", "green",
+                                                  "blue", "alpha", "u", "v", "s", "t",
+                                                  "texture_u", "texture_v"};
+  std::map<std::string, std::vector<float>> props;
+  for (auto it = pm.vprops_begin(); it != pm.vprops_end(); ++it) {
+    OpenMesh::BaseProperty* base = *it;
+    if (!base) continue;
+    const std::string& name = base->name();
+    if (name.empty() || name[0] == '<' || name.rfind("v:", 0) == 0 || kStandard.count(name))
+      continue;
+    std::vector<float> values;
+    if (copy_any_scalar(pm, base, values)) props[name] = std::move(values);
+  }
+  if (props.count("vx") && props.count("vy") && props.count("vz")) {
+    mesh.vectors.resize(nv);
+    for (std::size_t i = 0; i < nv; ++i)
+      mesh.vectors[i] = glm::vec3(props["vx"][i], props["vy"][i], props["vz"][i]);
+    props.erase("vx");
+    props.erase("vy");
+    props.erase("vz");
+  }
+  mesh.scalars = std::move(props);
+
+  validate_mesh(mesh, path.string());
+  report.degenerate_removed = remove_degenerate_triangles(mesh);
+  if (mesh.triangles.empty()) fail(path, "every triangle is degenerate (zero area)");
+
+  if (opt.vertex_has_normal()) {
+    report.normals_from_file = true;
+    mesh.normals.resize(nv);
+    for (std::size_t i = 0; i < nv; ++i) {
+      const auto& n = pm.normal(PolyMesh::VertexHandle(static_cast<int>(i)));
+      const glm::vec3 v(n[0], n[1], n[2]);
+      const float len = glm::length(v);
+      mesh.normals[i] = (len > 0.0f && std::isfinite(len)) ? v / len : glm::vec3(0.0f);
+    }
+    // A file with zero or broken normals gets computed ones instead.
+    if (std::any_of(mesh.normals.begin(), mesh.normals.end(),
+                    [](const glm::vec3& n) { return n == glm::vec3(0.0f); })) {
+      report.normals_from_file = false;
+      compute_vertex_normals(mesh);
+    }
+  } else {
+    compute_vertex_normals(mesh);
+  }
+
+  std::vector<bool> used(nv, false);
+  for (const Triangle& t : mesh.triangles)
+    for (std::uint32_t i : t) used[i] = true;
+  report.unreferenced_vertices = static_cast<std::size_t>(std::count(used.begin(), used.end(), false));
+
+  const std::string name = path.string();
+  if (report.faces_skipped)
+    report.warnings.push_back(name + ": skipped " + std::to_string(report.faces_skipped) +
+                              " faces with repeated vertices");
+  if (report.degenerate_removed)
+    report.warnings.push_back(name + ": dropped " + std::to_string(report.degenerate_removed) +
+                              " zero-area triangles");
+  if (report_out) *report_out = std::move(report);
+  return mesh;
+}
+
+void write_ply(const TriMesh& mesh, const fs::path& path, bool binary) {
+  std::ofstream out(path, std::ios::binary);
+  if (!out) throw InputError(path.string() + ": cannot open for writing");
+  const bool has_n = mesh.normals.size() == mesh.positions.size();
+  const bool has_v = mesh.vectors.size() == mesh.positions.size();
+  out << "ply\nformat " << (binary ? "binary_little_endian" : "ascii") << " 1.0\n"
+      << "comment written by ibfvs\n"
+      << "element vertex " << mesh.positions.size() << "\n"
+      << "property float x\nproperty float y\nproperty float z\n";
+  if (has_n) out << "property float nx\nproperty float ny\nproperty float nz\n";
+  if (has_v) out << "property float vx\nproperty float vy\nproperty float vz\n";
+  for (const auto& [name, values] : mesh.scalars) out << "property float " << name << "\n";
+  out << "element face " << mesh.triangles.size() << "\n"
+      << "property list uchar int vertex_indices\nend_header\n";
+  std::vector<float> row;
+  for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+    row.clear();
+    const auto push = [&](const glm::vec3& v) { row.insert(row.end(), {v.x, v.y, v.z}); };
+    push(mesh.positions[i]);
+    if (has_n) push(mesh.normals[i]);
+    if (has_v) push(mesh.vectors[i]);
+    for (const auto& [name, values] : mesh.scalars) row.push_back(values[i]);
+    if (binary) {
+      out.write(reinterpret_cast<const char*>(row.data()),
+                static_cast<std::streamsize>(row.size() * sizeof(float)));
+    } else {
+      for (std::size_t k = 0; k < row.size(); ++k) out << (k ? " " : "") << row[k];
+      out << "\n";
+    }
+  }
+  for (const Triangle& t : mesh.triangles) {
+    if (binary) {
+      const unsigned char three = 3;
+      const std::int32_t ids[3] = {static_cast<std::int32_t>(t[0]), static_cast<std::int32_t>(t[1]),
+                                   static_cast<std::int32_t>(t[2])};
+      out.write(reinterpret_cast<const char*>(&three), 1);
+      out.write(reinterpret_cast<const char*>(ids), sizeof ids);
+    } else {
+      out << "3 " << t[0] << " " << t[1] << " " << t[2] << "\n";
+    }
+  }
+  if (!out) throw InputError(path.string() + ": write failed");
+}
+
+}  // namespace ibfvs

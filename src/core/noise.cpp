@@ -1,0 +1,79 @@
+#include "ibfvs/core/noise.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "ibfvs/core/error.h"
+
+namespace ibfvs {
+
+NoiseProfile parse_noise_profile(std::string_view text) {
+  if (text == "square") return NoiseProfile::Square;
+  if (text == "sawtooth") return NoiseProfile::Sawtooth;
+  if (text == "sine") return NoiseProfile::Sine;
+  if (text == "spike") return NoiseProfile::Spike;
+  throw InputError("--profile: expected square, sawtooth, sine or spike, got '" +
+                   std::string(text) + "'");
+}
+
+std::string to_string(NoiseProfile profile) {
+  switch (profile) {
+    case NoiseProfile::Square: return "square";
+    case NoiseProfile::Sawtooth: return "sawtooth";
+    case NoiseProfile::Sine: return "sine";
+    case NoiseProfile::Spike: return "spike";
+  }
+  return "square";
+}
+
+float noise_profile_value(NoiseProfile profile, float t, float spike_width) {
+  const float f = t - std::floor(t);
+  switch (profile) {
+    case NoiseProfile::Square: return f < 0.5f ? 1.0f : 0.0f;
+    case NoiseProfile::Sawtooth: return f;
+    case NoiseProfile::Sine: return 0.5f + 0.5f * std::sin(2.0f * std::numbers::pi_v<float> * f);
+    case NoiseProfile::Spike: return f < spike_width ? 1.0f : 0.0f;
+  }
+  return 0.0f;
+}
+
+float hash_uniform(std::uint32_t seed, std::uint64_t index) {
+  // splitmix64 of (seed, index): well mixed, cheap, portable.
+  std::uint64_t z = (static_cast<std::uint64_t>(seed) << 32) ^ (index + 0x9E3779B97F4A7C15ull);
+  z += 0x9E3779B97F4A7C15ull;
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  z ^= z >> 31;
+  return static_cast<float>(z >> 40) / static_cast<float>(1ull << 24);
+}
+
+NoiseGrid::NoiseGrid(int width, int height, const NoiseParams& params) : params_(params) {
+  if (!(params.scale > 0.0f) || !std::isfinite(params.scale))
+    throw InputError("--scale: the noise scale must be a positive number of pixels");
+  if (width <= 0 || height <= 0) throw InputError("noise grid: image size must be positive");
+  columns_ = static_cast<int>(std::floor(static_cast<float>(width) / params.scale)) + 2;
+  rows_ = static_cast<int>(std::floor(static_cast<float>(height) / params.scale)) + 2;
+  phases_.resize(static_cast<std::size_t>(columns_) * static_cast<std::size_t>(rows_));
+  for (std::size_t k = 0; k < phases_.size(); ++k) phases_[k] = hash_uniform(params.seed, k);
+}
+
+float NoiseGrid::grid_value(int i, int j, int frame) const {
+  i = std::clamp(i, 0, columns_ - 1);
+  j = std::clamp(j, 0, rows_ - 1);
+  const float phi = phases_[static_cast<std::size_t>(j) * static_cast<std::size_t>(columns_) +
+                            static_cast<std::size_t>(i)];
+  return noise_profile_value(params_.profile, params_.rate * static_cast<float>(frame) + phi,
+                             params_.spike_width);
+}
+
+float NoiseGrid::sample(float x, float y, int frame) const {
+  const float u = x / params_.scale, v = y / params_.scale;
+  const float fu = std::floor(u), fv = std::floor(v);
+  const int i = static_cast<int>(fu), j = static_cast<int>(fv);
+  const float a = u - fu, b = v - fv;
+  return (1 - a) * (1 - b) * grid_value(i, j, frame) + a * (1 - b) * grid_value(i + 1, j, frame) +
+         (1 - a) * b * grid_value(i, j + 1, frame) + a * b * grid_value(i + 1, j + 1, frame);
+}
+
+}  // namespace ibfvs

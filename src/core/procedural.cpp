@@ -1,0 +1,98 @@
+#include "ibfvs/core/procedural.h"
+
+#include <cmath>
+#include <numbers>
+
+#include <glm/geometric.hpp>
+
+namespace ibfvs {
+namespace {
+
+constexpr float kPi = std::numbers::pi_v<float>;
+
+// Triangulates a (cols+1) x (rows+1) vertex grid; `wrap_u` joins the last
+// column to the first.
+void grid_triangles(TriMesh& m, int cols, int rows, bool wrap_u, bool wrap_v) {
+  const int vc = wrap_u ? cols : cols + 1;
+  const auto id = [&](int i, int j) {
+    const int rr = wrap_v ? rows : rows + 1;
+    return static_cast<std::uint32_t>((j % rr) * vc + (i % vc));
+  };
+  for (int j = 0; j < rows; ++j)
+    for (int i = 0; i < cols; ++i) {
+      m.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      m.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+}
+
+}  // namespace
+
+TriMesh make_torus(float R, float r, int segments, int sides) {
+  TriMesh m;
+  for (int j = 0; j < sides; ++j)
+    for (int i = 0; i < segments; ++i) {
+      const float u = 2 * kPi * static_cast<float>(i) / static_cast<float>(segments);
+      const float v = 2 * kPi * static_cast<float>(j) / static_cast<float>(sides);
+      const glm::vec3 dir(std::cos(u), 0, -std::sin(u));
+      const glm::vec3 n = std::cos(v) * dir + glm::vec3(0, std::sin(v), 0);
+      m.positions.push_back(R * dir + r * n);
+      m.normals.push_back(n);
+    }
+  grid_triangles(m, segments, sides, true, true);
+  return m;
+}
+
+TriMesh make_sphere(float radius, int stacks, int slices, float bump) {
+  TriMesh m;
+  for (int j = 0; j <= stacks; ++j)
+    for (int i = 0; i < slices; ++i) {
+      const float theta = kPi * static_cast<float>(j) / static_cast<float>(stacks);
+      const float phi = 2 * kPi * static_cast<float>(i) / static_cast<float>(slices);
+      const glm::vec3 n(std::sin(theta) * std::sin(phi), std::cos(theta),
+                        std::sin(theta) * std::cos(phi));
+      const float relief =
+          1.0f + bump * std::sin(5 * theta) * std::sin(4 * phi) * std::sin(theta);
+      m.positions.push_back(radius * relief * n);
+      m.normals.push_back(n);
+    }
+  // Rows 0 and `stacks` collapse to the poles; the triangles touching them are
+  // kept with distinct indices but zero area at the pole, which is harmless.
+  for (int j = 0; j < stacks; ++j)
+    for (int i = 0; i < slices; ++i) {
+      const auto id = [&](int ii, int jj) {
+        return static_cast<std::uint32_t>(jj * slices + (ii % slices));
+      };
+      if (j > 0) m.triangles.push_back({id(i, j), id(i, j + 1), id(i + 1, j)});
+      if (j < stacks - 1) m.triangles.push_back({id(i + 1, j), id(i, j + 1), id(i + 1, j + 1)});
+    }
+  if (bump != 0.0f) compute_vertex_normals(m);
+  return m;
+}
+
+TriMesh make_square(float half, int n) {
+  TriMesh m;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      m.positions.emplace_back(-half + 2 * half * static_cast<float>(i) / static_cast<float>(n),
+                               -half + 2 * half * static_cast<float>(j) / static_cast<float>(n),
+                               0.0f);
+      m.normals.emplace_back(0, 0, 1);
+    }
+  grid_triangles(m, n, n, false, false);
+  return m;
+}
+
+TriMesh make_cylinder(float r, float h, int segments, int rings) {
+  TriMesh m;
+  for (int j = 0; j <= rings; ++j)
+    for (int i = 0; i < segments; ++i) {
+      const float u = 2 * kPi * static_cast<float>(i) / static_cast<float>(segments);
+      const glm::vec3 n(std::sin(u), 0, std::cos(u));
+      m.positions.push_back(r * n + glm::vec3(0, -0.5f * h + h * static_cast<float>(j) / rings, 0));
+      m.normals.push_back(n);
+    }
+  grid_triangles(m, segments, rings, true, false);
+  return m;
+}
+
+}  // namespace ibfvs

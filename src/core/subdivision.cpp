@@ -1,0 +1,81 @@
+#include "ibfvs/core/subdivision.h"
+
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+#include <OpenMesh/Tools/Subdivider/Uniform/LoopT.hh>
+
+#include "ibfvs/core/error.h"
+
+namespace ibfvs {
+namespace {
+
+using OmTriMesh = OpenMesh::TriMesh_ArrayKernelT<>;
+
+// Builds an OpenMesh mesh with the given per-vertex "points" (positions or any
+// other three channels of vertex data) on the connectivity of `mesh`.
+OmTriMesh build(const TriMesh& mesh, const std::vector<glm::vec3>& points) {
+  OmTriMesh om;
+  om.reserve(points.size(), 3 * mesh.triangles.size(), mesh.triangles.size());
+  for (const glm::vec3& p : points) om.add_vertex(OmTriMesh::Point(p.x, p.y, p.z));
+  for (const Triangle& t : mesh.triangles)
+    om.add_face(OmTriMesh::VertexHandle(static_cast<int>(t[0])),
+                OmTriMesh::VertexHandle(static_cast<int>(t[1])),
+                OmTriMesh::VertexHandle(static_cast<int>(t[2])));
+  return om;
+}
+
+std::vector<glm::vec3> subdivided_points(const TriMesh& mesh, const std::vector<glm::vec3>& points,
+                                         int levels, std::vector<Triangle>* triangles) {
+  OmTriMesh om = build(mesh, points);
+  OpenMesh::Subdivider::Uniform::LoopT<OmTriMesh> loop;
+  loop.attach(om);
+  loop(static_cast<std::size_t>(levels));
+  loop.detach();
+  om.garbage_collection();
+  std::vector<glm::vec3> out(om.n_vertices());
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    const auto& p = om.point(OmTriMesh::VertexHandle(static_cast<int>(i)));
+    out[i] = glm::vec3(p[0], p[1], p[2]);
+  }
+  if (triangles) {
+    triangles->clear();
+    triangles->reserve(om.n_faces());
+    for (const auto fh : om.faces()) {
+      Triangle t{};
+      int k = 0;
+      for (const auto vh : om.fv_range(fh)) t[k++] = static_cast<std::uint32_t>(vh.idx());
+      triangles->push_back(t);
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+TriMesh loop_subdivide(const TriMesh& mesh, int levels) {
+  if (levels < 0 || levels > 8) throw InputError("--subdivide: levels must be between 0 and 8");
+  if (levels == 0) return mesh;
+  TriMesh out;
+  out.positions = subdivided_points(mesh, mesh.positions, levels, &out.triangles);
+  // OpenMesh drops faces it cannot add (non-manifold); the data channels are
+  // run through the same connectivity, so they line up with the positions.
+  if (mesh.vectors.size() == mesh.positions.size())
+    out.vectors = subdivided_points(mesh, mesh.vectors, levels, nullptr);
+  std::vector<std::pair<std::string, std::vector<float>>> scalars(mesh.scalars.begin(),
+                                                                  mesh.scalars.end());
+  for (std::size_t s = 0; s < scalars.size(); s += 3) {
+    std::vector<glm::vec3> packed(mesh.positions.size(), glm::vec3(0.0f));
+    for (std::size_t c = 0; c < 3 && s + c < scalars.size(); ++c)
+      for (std::size_t i = 0; i < packed.size(); ++i) packed[i][static_cast<int>(c)] = scalars[s + c].second[i];
+    const std::vector<glm::vec3> result = subdivided_points(mesh, packed, levels, nullptr);
+    for (std::size_t c = 0; c < 3 && s + c < scalars.size(); ++c) {
+      std::vector<float>& values = out.scalars[scalars[s + c].first];
+      values.resize(result.size());
+      for (std::size_t i = 0; i < result.size(); ++i) values[i] = result[i][static_cast<int>(c)];
+    }
+  }
+  if (out.triangles.empty()) throw InputError("--subdivide: OpenMesh could not build the mesh");
+  compute_vertex_normals(out);
+  return out;
+}
+
+}  // namespace ibfvs

@@ -1,0 +1,189 @@
+#include "ibfvs/gl/context.h"
+
+#include <cstdlib>
+#include <cstring>
+#include <mutex>
+#include <sstream>
+
+#include <epoxy/egl.h>
+#include <epoxy/gl.h>
+
+#include "ibfvs/core/error.h"
+
+namespace ibfvs::gl {
+namespace {
+
+// The KHR_debug callback runs inside the driver's call stack, where throwing
+// is undefined; it records, and throw_if_errors() throws later.
+thread_local std::vector<std::string> g_errors;
+
+void GLAPIENTRY on_debug_message(GLenum /*source*/, GLenum type, GLuint /*id*/, GLenum severity,
+                                 GLsizei length, const GLchar* message, const void* /*user*/) {
+  if (type == GL_DEBUG_TYPE_ERROR || severity == GL_DEBUG_SEVERITY_HIGH)
+    g_errors.emplace_back(message, static_cast<std::size_t>(length));
+}
+
+bool has_extension(const char* list, const char* name) {
+  if (!list) return false;
+  const std::size_t n = std::strlen(name);
+  for (const char* p = list; (p = std::strstr(p, name)); p += n)
+    if ((p == list || p[-1] == ' ') && (p[n] == ' ' || p[n] == '\0')) return true;
+  return false;
+}
+
+}  // namespace
+
+bool ContextOptions::default_debug() {
+  if (const char* env = std::getenv("IBFVS_GL_DEBUG")) return std::strcmp(env, "0") != 0;
+#ifdef IBFVS_GL_DEBUG_DEFAULT
+  return true;
+#else
+  return false;
+#endif
+}
+
+struct HeadlessContext::Impl {
+  EGLDisplay display = EGL_NO_DISPLAY;
+  EGLContext context = EGL_NO_CONTEXT;
+  std::string platform;
+  bool debug = false;
+
+  ~Impl() {
+    if (display != EGL_NO_DISPLAY) {
+      eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+      if (context != EGL_NO_CONTEXT) eglDestroyContext(display, context);
+      eglTerminate(display);
+    }
+  }
+
+  // Tries one display; on success leaves display/context set and current.
+  bool try_display(EGLDisplay dpy, const std::string& name, std::ostringstream& log) {
+    EGLint major = 0, minor = 0;
+    if (dpy == EGL_NO_DISPLAY || !eglInitialize(dpy, &major, &minor)) {
+      log << name << ": eglInitialize failed; ";
+      return false;
+    }
+    if (!eglBindAPI(EGL_OPENGL_API)) {
+      log << name << ": no desktop OpenGL API; ";
+      eglTerminate(dpy);
+      return false;
+    }
+    const EGLint config_attribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
+    EGLConfig config = nullptr;
+    EGLint count = 0;
+    const bool no_config = has_extension(eglQueryString(dpy, EGL_EXTENSIONS),
+                                         "EGL_KHR_no_config_context");
+    if (!no_config && (!eglChooseConfig(dpy, config_attribs, &config, 1, &count) || count == 0)) {
+      log << name << ": no OpenGL config; ";
+      eglTerminate(dpy);
+      return false;
+    }
+    const EGLint ctx_attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4,
+                                  EGL_CONTEXT_MINOR_VERSION, 5,
+                                  EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                                  EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                  EGL_CONTEXT_OPENGL_DEBUG, debug ? EGL_TRUE : EGL_FALSE,
+                                  EGL_NONE};
+    EGLContext ctx = eglCreateContext(dpy, no_config ? EGL_NO_CONFIG_KHR : config, EGL_NO_CONTEXT,
+                                      ctx_attribs);
+    if (ctx == EGL_NO_CONTEXT) {
+      log << name << ": no OpenGL 4.5 core context (EGL error 0x" << std::hex << eglGetError()
+          << std::dec << "); ";
+      eglTerminate(dpy);
+      return false;
+    }
+    if (!eglMakeCurrent(dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx)) {
+      log << name << ": cannot make the context current without a surface; ";
+      eglDestroyContext(dpy, ctx);
+      eglTerminate(dpy);
+      return false;
+    }
+    display = dpy;
+    context = ctx;
+    platform = name;
+    return true;
+  }
+};
+
+HeadlessContext::HeadlessContext(const ContextOptions& options) : impl_(std::make_unique<Impl>()) {
+  impl_->debug = options.debug;
+  std::ostringstream log;
+  const char* client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+  if (!client) throw GraphicsError("EGL: no client extensions (is libEGL installed?)");
+  bool ok = false;
+  const char* forced = std::getenv("IBFVS_EGL_PLATFORM");  // "device" or "surfaceless"
+  // Prefer a hardware EGL device (NVIDIA headless); Mesa's software device is
+  // reached through the surfaceless platform below.
+  if (!ok && (!forced || std::strcmp(forced, "device") == 0) &&
+      has_extension(client, "EGL_EXT_device_enumeration") &&
+      has_extension(client, "EGL_EXT_platform_device")) {
+    EGLDeviceEXT devices[16];
+    EGLint n = 0;
+    if (eglQueryDevicesEXT(16, devices, &n)) {
+      for (EGLint i = 0; i < n && !ok; ++i) {
+        const char* dev_ext = eglQueryDeviceStringEXT(devices[i], EGL_EXTENSIONS);
+        if (!forced && has_extension(dev_ext, "EGL_MESA_device_software")) continue;
+        ok = impl_->try_display(
+            eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr), "device", log);
+      }
+    }
+  }
+  if (!ok && (!forced || std::strcmp(forced, "surfaceless") == 0) &&
+      has_extension(client, "EGL_MESA_platform_surfaceless")) {
+    ok = impl_->try_display(
+        eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr),
+        "surfaceless", log);
+  }
+  if (!ok)
+    throw GraphicsError("cannot create a headless OpenGL 4.5 context through EGL: " + log.str() +
+                        "install Mesa (libegl-mesa0, libgl1-mesa-dri) or a GPU driver");
+  if (epoxy_gl_version() < 45) throw GraphicsError("OpenGL 4.5 is required, got " + renderer());
+  if (options.debug && epoxy_has_gl_extension("GL_KHR_debug")) {
+    glEnable(GL_DEBUG_OUTPUT);
+    glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
+    glDebugMessageCallback(on_debug_message, nullptr);
+    glDebugMessageControl(GL_DONT_CARE, GL_DONT_CARE, GL_DONT_CARE, 0, nullptr, GL_TRUE);
+  }
+}
+
+HeadlessContext::~HeadlessContext() = default;
+HeadlessContext::HeadlessContext(HeadlessContext&&) noexcept = default;
+HeadlessContext& HeadlessContext::operator=(HeadlessContext&&) noexcept = default;
+
+void HeadlessContext::make_current() {
+  if (!eglMakeCurrent(impl_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, impl_->context))
+    throw GraphicsError("EGL: cannot make the context current");
+}
+
+std::string HeadlessContext::renderer() const {
+  const auto str = [](GLenum name) {
+    const auto* s = reinterpret_cast<const char*>(glGetString(name));
+    return std::string(s ? s : "?");
+  };
+  return str(GL_RENDERER) + " | OpenGL " + str(GL_VERSION) + " | " + str(GL_VENDOR);
+}
+
+const std::string& HeadlessContext::platform() const { return impl_->platform; }
+
+void HeadlessContext::throw_if_errors() {
+  std::vector<std::string> errors = take_recorded_gl_errors();
+  // Without KHR_debug output, fall back to glGetError.
+  if (!impl_->debug)
+    for (GLenum e; (e = glGetError()) != GL_NO_ERROR;) {
+      std::ostringstream s;
+      s << "glGetError 0x" << std::hex << e;
+      errors.push_back(s.str());
+    }
+  if (errors.empty()) return;
+  std::string msg = "OpenGL error: " + errors.front();
+  if (errors.size() > 1) msg += " (and " + std::to_string(errors.size() - 1) + " more)";
+  throw GraphicsError(msg);
+}
+
+std::vector<std::string> take_recorded_gl_errors() {
+  std::vector<std::string> out;
+  out.swap(g_errors);
+  return out;
+}
+
+}  // namespace ibfvs::gl

@@ -1,0 +1,240 @@
+#include "ibfvs/gl/objects.h"
+
+#include <algorithm>
+#include <vector>
+
+#include <epoxy/gl.h>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "ibfvs/core/error.h"
+
+namespace ibfvs::gl {
+
+void delete_buffer(unsigned id) { glDeleteBuffers(1, &id); }
+void delete_vertex_array(unsigned id) { glDeleteVertexArrays(1, &id); }
+void delete_texture(unsigned id) { glDeleteTextures(1, &id); }
+void delete_renderbuffer(unsigned id) { glDeleteRenderbuffers(1, &id); }
+void delete_framebuffer(unsigned id) { glDeleteFramebuffers(1, &id); }
+void delete_program(unsigned id) { glDeleteProgram(id); }
+
+namespace {
+
+struct FormatInfo {
+  GLenum internal;
+  GLenum format;
+};
+
+FormatInfo info(Format f) {
+  switch (f) {
+    case Format::RGBA8: return {GL_RGBA8, GL_RGBA};
+    case Format::RGBA16F: return {GL_RGBA16F, GL_RGBA};
+    case Format::RGBA32F: return {GL_RGBA32F, GL_RGBA};
+    case Format::R32F: return {GL_R32F, GL_RED};
+    case Format::Depth24: return {GL_DEPTH_COMPONENT24, GL_DEPTH_COMPONENT};
+  }
+  return {GL_RGBA8, GL_RGBA};
+}
+
+}  // namespace
+
+Buffer::Buffer(std::span<const std::byte> bytes, bool dynamic) {
+  GLuint id = 0;
+  glCreateBuffers(1, &id);
+  static_cast<Object&>(*this) = Object(id);
+  size_ = bytes.size();
+  glNamedBufferStorage(id, static_cast<GLsizeiptr>(bytes.size()), bytes.data(),
+                       dynamic ? GL_DYNAMIC_STORAGE_BIT : 0);
+}
+
+void Buffer::update(std::size_t offset, std::span<const std::byte> bytes) {
+  glNamedBufferSubData(id(), static_cast<GLintptr>(offset), static_cast<GLsizeiptr>(bytes.size()),
+                       bytes.data());
+}
+
+VertexArray VertexArray::create() {
+  GLuint id = 0;
+  glCreateVertexArrays(1, &id);
+  return VertexArray(id);
+}
+
+void VertexArray::attribute(unsigned location, const Buffer& buffer, unsigned binding,
+                            int components, std::size_t offset, std::size_t stride) {
+  glVertexArrayVertexBuffer(id(), binding, buffer.id(), static_cast<GLintptr>(offset),
+                            static_cast<GLsizei>(stride));
+  glVertexArrayAttribFormat(id(), location, components, GL_FLOAT, GL_FALSE, 0);
+  glVertexArrayAttribBinding(id(), location, binding);
+  glEnableVertexArrayAttrib(id(), location);
+}
+
+void VertexArray::attribute_packed_snorm(unsigned location, const Buffer& buffer, unsigned binding,
+                                         std::size_t offset, std::size_t stride) {
+  glVertexArrayVertexBuffer(id(), binding, buffer.id(), static_cast<GLintptr>(offset),
+                            static_cast<GLsizei>(stride));
+  glVertexArrayAttribFormat(id(), location, 4, GL_INT_2_10_10_10_REV, GL_TRUE, 0);
+  glVertexArrayAttribBinding(id(), location, binding);
+  glEnableVertexArrayAttrib(id(), location);
+}
+
+void VertexArray::index_buffer(const Buffer& buffer) { glVertexArrayElementBuffer(id(), buffer.id()); }
+void VertexArray::bind() const { glBindVertexArray(id()); }
+
+Texture2D::Texture2D(int width, int height, Format format, bool linear)
+    : width_(width), height_(height), format_(format) {
+  GLuint id = 0;
+  glCreateTextures(GL_TEXTURE_2D, 1, &id);
+  static_cast<Object&>(*this) = Object(id);
+  glTextureStorage2D(id, 1, info(format).internal, width, height);
+  const GLint filter = linear ? GL_LINEAR : GL_NEAREST;
+  glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, filter);
+  glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, filter);
+  glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+}
+
+void Texture2D::upload_float(std::span<const float> data, int channels) {
+  const std::size_t need = static_cast<std::size_t>(width_) * height_ * channels;
+  if (data.size() < need) throw GraphicsError("texture upload: not enough data");
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  glTextureSubImage2D(id(), 0, 0, 0, width_, height_, channels == 1 ? GL_RED : GL_RGBA, GL_FLOAT,
+                      data.data());
+}
+
+void Texture2D::bind(unsigned unit) const { glBindTextureUnit(unit, id()); }
+
+void Texture2D::read_float(std::span<float> out, int channels) const {
+  const std::size_t need = static_cast<std::size_t>(width_) * height_ * channels;
+  if (out.size() < need) throw GraphicsError("texture read: buffer too small");
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  glGetTextureImage(id(), 0, channels == 1 ? GL_RED : GL_RGBA, GL_FLOAT,
+                    static_cast<GLsizei>(need * sizeof(float)), out.data());
+}
+
+Renderbuffer::Renderbuffer(int width, int height, Format format) {
+  GLuint id = 0;
+  glCreateRenderbuffers(1, &id);
+  static_cast<Object&>(*this) = Object(id);
+  glNamedRenderbufferStorage(id, info(format).internal, width, height);
+}
+
+Framebuffer Framebuffer::create() {
+  GLuint id = 0;
+  glCreateFramebuffers(1, &id);
+  return Framebuffer(id);
+}
+
+void Framebuffer::attach_color(unsigned index, const Texture2D& texture) {
+  glNamedFramebufferTexture(id(), GL_COLOR_ATTACHMENT0 + index, texture.id(), 0);
+}
+
+void Framebuffer::attach_depth(const Renderbuffer& depth) {
+  glNamedFramebufferRenderbuffer(id(), GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth.id());
+}
+
+void Framebuffer::finish(unsigned color_count) {
+  std::vector<GLenum> buffers(color_count);
+  for (unsigned i = 0; i < color_count; ++i) buffers[i] = GL_COLOR_ATTACHMENT0 + i;
+  glNamedFramebufferDrawBuffers(id(), static_cast<GLsizei>(color_count), buffers.data());
+  const GLenum status = glCheckNamedFramebufferStatus(id(), GL_FRAMEBUFFER);
+  if (status != GL_FRAMEBUFFER_COMPLETE)
+    throw GraphicsError("framebuffer incomplete (status 0x" + std::to_string(status) + ")");
+}
+
+void Framebuffer::bind() const { glBindFramebuffer(GL_FRAMEBUFFER, id()); }
+
+void Framebuffer::clear_color(unsigned index, const glm::vec4& rgba) {
+  glClearNamedFramebufferfv(id(), GL_COLOR, static_cast<GLint>(index), glm::value_ptr(rgba));
+}
+
+void Framebuffer::clear_depth(float depth) {
+  glClearNamedFramebufferfv(id(), GL_DEPTH, 0, &depth);
+}
+
+void Framebuffer::read_rgba8(unsigned index, int width, int height,
+                             std::span<std::uint8_t> out) const {
+  const std::size_t need = static_cast<std::size_t>(width) * height * 4;
+  if (out.size() < need) throw GraphicsError("framebuffer read: buffer too small");
+  glNamedFramebufferReadBuffer(id(), GL_COLOR_ATTACHMENT0 + index);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, id());
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, out.data());
+}
+
+namespace {
+
+GLuint compile(GLenum type, const std::string& source) {
+  const GLuint shader = glCreateShader(type);
+  const char* src = source.c_str();
+  glShaderSource(shader, 1, &src, nullptr);
+  glCompileShader(shader);
+  GLint ok = 0;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    GLint len = 0;
+    glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &len);
+    std::string log(static_cast<std::size_t>(std::max(len, 1)), '\0');
+    glGetShaderInfoLog(shader, len, nullptr, log.data());
+    glDeleteShader(shader);
+    throw GraphicsError(std::string(type == GL_VERTEX_SHADER ? "vertex" : "fragment") +
+                        " shader does not compile: " + log);
+  }
+  return shader;
+}
+
+}  // namespace
+
+Program::Program(const std::string& vertex_source, const std::string& fragment_source) {
+  const GLuint vs = compile(GL_VERTEX_SHADER, vertex_source);
+  GLuint fs = 0;
+  try {
+    fs = compile(GL_FRAGMENT_SHADER, fragment_source);
+  } catch (...) {
+    glDeleteShader(vs);
+    throw;
+  }
+  const GLuint program = glCreateProgram();
+  static_cast<Object&>(*this) = Object(program);
+  glAttachShader(program, vs);
+  glAttachShader(program, fs);
+  glLinkProgram(program);
+  glDetachShader(program, vs);
+  glDetachShader(program, fs);
+  glDeleteShader(vs);
+  glDeleteShader(fs);
+  GLint ok = 0;
+  glGetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    GLint len = 0;
+    glGetProgramiv(program, GL_INFO_LOG_LENGTH, &len);
+    std::string log(static_cast<std::size_t>(std::max(len, 1)), '\0');
+    glGetProgramInfoLog(program, len, nullptr, log.data());
+    throw GraphicsError("shader program does not link: " + log);
+  }
+}
+
+void Program::use() const { glUseProgram(id()); }
+int Program::location(const char* name) const { return glGetUniformLocation(id(), name); }
+void Program::set(int loc, float v) const { glProgramUniform1f(id(), loc, v); }
+void Program::set(int loc, int v) const { glProgramUniform1i(id(), loc, v); }
+void Program::set(int loc, const glm::vec2& v) const { glProgramUniform2fv(id(), loc, 1, glm::value_ptr(v)); }
+void Program::set(int loc, const glm::ivec2& v) const { glProgramUniform2iv(id(), loc, 1, glm::value_ptr(v)); }
+void Program::set(int loc, const glm::vec3& v) const { glProgramUniform3fv(id(), loc, 1, glm::value_ptr(v)); }
+void Program::set(int loc, const glm::mat4& v) const {
+  glProgramUniformMatrix4fv(id(), loc, 1, GL_FALSE, glm::value_ptr(v));
+}
+
+void set_viewport(int width, int height) { glViewport(0, 0, width, height); }
+void enable_depth_test(bool on) {
+  if (on) {
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+  } else {
+    glDisable(GL_DEPTH_TEST);
+  }
+}
+void draw_triangles(std::size_t index_count, bool index32) {
+  glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(index_count),
+                 index32 ? GL_UNSIGNED_INT : GL_UNSIGNED_SHORT, nullptr);
+}
+void finish() { glFinish(); }
+
+}  // namespace ibfvs::gl

@@ -1,0 +1,200 @@
+#include "ibfvs/render/ibfvs_renderer.h"
+
+#include <cmath>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "ibfvs/core/error.h"
+#include "ibfvs/render/shaders.h"
+
+namespace ibfvs {
+namespace {
+
+template <class T>
+std::span<const std::byte> bytes_of(std::span<const T> v) {
+  return std::as_bytes(v);
+}
+
+bool in_unit(float v) { return v >= 0.0f && v <= 1.0f; }
+
+}  // namespace
+
+AdvectView parse_advect_view(std::string_view text) {
+  if (text == "current") return AdvectView::Current;
+  if (text == "previous") return AdvectView::Previous;
+  throw InputError("--advect-view: expected current or previous, got '" + std::string(text) + "'");
+}
+
+void RenderSettings::validate() const {
+  if (width < 1 || height < 1 || width > 16384 || height > 16384)
+    throw InputError("--size: width and height must be between 1 and 16384 pixels");
+  if (!in_unit(alpha)) throw InputError("--alpha: must be between 0 and 1");
+  if (!in_unit(beta)) throw InputError("--beta: must be between 0 and 1");
+  if (!(noise.scale >= 1.0f) || !std::isfinite(noise.scale))
+    throw InputError("--scale: the noise scale must be at least 1 pixel");
+  if (!std::isfinite(noise.rate)) throw InputError("--vg: must be a finite number");
+  if (!(noise.spike_width > 0.0f && noise.spike_width <= 1.0f))
+    throw InputError("--spike-width: must be in (0, 1]");
+  for (int c = 0; c < 3; ++c) {
+    if (!in_unit(background[c])) throw InputError("--background: components must be in [0, 1]");
+    if (!in_unit(surface_color[c])) throw InputError("--surface-color: components must be in [0, 1]");
+  }
+}
+
+IbfvsRenderer::IbfvsRenderer(const RenderSettings& settings) : settings_(settings) {
+  settings_.validate();
+  program_ = gl::Program(shaders::kIbfvsVertex, shaders::kIbfvsFragment);
+  u_.view_projection = program_.location("u_view_projection");
+  u_.advect_view_projection = program_.location("u_advect_view_projection");
+  u_.view = program_.location("u_view");
+  u_.dt = program_.location("u_dt");
+  u_.alpha = program_.location("u_alpha");
+  u_.beta = program_.location("u_beta");
+  u_.inject = program_.location("u_inject");
+  u_.noise_time = program_.location("u_noise_time");
+  u_.noise_scale = program_.location("u_noise_scale");
+  u_.profile = program_.location("u_profile");
+  u_.spike_width = program_.location("u_spike_width");
+  u_.surface_color = program_.location("u_surface_color");
+  u_.phase_size = program_.location("u_phase_size");
+
+  const int w = settings_.width, h = settings_.height;
+  for (int i = 0; i < 2; ++i) texture_[i] = gl::Texture2D(w, h, gl::Format::RGBA16F, true);
+  output_ = gl::Texture2D(w, h, gl::Format::RGBA8, false);
+  depth_ = gl::Renderbuffer(w, h, gl::Format::Depth24);
+  for (int i = 0; i < 2; ++i) {
+    framebuffer_[i] = gl::Framebuffer::create();
+    framebuffer_[i].attach_color(0, texture_[i]);
+    framebuffer_[i].attach_color(1, output_);
+    framebuffer_[i].attach_depth(depth_);
+    framebuffer_[i].finish(2);
+  }
+
+  const NoiseGrid grid(w, h, settings_.noise);
+  phases_ = gl::Texture2D(grid.columns(), grid.rows(), gl::Format::R32F, false);
+  phases_.upload_float(grid.phases(), 1);
+  program_.set(u_.noise_scale, settings_.noise.scale);
+  glm::ivec2 size(grid.columns(), grid.rows());
+  program_.use();
+  program_.set(u_.phase_size, size);
+  apply_settings_uniforms();
+  reset();
+}
+
+void IbfvsRenderer::apply_settings_uniforms() {
+  program_.set(u_.alpha, settings_.alpha);
+  program_.set(u_.beta, settings_.beta);
+  program_.set(u_.inject, settings_.inject == InjectMode::Add ? 1 : 0);
+  program_.set(u_.profile, static_cast<int>(settings_.noise.profile));
+  program_.set(u_.spike_width, settings_.noise.spike_width);
+  program_.set(u_.surface_color, settings_.surface_color);
+}
+
+void IbfvsRenderer::update_settings(const RenderSettings& settings) {
+  settings.validate();
+  if (settings.width != settings_.width || settings.height != settings_.height ||
+      settings.noise.scale != settings_.noise.scale || settings.noise.seed != settings_.noise.seed)
+    throw InputError("renderer: size, noise scale and seed need a new renderer");
+  settings_ = settings;
+  apply_settings_uniforms();
+}
+
+void IbfvsRenderer::set_mesh(const TriMesh& mesh, std::span<const glm::vec3> field) {
+  validate_mesh(mesh, "mesh");
+  if (mesh.normals.size() != mesh.positions.size())
+    throw InputError("renderer: the mesh needs vertex normals");
+  if (field.size() != mesh.positions.size())
+    throw InputError("renderer: the field needs one vector per vertex");
+  // Interleaved position + normal; the field in its own buffer so that an
+  // unsteady field can be replaced without touching the geometry.
+  std::vector<float> interleaved;
+  interleaved.reserve(mesh.positions.size() * 6);
+  for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+    const glm::vec3& p = mesh.positions[i];
+    const glm::vec3& n = mesh.normals[i];
+    interleaved.insert(interleaved.end(), {p.x, p.y, p.z, n.x, n.y, n.z});
+  }
+  vertices_ = gl::Buffer(bytes_of(std::span<const float>(interleaved)));
+  field_ = gl::Buffer(bytes_of(field), true);
+  indices_ = gl::Buffer(bytes_of(std::span<const Triangle>(mesh.triangles)));
+  vao_ = gl::VertexArray::create();
+  vao_.attribute(0, vertices_, 0, 3, 0, 6 * sizeof(float));
+  vao_.attribute(1, vertices_, 1, 3, 3 * sizeof(float), 6 * sizeof(float));
+  vao_.attribute(2, field_, 2, 3, 0, sizeof(glm::vec3));
+  vao_.index_buffer(indices_);
+  index_count_ = mesh.triangles.size() * 3;
+  vertex_count_ = mesh.positions.size();
+  reset();
+}
+
+void IbfvsRenderer::set_field(std::span<const glm::vec3> field) {
+  if (field.size() != vertex_count_)
+    throw InputError("renderer: the field needs one vector per vertex");
+  field_.update(0, bytes_of(field));
+}
+
+void IbfvsRenderer::reset() {
+  const glm::vec4 b(settings_.background, 1.0f);
+  for (auto& fb : framebuffer_) {
+    fb.clear_color(0, b);
+    fb.clear_color(1, b);
+  }
+  current_ = 0;
+  frame_ = 0;
+  has_previous_ = false;
+}
+
+void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
+  const glm::mat4 vp = view.projection * view.view;
+  const bool use_previous = settings_.advect_view == AdvectView::Previous && has_previous_;
+  const int next = 1 - current_;
+  gl::Framebuffer& fb = framebuffer_[next];
+  const glm::vec4 b(settings_.background, 1.0f);
+  fb.clear_color(0, b);
+  fb.clear_color(1, b);
+  fb.clear_depth();
+  if (index_count_ > 0) {
+    fb.bind();
+    gl::set_viewport(settings_.width, settings_.height);
+    gl::enable_depth_test(true);
+    program_.use();
+    program_.set(u_.view_projection, vp);
+    program_.set(u_.advect_view_projection, use_previous ? previous_view_projection_ : vp);
+    program_.set(u_.view, view.view);
+    program_.set(u_.dt, dt);
+    program_.set(u_.noise_time, settings_.noise.rate * static_cast<float>(frame_));
+    texture_[current_].bind(0);
+    phases_.bind(1);
+    vao_.bind();
+    gl::draw_triangles(index_count_, true);
+  }
+  current_ = next;
+  previous_view_projection_ = vp;
+  has_previous_ = true;
+  ++frame_;
+}
+
+ImageU8 IbfvsRenderer::read_output() const {
+  ImageU8 image;
+  image.width = settings_.width;
+  image.height = settings_.height;
+  image.channels = 4;
+  image.pixels.resize(static_cast<std::size_t>(image.width) * image.height * 4);
+  framebuffer_[current_].read_rgba8(1, image.width, image.height, image.pixels);
+  return image;
+}
+
+ImageF IbfvsRenderer::read_texture() const {
+  ImageF image;
+  image.width = settings_.width;
+  image.height = settings_.height;
+  image.channels = 4;
+  image.pixels.resize(static_cast<std::size_t>(image.width) * image.height * 4);
+  texture_[current_].read_float(image.pixels, 4);
+  return image;
+}
+
+void IbfvsRenderer::finish() const { gl::finish(); }
+
+}  // namespace ibfvs

@@ -1,0 +1,94 @@
+#include "ibfvs/render/shaders.h"
+
+namespace ibfvs::shaders {
+
+const char* const kIbfvsVertex = R"(#version 450 core
+layout(location = 0) in vec3 a_position;
+layout(location = 1) in vec3 a_normal;
+layout(location = 2) in vec3 a_vector;
+
+uniform mat4 u_view_projection;          // T_k: where the vertex is drawn
+uniform mat4 u_advect_view_projection;   // T_k or T_{k-1}: where its texture comes from
+uniform mat4 u_view;
+uniform float u_dt;
+
+// Equation 13, t_i = T(r_i - v_i dt), interpolated linearly in screen space:
+// the synthesis works in image space, so perspective-correct interpolation
+// would bend the texture (section 3.9).
+noperspective out vec2 v_texcoord;
+out vec3 v_normal_eye;
+out vec3 v_position_eye;
+
+void main() {
+  gl_Position = u_view_projection * vec4(a_position, 1.0);
+  vec4 p = u_advect_view_projection * vec4(a_position - a_vector * u_dt, 1.0);
+  v_texcoord = p.xy / max(p.w, 1e-6) * 0.5 + 0.5;
+  v_normal_eye = mat3(u_view) * a_normal;
+  v_position_eye = (u_view * vec4(a_position, 1.0)).xyz;
+}
+)";
+
+const char* const kIbfvsFragment = R"(#version 450 core
+noperspective in vec2 v_texcoord;
+in vec3 v_normal_eye;
+in vec3 v_position_eye;
+
+layout(location = 0) out vec4 o_texture;  // F_t of this frame
+layout(location = 1) out vec4 o_color;    // F
+
+layout(binding = 0) uniform sampler2D u_previous;  // F_t of the last frame
+layout(binding = 1) uniform sampler2D u_phases;    // phi_ij
+
+uniform float u_alpha;
+uniform float u_beta;
+uniform int u_inject;        // 0 blend (eq. 10), 1 add
+uniform float u_noise_time;  // v_g k
+uniform float u_noise_scale; // s
+uniform int u_profile;       // 0 square, 1 sawtooth, 2 sine, 3 spike
+uniform float u_spike_width;
+uniform ivec2 u_phase_size;
+uniform vec3 u_surface_color;
+
+// w(t), period 1 (equation 8).
+float profile(float t) {
+  float f = t - floor(t);
+  if (u_profile == 0) return f < 0.5 ? 1.0 : 0.0;
+  if (u_profile == 1) return f;
+  if (u_profile == 2) return 0.5 + 0.5 * sin(6.28318530718 * f);
+  return f < u_spike_width ? 1.0 : 0.0;
+}
+
+float grid_value(ivec2 ij) {
+  ij = clamp(ij, ivec2(0), u_phase_size - 1);
+  return profile(u_noise_time + texelFetch(u_phases, ij, 0).r);
+}
+
+// Equations 6-7: grid values s pixels apart, triangular pulses = bilinear.
+float noise(vec2 x) {
+  vec2 u = x / u_noise_scale;
+  vec2 fl = floor(u);
+  ivec2 i = ivec2(fl);
+  vec2 a = u - fl;
+  return mix(mix(grid_value(i), grid_value(i + ivec2(1, 0)), a.x),
+             mix(grid_value(i + ivec2(0, 1)), grid_value(i + ivec2(1, 1)), a.x), a.y);
+}
+
+void main() {
+  vec3 previous = texture(u_previous, v_texcoord).rgb;
+  float g = noise(gl_FragCoord.xy);
+  vec3 ft = u_inject == 0 ? mix(previous, vec3(g), u_alpha)
+                          : min(previous * (1.0 - u_alpha) + vec3(g), vec3(1.0));
+  o_texture = vec4(ft, 1.0);
+
+  // F_s: Blinn-Phong with a headlight, lit from both sides (open meshes).
+  vec3 n = normalize(v_normal_eye);
+  vec3 to_eye = normalize(-v_position_eye);
+  if (dot(n, to_eye) < 0.0) n = -n;
+  float diffuse = max(dot(n, to_eye), 0.0);
+  float specular = pow(max(dot(n, to_eye), 0.0), 40.0);  // half vector = view for a headlight
+  vec3 shaded = u_surface_color * (0.18 + 0.82 * diffuse) + vec3(0.25 * specular);
+  o_color = vec4(u_beta * ft + (1.0 - u_beta) * shaded, 1.0);
+}
+)";
+
+}  // namespace ibfvs::shaders

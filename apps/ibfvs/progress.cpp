@@ -8,10 +8,14 @@
 namespace ibfvs::app {
 
 Progress::Progress(int total, bool enabled)
-    : total_(total), enabled_(enabled && isatty(STDERR_FILENO) != 0),
-      start_(std::chrono::steady_clock::now()), last_draw_(start_) {}
+    : total_(total),
+      enabled_(enabled && isatty(STDERR_FILENO) != 0),
+      start_(std::chrono::steady_clock::now()),
+      last_draw_(start_) {}
 
-Progress::~Progress() { finish(); }
+Progress::~Progress() {
+  finish();
+}
 
 void Progress::update(int done) {
   if (!enabled_) return;

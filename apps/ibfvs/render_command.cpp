@@ -31,10 +31,11 @@ void add_render_options(CLI::App& cmd, RenderOptions& o) {
                  "Triangle mesh: .off .obj .ply .stl (PLY vertex properties vx vy vz are a "
                  "vector field). Default: the demo, data/meshes/bunny00.off, else cow.off, else "
                  "a procedural torus");
-  cmd.add_option("--field", o.field,
-                 "Vector field: file (PLY vx vy vz), uniform:X,Y,Z, or rotate:X,Y,Z (rotation about "
-                 "axis X,Y,Z through the bounding-box centre). Default: file when the mesh has "
-                 "vectors, else rotate:0,1,0");
+  cmd.add_option(
+      "--field", o.field,
+      "Vector field: file (PLY vx vy vz), uniform:X,Y,Z, or rotate:X,Y,Z (rotation about "
+      "axis X,Y,Z through the bounding-box centre). Default: file when the mesh has "
+      "vectors, else rotate:0,1,0");
   cmd.add_option("--tangent", o.tangent,
                  "project: project vectors on the tangent plane; 3d: use them as given (paper 3.8)")
       ->capture_default_str();
@@ -130,12 +131,13 @@ InjectMode parse_inject(const std::string& text) {
 
 enum class OutputKind { Video, Png, PngSequence };
 
-OutputKind output_kind(const fs::path& out) {
+OutputKind output_kind(const fs::path& out, const char* option) {
   if (is_video_path(out)) return OutputKind::Video;
   std::string ext = out.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
   if (ext != ".png")
-    throw InputError("--out: unknown output type '" + out.string() +
+    throw InputError(std::string(option) + ": unknown output type '" + out.string() +
                      "' (expected .mp4, .mkv, .webm, .mov, .avi, .gif or .png)");
   return out.string().find('%') != std::string::npos ? OutputKind::PngSequence : OutputKind::Png;
 }
@@ -152,8 +154,10 @@ void check_pattern(const std::string& pattern) {
   const std::size_t d = pattern.find_first_of("d", p);
   bool ok = p != std::string::npos && d != std::string::npos &&
             pattern.find('%', p + 1) == std::string::npos;
-  for (std::size_t i = p + 1; ok && i < d; ++i) ok = std::isdigit(static_cast<unsigned char>(pattern[i]));
-  if (!ok) throw InputError("--out: a frame pattern needs exactly one %d or %0Nd, got '" + pattern + "'");
+  for (std::size_t i = p + 1; ok && i < d; ++i)
+    ok = std::isdigit(static_cast<unsigned char>(pattern[i]));
+  if (!ok)
+    throw InputError("--out: a frame pattern needs exactly one %d or %0Nd, got '" + pattern + "'");
 }
 
 void ensure_parent(const fs::path& out, const char* option) {
@@ -168,12 +172,17 @@ void ensure_parent(const fs::path& out, const char* option) {
 int run_render(const RenderOptions& o) {
   // ---- options that need no file
   const Size size = parse_size(o.size);
-  if (o.frames < 1 || o.frames > 1000000) throw InputError("--frames: must be between 1 and 1000000");
-  if (!(o.step > 0.0f) || !std::isfinite(o.step)) throw InputError("--step: must be a positive number of pixels");
-  if (!(o.dt >= 0.0f) || !std::isfinite(o.dt)) throw InputError("--dt: must be a non-negative number");
-  if (!std::isfinite(o.orbit) || std::abs(o.orbit) > 360.0f) throw InputError("--orbit: must be within -360..360 degrees per frame");
+  if (o.frames < 1 || o.frames > 1000000)
+    throw InputError("--frames: must be between 1 and 1000000");
+  if (!(o.step > 0.0f) || !std::isfinite(o.step))
+    throw InputError("--step: must be a positive number of pixels");
+  if (!(o.dt >= 0.0f) || !std::isfinite(o.dt))
+    throw InputError("--dt: must be a non-negative number");
+  if (!std::isfinite(o.orbit) || std::abs(o.orbit) > 360.0f)
+    throw InputError("--orbit: must be within -360..360 degrees per frame");
   if (!(o.fps > 0.0) || o.fps > 1000.0) throw InputError("--fps: must be in (0, 1000]");
-  if (o.subdivide < 0 || o.subdivide > 8) throw InputError("--subdivide: levels must be between 0 and 8");
+  if (o.subdivide < 0 || o.subdivide > 8)
+    throw InputError("--subdivide: levels must be between 0 and 8");
 
   RenderSettings settings;
   settings.width = size.width;
@@ -225,7 +234,8 @@ int run_render(const RenderOptions& o) {
   } else {
     MeshReadReport report;
     mesh = read_mesh(o.mesh, &report);
-    for (const std::string& w : report.warnings) std::fprintf(stderr, "ibfvs: warning: %s\n", w.c_str());
+    for (const std::string& w : report.warnings)
+      std::fprintf(stderr, "ibfvs: warning: %s\n", w.c_str());
     mesh_name = fs::path(o.mesh).filename().string();
   }
   if (o.subdivide > 0) mesh = loop_subdivide(mesh, o.subdivide);
@@ -233,7 +243,7 @@ int run_render(const RenderOptions& o) {
   // ---- field
   if (!field_spec) {
     field_spec = mesh.vectors.size() == mesh.positions.size() ? FieldSpec::parse("file")
-                                                               : FieldSpec::parse("rotate:0,1,0");
+                                                              : FieldSpec::parse("rotate:0,1,0");
   }
   FieldReport field_report;
   std::vector<glm::vec3> field;
@@ -243,18 +253,19 @@ int run_render(const RenderOptions& o) {
     throw InputError((demo ? mesh_name : o.mesh) + ": " + e.what());
   }
   if (field_report.non_finite_zeroed > 0)
-    std::fprintf(stderr, "ibfvs: warning: %s: %zu vectors were NaN or infinite and are set to zero\n",
+    std::fprintf(stderr,
+                 "ibfvs: warning: %s: %zu vectors were NaN or infinite and are set to zero\n",
                  (demo ? mesh_name : o.mesh).c_str(), field_report.non_finite_zeroed);
 
   // ---- output paths (checked before the long part)
   const fs::path out = !o.out.empty() ? fs::path(o.out)
                        : demo         ? fs::path("ibfvs-demo.mp4")
                                       : fs::path(fs::path(o.mesh).stem().string() + ".mp4");
-  const OutputKind kind = output_kind(out);
+  const OutputKind kind = output_kind(out, "--out");
   if (kind == OutputKind::PngSequence) check_pattern(out.string());
   ensure_parent(out, "--out");
   if (!o.texture_out.empty()) {
-    if (output_kind(o.texture_out) != OutputKind::Png)
+    if (output_kind(o.texture_out, "--texture-out") != OutputKind::Png)
       throw InputError("--texture-out: must be a .png file, got '" + o.texture_out + "'");
     ensure_parent(o.texture_out, "--texture-out");
   }
@@ -264,10 +275,11 @@ int run_render(const RenderOptions& o) {
   Camera camera(bounds, cam, static_cast<float>(size.width) / static_cast<float>(size.height));
   float dt = o.dt;
   if (dt == 0.0f)
-    dt = dt_for_pixel_step(mesh.positions, field, camera.view_projection(), size.width,
-                           size.height, o.step);
-  const float max_px = max_pixel_speed(mesh.positions, field, camera.view_projection(),
-                                       size.width, size.height) * dt;
+    dt = dt_for_pixel_step(mesh.positions, field, camera.view_projection(), size.width, size.height,
+                           o.step);
+  const float max_px =
+      max_pixel_speed(mesh.positions, field, camera.view_projection(), size.width, size.height) *
+      dt;
   if (max_px > settings.noise.scale)
     std::fprintf(stderr,
                  "ibfvs: warning: the largest displacement is %.1f pixels per frame, more than "
@@ -287,12 +299,14 @@ int run_render(const RenderOptions& o) {
     if (k > 0 && o.orbit != 0.0f) camera.orbit(o.orbit);
     renderer.render_frame({camera.view(), camera.projection()}, dt);
     if (kind == OutputKind::Video) video->write(renderer.read_output());
-    if (kind == OutputKind::PngSequence) write_png(renderer.read_output(), frame_path(out.string(), k));
+    if (kind == OutputKind::PngSequence)
+      write_png(renderer.read_output(), frame_path(out.string(), k));
     progress.update(k + 1);
   }
   renderer.finish();
   context.throw_if_errors();
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   progress.finish();
   if (kind == OutputKind::Png) write_png(renderer.read_output(), out);
   if (video) video->close();
@@ -308,12 +322,14 @@ int run_render(const RenderOptions& o) {
     write_png16(rgb, o.texture_out);
   }
   if (!o.quiet) {
-    std::printf("ibfvs: wrote %s (%d frames, %dx%d) from %s: %zu vertices, %zu triangles, field %s, "
-                "dt %.4g (max %.2f px/frame), %.1f fps on %s\n",
-                out.c_str(), o.frames, size.width, size.height, mesh_name.c_str(),
-                mesh.vertex_count(), mesh.triangle_count(), field_spec->to_string().c_str(), dt,
-                max_px, o.frames / seconds, context.renderer().c_str());
-    if (!o.texture_out.empty()) std::printf("ibfvs: wrote texture image %s\n", o.texture_out.c_str());
+    std::printf(
+        "ibfvs: wrote %s (%d frames, %dx%d) from %s: %zu vertices, %zu triangles, field %s, "
+        "dt %.4g (max %.2f px/frame), %.1f fps on %s\n",
+        out.c_str(), o.frames, size.width, size.height, mesh_name.c_str(), mesh.vertex_count(),
+        mesh.triangle_count(), field_spec->to_string().c_str(), dt, max_px, o.frames / seconds,
+        context.renderer().c_str());
+    if (!o.texture_out.empty())
+      std::printf("ibfvs: wrote texture image %s\n", o.texture_out.c_str());
   }
   return 0;
 }

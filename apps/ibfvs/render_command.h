@@ -12,26 +12,26 @@ namespace ibfvs::app {
 
 /// The options of `ibfvs render`, as typed (validated by run_render).
 struct RenderOptions {
-  std::string mesh;             ///< empty: the built-in demo
-  std::string field;            ///< empty: file if the mesh has vectors, else rotate:0,1,0
+  std::string mesh;   ///< empty: the built-in demo
+  std::string field;  ///< empty: file if the mesh has vectors, else rotate:0,1,0
   std::string tangent = "project";
   std::string size = "512x512";
   int frames = 150;
-  std::string out;              ///< empty: <mesh stem>.mp4 (ibfvs-demo.mp4 for the demo)
+  std::string out;  ///< empty: <mesh stem>.mp4 (ibfvs-demo.mp4 for the demo)
   std::string texture_out;
   float alpha = 0.1f;
   float beta = 0.5f;
   float scale = 4.0f;
   std::string profile = "square";
-  float vg = 0.05f;
+  float vg = 0.02f;
   float spike_width = 0.1f;
   std::uint32_t seed = 1;
-  float step = 3.0f;            ///< pixels per frame (ignored when dt > 0)
-  float dt = 0.0f;              ///< world units per frame; 0: from --step
+  float step = 3.0f;  ///< pixels per frame (ignored when dt > 0)
+  float dt = 0.0f;    ///< world units per frame; 0: from --step
   std::string inject = "blend";
   std::string background = "0.5,0.5,0.5";
   std::string surface_color = "0.82,0.80,0.76";
-  std::string camera;           ///< "AZ,EL,DIST"
+  std::string camera;  ///< "AZ,EL,DIST"
   bool ortho = false;
   float fov = 30.0f;
   float orbit = 0.0f;

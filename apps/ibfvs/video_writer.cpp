@@ -33,7 +33,8 @@ std::string shell_quote(const std::string& s) {
 
 bool is_video_path(const std::filesystem::path& path) {
   std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
   return ext == ".mp4" || ext == ".mkv" || ext == ".webm" || ext == ".mov" || ext == ".avi" ||
          ext == ".gif";
 }
@@ -58,7 +59,7 @@ VideoWriter::VideoWriter(const std::filesystem::path& path, int width, int heigh
   }
   std::ostringstream cmd;
   cmd << "ffmpeg -nostdin -y -loglevel error -f rawvideo -pix_fmt rgba -s " << width << "x"
-      << height << " -r " << fps << " -i - -vf " << filters << " " << codec << " "
+      << height << " -r " << fps << " -i - -vf " << shell_quote(filters) << " " << codec << " "
       << shell_quote(path.string());
   const std::string command = cmd.str();
   pipe_ = popen(command.c_str(), "w");

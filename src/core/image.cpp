@@ -22,7 +22,9 @@ using FilePtr = std::unique_ptr<std::FILE, FileCloser>;
 
 // libpng reports errors through longjmp by default; an error callback that
 // throws lets RAII clean up instead.
-void png_throw(png_structp, png_const_charp message) { throw InputError(message); }
+void png_throw(png_structp, png_const_charp message) {
+  throw InputError(message);
+}
 void png_quiet(png_structp, png_const_charp) {}
 
 void write_rows(const std::filesystem::path& path, int width, int height, int color_type,
@@ -80,8 +82,7 @@ void write_png16(const ImageF& image, const std::filesystem::path& path) {
 ImageU8 read_png(const std::filesystem::path& path) {
   png_image img{};
   img.version = PNG_IMAGE_VERSION;
-  if (!png_image_begin_read_from_file(&img, path.c_str()))
-    png_fail(path, "cannot read as PNG");
+  if (!png_image_begin_read_from_file(&img, path.c_str())) png_fail(path, "cannot read as PNG");
   img.format = PNG_FORMAT_RGBA;
   ImageU8 out;
   out.width = static_cast<int>(img.width);

@@ -10,7 +10,9 @@
 
 namespace ibfvs {
 
-float Bounds::diagonal() const { return glm::length(max - min); }
+float Bounds::diagonal() const {
+  return glm::length(max - min);
+}
 
 Bounds mesh_bounds(const TriMesh& mesh) {
   if (mesh.triangles.empty()) throw InputError("mesh has no triangles");

@@ -1,18 +1,20 @@
 #include "ibfvs/core/mesh_io.h"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <new>
 #include <optional>
 #include <set>
 #include <sstream>
 
 #include <OpenMesh/Core/IO/MeshIO.hh>
-#include <glm/geometric.hpp>
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
+#include <glm/geometric.hpp>
 
 #include "ibfvs/core/error.h"
 
@@ -69,9 +71,8 @@ struct DeclaredCounts {
 }
 
 std::size_t parse_count(const fs::path& path, const std::string& token, const char* what) {
-  if (token.empty() || !std::all_of(token.begin(), token.end(), [](unsigned char c) {
-        return std::isdigit(c) != 0;
-      }))
+  if (token.empty() || !std::all_of(token.begin(), token.end(),
+                                    [](unsigned char c) { return std::isdigit(c) != 0; }))
     fail(path, std::string("bad ") + what + " count '" + token + "' in the header");
   try {
     return std::stoull(token);
@@ -175,24 +176,75 @@ bool stl_is_ascii(const fs::path& path, std::uintmax_t size) {
   return true;
 }
 
+// Copies a scalar vertex property of OpenMesh vertices `kept` (in that order).
 template <class T>
-bool copy_scalar_property(PolyMesh& pm, OpenMesh::BaseProperty* base, std::vector<float>& out) {
+bool copy_scalar_property(OpenMesh::BaseProperty* base, const std::vector<std::size_t>& kept,
+                          std::vector<float>& out) {
   auto* prop = dynamic_cast<OpenMesh::PropertyT<T>*>(base);
   if (!prop) return false;
-  out.resize(pm.n_vertices());
-  for (std::size_t i = 0; i < out.size(); ++i) out[i] = static_cast<float>((*prop)[i]);
+  out.resize(kept.size());
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] = static_cast<float>((*prop)[kept[i]]);
   return true;
 }
 
-bool copy_any_scalar(PolyMesh& pm, OpenMesh::BaseProperty* base, std::vector<float>& out) {
-  return copy_scalar_property<float>(pm, base, out) || copy_scalar_property<double>(pm, base, out) ||
-         copy_scalar_property<int>(pm, base, out) ||
-         copy_scalar_property<unsigned int>(pm, base, out) ||
-         copy_scalar_property<short>(pm, base, out) ||
-         copy_scalar_property<unsigned short>(pm, base, out) ||
-         copy_scalar_property<signed char>(pm, base, out) ||
-         copy_scalar_property<unsigned char>(pm, base, out) ||
-         copy_scalar_property<char>(pm, base, out);
+bool copy_any_scalar(OpenMesh::BaseProperty* base, const std::vector<std::size_t>& kept,
+                     std::vector<float>& out) {
+  return copy_scalar_property<float>(base, kept, out) ||
+         copy_scalar_property<double>(base, kept, out) ||
+         copy_scalar_property<int>(base, kept, out) ||
+         copy_scalar_property<unsigned int>(base, kept, out) ||
+         copy_scalar_property<short>(base, kept, out) ||
+         copy_scalar_property<unsigned short>(base, kept, out) ||
+         copy_scalar_property<signed char>(base, kept, out) ||
+         copy_scalar_property<unsigned char>(base, kept, out) ||
+         copy_scalar_property<char>(base, kept, out);
+}
+
+// OpenMesh's importer gives a face it cannot join to its manifold
+// connectivity (a duplicate or reversed face, a third face on an edge) fresh
+// copies of its vertices, marked non-manifold; the copies carry no custom
+// properties. Map each copy back to the vertex it copies (same point), so the
+// face keeps its data and no vertex is duplicated. Returns the number of faces
+// that needed it; fills `kept` (OpenMesh indices of our vertices, in order)
+// and `new_index` (our index of every OpenMesh vertex).
+std::size_t merge_nonmanifold_copies(PolyMesh& pm, std::vector<std::size_t>& kept,
+                                     std::vector<std::uint32_t>& new_index) {
+  const std::size_t nv = pm.n_vertices();
+  kept.clear();
+  kept.reserve(nv);
+  new_index.assign(nv, 0);
+  std::map<std::array<float, 3>, std::uint32_t> originals;
+  std::size_t copies = 0;
+  for (std::size_t v = 0; v < nv; ++v) {
+    const PolyMesh::VertexHandle vh(static_cast<int>(v));
+    const auto& p = pm.point(vh);
+    const std::array<float, 3> key{p[0], p[1], p[2]};
+    if (pm.status(vh).fixed_nonmanifold()) {
+      if (const auto it = originals.find(key); it != originals.end()) {
+        new_index[v] = it->second;
+        ++copies;
+        continue;
+      }
+    }
+    new_index[v] = static_cast<std::uint32_t>(kept.size());
+    originals.emplace(key, new_index[v]);
+    kept.push_back(v);
+  }
+  return copies;
+}
+
+// OpenMesh's OFF reader does not skip comments; strip them (from '#' to the
+// end of the line) so that commented files from other tools read.
+std::string off_without_comments(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string out;
+  for (std::string line; std::getline(in, line);) {
+    const std::size_t hash = line.find('#');
+    if (hash != std::string::npos) line.erase(hash);
+    out += line;
+    out += '\n';
+  }
+  return out;
 }
 
 }  // namespace
@@ -227,7 +279,8 @@ TriMesh read_mesh(const fs::path& path, MeshReadReport* report_out) {
   }
   // A count larger than the bytes that could hold it is a corrupt header; refuse
   // it before the reader tries to allocate it.
-  if ((declared.vertices && *declared.vertices > size) || (declared.faces && *declared.faces > size))
+  if ((declared.vertices && *declared.vertices > size) ||
+      (declared.faces && *declared.faces > size))
     fail(path, "the header declares " + std::to_string(declared.vertices.value_or(0)) +
                    " vertices and " + std::to_string(declared.faces.value_or(0)) +
                    " faces, more than a file of " + std::to_string(size) + " bytes can hold");
@@ -235,6 +288,7 @@ TriMesh read_mesh(const fs::path& path, MeshReadReport* report_out) {
 
   PolyMesh pm;
   pm.request_vertex_normals();
+  pm.request_vertex_status();
   OpenMesh::IO::Options opt = OpenMesh::IO::Options::Custom;
   opt += OpenMesh::IO::Options::VertexNormal;
   std::vector<std::string> messages;
@@ -242,7 +296,12 @@ TriMesh read_mesh(const fs::path& path, MeshReadReport* report_out) {
   {
     OmErrCapture capture;
     try {
-      ok = OpenMesh::IO::read_mesh(pm, path.string(), opt);
+      if (ext == ".off" && declared.ascii) {
+        std::istringstream text(off_without_comments(path));
+        ok = OpenMesh::IO::read_mesh(pm, text, ".off", opt);
+      } else {
+        ok = OpenMesh::IO::read_mesh(pm, path.string(), opt);
+      }
     } catch (const std::bad_alloc&) {
       fail(path, "malformed file (the reader ran out of memory on its counts)");
     } catch (const std::exception& e) {
@@ -255,7 +314,7 @@ TriMesh read_mesh(const fs::path& path, MeshReadReport* report_out) {
                        [&](const std::string& m) { return m.find(needle) != std::string::npos; });
   };
   if (has("invalid vertex index"))
-    fail(path, "a face references a vertex index out of range (or the file is truncated)");
+    fail(path, "truncated or malformed: a face references a vertex index out of range");
   if (!ok) {
     const std::string why = messages.empty() ? "the reader rejected it" : messages.front();
     fail(path, "cannot parse the mesh: " + why);
@@ -271,11 +330,14 @@ TriMesh read_mesh(const fs::path& path, MeshReadReport* report_out) {
                    " faces but " + std::to_string(pm.n_faces()) + " were read");
   if (pm.n_faces() == 0) fail(path, "no faces could be read: not a surface mesh");
 
+  std::vector<std::size_t> kept;
+  std::vector<std::uint32_t> new_index;
+  const std::size_t copies = merge_nonmanifold_copies(pm, kept, new_index);
   TriMesh mesh;
-  const std::size_t nv = pm.n_vertices();
+  const std::size_t nv = kept.size();
   mesh.positions.resize(nv);
   for (std::size_t i = 0; i < nv; ++i) {
-    const auto& p = pm.point(PolyMesh::VertexHandle(static_cast<int>(i)));
+    const auto& p = pm.point(PolyMesh::VertexHandle(static_cast<int>(kept[i])));
     mesh.positions[i] = glm::vec3(p[0], p[1], p[2]);
   }
   // Fan triangulation of convex polygons keeps the vertex order and needs no
@@ -283,15 +345,17 @@ TriMesh read_mesh(const fs::path& path, MeshReadReport* report_out) {
   mesh.triangles.reserve(pm.n_faces());
   for (const auto fh : pm.faces()) {
     std::vector<std::uint32_t> ids;
-    for (const auto vh : pm.fv_range(fh)) ids.push_back(static_cast<std::uint32_t>(vh.idx()));
+    for (const auto vh : pm.fv_range(fh))
+      ids.push_back(new_index[static_cast<std::size_t>(vh.idx())]);
     if (ids.size() > 3) ++report.polygons_triangulated;
-    for (std::size_t k = 1; k + 1 < ids.size(); ++k) mesh.triangles.push_back({ids[0], ids[k], ids[k + 1]});
+    for (std::size_t k = 1; k + 1 < ids.size(); ++k)
+      mesh.triangles.push_back({ids[0], ids[k], ids[k + 1]});
   }
 
   // Per-vertex properties from the file (PLY custom properties).
-  static const std::set<std::string> kStandard = {"x", "y", "z", "nx", "ny", "nz", "red", "green",
-                                                  "blue", "alpha", "u", "v", "s", "t",
-                                                  "texture_u", "texture_v"};
+  static const std::set<std::string> kStandard = {
+      "x",    "y",     "z", "nx", "ny", "nz", "red",       "green",
+      "blue", "alpha", "u", "v",  "s",  "t",  "texture_u", "texture_v"};
   std::map<std::string, std::vector<float>> props;
   for (auto it = pm.vprops_begin(); it != pm.vprops_end(); ++it) {
     OpenMesh::BaseProperty* base = *it;
@@ -300,7 +364,7 @@ TriMesh read_mesh(const fs::path& path, MeshReadReport* report_out) {
     if (name.empty() || name[0] == '<' || name.rfind("v:", 0) == 0 || kStandard.count(name))
       continue;
     std::vector<float> values;
-    if (copy_any_scalar(pm, base, values)) props[name] = std::move(values);
+    if (copy_any_scalar(base, kept, values)) props[name] = std::move(values);
   }
   if (props.count("vx") && props.count("vy") && props.count("vz")) {
     mesh.vectors.resize(nv);
@@ -320,7 +384,7 @@ TriMesh read_mesh(const fs::path& path, MeshReadReport* report_out) {
     report.normals_from_file = true;
     mesh.normals.resize(nv);
     for (std::size_t i = 0; i < nv; ++i) {
-      const auto& n = pm.normal(PolyMesh::VertexHandle(static_cast<int>(i)));
+      const auto& n = pm.normal(PolyMesh::VertexHandle(static_cast<int>(kept[i])));
       const glm::vec3 v(n[0], n[1], n[2]);
       const float len = glm::length(v);
       mesh.normals[i] = (len > 0.0f && std::isfinite(len)) ? v / len : glm::vec3(0.0f);
@@ -338,9 +402,13 @@ TriMesh read_mesh(const fs::path& path, MeshReadReport* report_out) {
   std::vector<bool> used(nv, false);
   for (const Triangle& t : mesh.triangles)
     for (std::uint32_t i : t) used[i] = true;
-  report.unreferenced_vertices = static_cast<std::size_t>(std::count(used.begin(), used.end(), false));
+  report.unreferenced_vertices =
+      static_cast<std::size_t>(std::count(used.begin(), used.end(), false));
 
   const std::string name = path.string();
+  if (copies)
+    report.warnings.push_back(name + ": " + std::to_string(copies) +
+                              " vertex uses are on non-manifold or duplicate faces (kept)");
   if (report.faces_skipped)
     report.warnings.push_back(name + ": skipped " + std::to_string(report.faces_skipped) +
                               " faces with repeated vertices");

@@ -19,10 +19,14 @@ NoiseProfile parse_noise_profile(std::string_view text) {
 
 std::string to_string(NoiseProfile profile) {
   switch (profile) {
-    case NoiseProfile::Square: return "square";
-    case NoiseProfile::Sawtooth: return "sawtooth";
-    case NoiseProfile::Sine: return "sine";
-    case NoiseProfile::Spike: return "spike";
+    case NoiseProfile::Square:
+      return "square";
+    case NoiseProfile::Sawtooth:
+      return "sawtooth";
+    case NoiseProfile::Sine:
+      return "sine";
+    case NoiseProfile::Spike:
+      return "spike";
   }
   return "square";
 }
@@ -30,10 +34,14 @@ std::string to_string(NoiseProfile profile) {
 float noise_profile_value(NoiseProfile profile, float t, float spike_width) {
   const float f = t - std::floor(t);
   switch (profile) {
-    case NoiseProfile::Square: return f < 0.5f ? 1.0f : 0.0f;
-    case NoiseProfile::Sawtooth: return f;
-    case NoiseProfile::Sine: return 0.5f + 0.5f * std::sin(2.0f * std::numbers::pi_v<float> * f);
-    case NoiseProfile::Spike: return f < spike_width ? 1.0f : 0.0f;
+    case NoiseProfile::Square:
+      return f < 0.5f ? 1.0f : 0.0f;
+    case NoiseProfile::Sawtooth:
+      return f;
+    case NoiseProfile::Sine:
+      return 0.5f + 0.5f * std::sin(2.0f * std::numbers::pi_v<float> * f);
+    case NoiseProfile::Spike:
+      return f < spike_width ? 1.0f : 0.0f;
   }
   return 0.0f;
 }

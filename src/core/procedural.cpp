@@ -50,8 +50,7 @@ TriMesh make_sphere(float radius, int stacks, int slices, float bump) {
       const float phi = 2 * kPi * static_cast<float>(i) / static_cast<float>(slices);
       const glm::vec3 n(std::sin(theta) * std::sin(phi), std::cos(theta),
                         std::sin(theta) * std::cos(phi));
-      const float relief =
-          1.0f + bump * std::sin(5 * theta) * std::sin(4 * phi) * std::sin(theta);
+      const float relief = 1.0f + bump * std::sin(5 * theta) * std::sin(4 * phi) * std::sin(theta);
       m.positions.push_back(radius * relief * n);
       m.normals.push_back(n);
     }

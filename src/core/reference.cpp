@@ -21,7 +21,8 @@ float ReferenceIbfvs::sample(float x, float y) const {
   const int i = static_cast<int>(fu), j = static_cast<int>(fv);
   const float a = u - fu, b = v - fv;
   const auto t = [&](int ii, int jj) {
-    return texture_.at(std::clamp(ii, 0, texture_.width - 1), std::clamp(jj, 0, texture_.height - 1));
+    return texture_.at(std::clamp(ii, 0, texture_.width - 1),
+                       std::clamp(jj, 0, texture_.height - 1));
   };
   return (1 - a) * (1 - b) * t(i, j) + a * (1 - b) * t(i + 1, j) + (1 - a) * b * t(i, j + 1) +
          a * b * t(i + 1, j + 1);
@@ -39,7 +40,8 @@ void ReferenceIbfvs::step(const BackwardMap& map, int frame, float alpha, Inject
         continue;
       }
       const float prev = sample(map.source[i].x, map.source[i].y);
-      const float g = noise_.sample(static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f, frame);
+      const float g =
+          noise_.sample(static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f, frame);
       next.pixels[i] = mode == InjectMode::Blend ? (1 - alpha) * prev + alpha * g
                                                  : std::min(1.0f, (1 - alpha) * prev + g);
     }

@@ -65,7 +65,8 @@ TriMesh loop_subdivide(const TriMesh& mesh, int levels) {
   for (std::size_t s = 0; s < scalars.size(); s += 3) {
     std::vector<glm::vec3> packed(mesh.positions.size(), glm::vec3(0.0f));
     for (std::size_t c = 0; c < 3 && s + c < scalars.size(); ++c)
-      for (std::size_t i = 0; i < packed.size(); ++i) packed[i][static_cast<int>(c)] = scalars[s + c].second[i];
+      for (std::size_t i = 0; i < packed.size(); ++i)
+        packed[i][static_cast<int>(c)] = scalars[s + c].second[i];
     const std::vector<glm::vec3> result = subdivided_points(mesh, packed, levels, nullptr);
     for (std::size_t c = 0; c < 3 && s + c < scalars.size(); ++c) {
       std::vector<float>& values = out.scalars[scalars[s + c].first];

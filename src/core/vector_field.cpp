@@ -17,7 +17,8 @@ glm::vec3 parse_vec3(std::string_view text, std::string_view what) {
     const std::size_t comma = s.find(',', start);
     if ((k < 2) != (comma != std::string::npos))
       throw InputError(std::string(what) + ": expected three numbers X,Y,Z, got '" + s + "'");
-    const std::string part = s.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    const std::string part =
+        s.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
     std::size_t used = 0;
     try {
       v[k] = std::stof(part, &used);
@@ -25,7 +26,8 @@ glm::vec3 parse_vec3(std::string_view text, std::string_view what) {
       used = 0;
     }
     if (used == 0 || used != part.size() || !std::isfinite(v[k]))
-      throw InputError(std::string(what) + ": '" + part + "' is not a finite number in '" + s + "'");
+      throw InputError(std::string(what) + ": '" + part + "' is not a finite number in '" + s +
+                       "'");
     start = comma + 1;
   }
   return {v[0], v[1], v[2]};
@@ -97,7 +99,8 @@ std::vector<glm::vec3> evaluate_field(const TriMesh& mesh, const FieldSpec& spec
     if (mesh.normals.size() != n) throw InputError("projection needs vertex normals");
     for (std::size_t i = 0; i < n; ++i) v[i] -= glm::dot(v[i], mesh.normals[i]) * mesh.normals[i];
   }
-  for (const glm::vec3& x : v) report.max_magnitude = std::max(report.max_magnitude, glm::length(x));
+  for (const glm::vec3& x : v)
+    report.max_magnitude = std::max(report.max_magnitude, glm::length(x));
   if (report_out) *report_out = report;
   return v;
 }

@@ -71,21 +71,24 @@ struct HeadlessContext::Impl {
     const EGLint config_attribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
     EGLConfig config = nullptr;
     EGLint count = 0;
-    const bool no_config = has_extension(eglQueryString(dpy, EGL_EXTENSIONS),
-                                         "EGL_KHR_no_config_context");
+    const bool no_config =
+        has_extension(eglQueryString(dpy, EGL_EXTENSIONS), "EGL_KHR_no_config_context");
     if (!no_config && (!eglChooseConfig(dpy, config_attribs, &config, 1, &count) || count == 0)) {
       log << name << ": no OpenGL config; ";
       eglTerminate(dpy);
       return false;
     }
-    const EGLint ctx_attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4,
-                                  EGL_CONTEXT_MINOR_VERSION, 5,
+    const EGLint ctx_attribs[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                  4,
+                                  EGL_CONTEXT_MINOR_VERSION,
+                                  5,
                                   EGL_CONTEXT_OPENGL_PROFILE_MASK,
                                   EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
-                                  EGL_CONTEXT_OPENGL_DEBUG, debug ? EGL_TRUE : EGL_FALSE,
+                                  EGL_CONTEXT_OPENGL_DEBUG,
+                                  debug ? EGL_TRUE : EGL_FALSE,
                                   EGL_NONE};
-    EGLContext ctx = eglCreateContext(dpy, no_config ? EGL_NO_CONFIG_KHR : config, EGL_NO_CONTEXT,
-                                      ctx_attribs);
+    EGLContext ctx =
+        eglCreateContext(dpy, no_config ? EGL_NO_CONFIG_KHR : config, EGL_NO_CONTEXT, ctx_attribs);
     if (ctx == EGL_NO_CONTEXT) {
       log << name << ": no OpenGL 4.5 core context (EGL error 0x" << std::hex << eglGetError()
           << std::dec << "); ";
@@ -163,7 +166,9 @@ std::string HeadlessContext::renderer() const {
   return str(GL_RENDERER) + " | OpenGL " + str(GL_VERSION) + " | " + str(GL_VENDOR);
 }
 
-const std::string& HeadlessContext::platform() const { return impl_->platform; }
+const std::string& HeadlessContext::platform() const {
+  return impl_->platform;
+}
 
 void HeadlessContext::throw_if_errors() {
   std::vector<std::string> errors = take_recorded_gl_errors();

@@ -7,15 +7,28 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "ibfvs/core/error.h"
+#include "ibfvs/gl/context.h"
 
 namespace ibfvs::gl {
 
-void delete_buffer(unsigned id) { glDeleteBuffers(1, &id); }
-void delete_vertex_array(unsigned id) { glDeleteVertexArrays(1, &id); }
-void delete_texture(unsigned id) { glDeleteTextures(1, &id); }
-void delete_renderbuffer(unsigned id) { glDeleteRenderbuffers(1, &id); }
-void delete_framebuffer(unsigned id) { glDeleteFramebuffers(1, &id); }
-void delete_program(unsigned id) { glDeleteProgram(id); }
+void delete_buffer(unsigned id) {
+  glDeleteBuffers(1, &id);
+}
+void delete_vertex_array(unsigned id) {
+  glDeleteVertexArrays(1, &id);
+}
+void delete_texture(unsigned id) {
+  glDeleteTextures(1, &id);
+}
+void delete_renderbuffer(unsigned id) {
+  glDeleteRenderbuffers(1, &id);
+}
+void delete_framebuffer(unsigned id) {
+  glDeleteFramebuffers(1, &id);
+}
+void delete_program(unsigned id) {
+  glDeleteProgram(id);
+}
 
 namespace {
 
@@ -26,11 +39,16 @@ struct FormatInfo {
 
 FormatInfo info(Format f) {
   switch (f) {
-    case Format::RGBA8: return {GL_RGBA8, GL_RGBA};
-    case Format::RGBA16F: return {GL_RGBA16F, GL_RGBA};
-    case Format::RGBA32F: return {GL_RGBA32F, GL_RGBA};
-    case Format::R32F: return {GL_R32F, GL_RED};
-    case Format::Depth24: return {GL_DEPTH_COMPONENT24, GL_DEPTH_COMPONENT};
+    case Format::RGBA8:
+      return {GL_RGBA8, GL_RGBA};
+    case Format::RGBA16F:
+      return {GL_RGBA16F, GL_RGBA};
+    case Format::RGBA32F:
+      return {GL_RGBA32F, GL_RGBA};
+    case Format::R32F:
+      return {GL_R32F, GL_RED};
+    case Format::Depth24:
+      return {GL_DEPTH_COMPONENT24, GL_DEPTH_COMPONENT};
   }
   return {GL_RGBA8, GL_RGBA};
 }
@@ -75,8 +93,12 @@ void VertexArray::attribute_packed_snorm(unsigned location, const Buffer& buffer
   glEnableVertexArrayAttrib(id(), location);
 }
 
-void VertexArray::index_buffer(const Buffer& buffer) { glVertexArrayElementBuffer(id(), buffer.id()); }
-void VertexArray::bind() const { glBindVertexArray(id()); }
+void VertexArray::index_buffer(const Buffer& buffer) {
+  glVertexArrayElementBuffer(id(), buffer.id());
+}
+void VertexArray::bind() const {
+  glBindVertexArray(id());
+}
 
 Texture2D::Texture2D(int width, int height, Format format, bool linear)
     : width_(width), height_(height), format_(format) {
@@ -99,7 +121,9 @@ void Texture2D::upload_float(std::span<const float> data, int channels) {
                       data.data());
 }
 
-void Texture2D::bind(unsigned unit) const { glBindTextureUnit(unit, id()); }
+void Texture2D::bind(unsigned unit) const {
+  glBindTextureUnit(unit, id());
+}
 
 void Texture2D::read_float(std::span<float> out, int channels) const {
   const std::size_t need = static_cast<std::size_t>(width_) * height_ * channels;
@@ -139,7 +163,9 @@ void Framebuffer::finish(unsigned color_count) {
     throw GraphicsError("framebuffer incomplete (status 0x" + std::to_string(status) + ")");
 }
 
-void Framebuffer::bind() const { glBindFramebuffer(GL_FRAMEBUFFER, id()); }
+void Framebuffer::bind() const {
+  glBindFramebuffer(GL_FRAMEBUFFER, id());
+}
 
 void Framebuffer::clear_color(unsigned index, const glm::vec4& rgba) {
   glClearNamedFramebufferfv(id(), GL_COLOR, static_cast<GLint>(index), glm::value_ptr(rgba));
@@ -159,6 +185,14 @@ void Framebuffer::read_rgba8(unsigned index, int width, int height,
   glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, out.data());
 }
 
+void Framebuffer::read_depth(int width, int height, std::span<float> out) const {
+  const std::size_t need = static_cast<std::size_t>(width) * height;
+  if (out.size() < need) throw GraphicsError("framebuffer depth read: buffer too small");
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, id());
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  glReadPixels(0, 0, width, height, GL_DEPTH_COMPONENT, GL_FLOAT, out.data());
+}
+
 namespace {
 
 GLuint compile(GLenum type, const std::string& source) {
@@ -174,6 +208,8 @@ GLuint compile(GLenum type, const std::string& source) {
     std::string log(static_cast<std::size_t>(std::max(len, 1)), '\0');
     glGetShaderInfoLog(shader, len, nullptr, log.data());
     glDeleteShader(shader);
+    // KHR_debug may report the same failure; the exception carries it.
+    (void)take_recorded_gl_errors();
     throw GraphicsError(std::string(type == GL_VERTEX_SHADER ? "vertex" : "fragment") +
                         " shader does not compile: " + log);
   }
@@ -207,22 +243,39 @@ Program::Program(const std::string& vertex_source, const std::string& fragment_s
     glGetProgramiv(program, GL_INFO_LOG_LENGTH, &len);
     std::string log(static_cast<std::size_t>(std::max(len, 1)), '\0');
     glGetProgramInfoLog(program, len, nullptr, log.data());
+    (void)take_recorded_gl_errors();
     throw GraphicsError("shader program does not link: " + log);
   }
 }
 
-void Program::use() const { glUseProgram(id()); }
-int Program::location(const char* name) const { return glGetUniformLocation(id(), name); }
-void Program::set(int loc, float v) const { glProgramUniform1f(id(), loc, v); }
-void Program::set(int loc, int v) const { glProgramUniform1i(id(), loc, v); }
-void Program::set(int loc, const glm::vec2& v) const { glProgramUniform2fv(id(), loc, 1, glm::value_ptr(v)); }
-void Program::set(int loc, const glm::ivec2& v) const { glProgramUniform2iv(id(), loc, 1, glm::value_ptr(v)); }
-void Program::set(int loc, const glm::vec3& v) const { glProgramUniform3fv(id(), loc, 1, glm::value_ptr(v)); }
+void Program::use() const {
+  glUseProgram(id());
+}
+int Program::location(const char* name) const {
+  return glGetUniformLocation(id(), name);
+}
+void Program::set(int loc, float v) const {
+  glProgramUniform1f(id(), loc, v);
+}
+void Program::set(int loc, int v) const {
+  glProgramUniform1i(id(), loc, v);
+}
+void Program::set(int loc, const glm::vec2& v) const {
+  glProgramUniform2fv(id(), loc, 1, glm::value_ptr(v));
+}
+void Program::set(int loc, const glm::ivec2& v) const {
+  glProgramUniform2iv(id(), loc, 1, glm::value_ptr(v));
+}
+void Program::set(int loc, const glm::vec3& v) const {
+  glProgramUniform3fv(id(), loc, 1, glm::value_ptr(v));
+}
 void Program::set(int loc, const glm::mat4& v) const {
   glProgramUniformMatrix4fv(id(), loc, 1, GL_FALSE, glm::value_ptr(v));
 }
 
-void set_viewport(int width, int height) { glViewport(0, 0, width, height); }
+void set_viewport(int width, int height) {
+  glViewport(0, 0, width, height);
+}
 void enable_depth_test(bool on) {
   if (on) {
     glEnable(GL_DEPTH_TEST);
@@ -235,6 +288,8 @@ void draw_triangles(std::size_t index_count, bool index32) {
   glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(index_count),
                  index32 ? GL_UNSIGNED_INT : GL_UNSIGNED_SHORT, nullptr);
 }
-void finish() { glFinish(); }
+void finish() {
+  glFinish();
+}
 
 }  // namespace ibfvs::gl

@@ -16,7 +16,9 @@ std::span<const std::byte> bytes_of(std::span<const T> v) {
   return std::as_bytes(v);
 }
 
-bool in_unit(float v) { return v >= 0.0f && v <= 1.0f; }
+bool in_unit(float v) {
+  return v >= 0.0f && v <= 1.0f;
+}
 
 }  // namespace
 
@@ -38,7 +40,8 @@ void RenderSettings::validate() const {
     throw InputError("--spike-width: must be in (0, 1]");
   for (int c = 0; c < 3; ++c) {
     if (!in_unit(background[c])) throw InputError("--background: components must be in [0, 1]");
-    if (!in_unit(surface_color[c])) throw InputError("--surface-color: components must be in [0, 1]");
+    if (!in_unit(surface_color[c]))
+      throw InputError("--surface-color: components must be in [0, 1]");
   }
 }
 
@@ -140,6 +143,7 @@ void IbfvsRenderer::reset() {
     fb.clear_color(0, b);
     fb.clear_color(1, b);
   }
+  framebuffer_[0].clear_depth();  // the depth buffer is shared by both framebuffers
   current_ = 0;
   frame_ = 0;
   has_previous_ = false;
@@ -195,6 +199,25 @@ ImageF IbfvsRenderer::read_texture() const {
   return image;
 }
 
-void IbfvsRenderer::finish() const { gl::finish(); }
+ImageF IbfvsRenderer::read_depth() const {
+  ImageF image;
+  image.width = settings_.width;
+  image.height = settings_.height;
+  image.channels = 1;
+  image.pixels.resize(static_cast<std::size_t>(image.width) * image.height);
+  framebuffer_[current_].read_depth(image.width, image.height, image.pixels);
+  return image;
+}
+
+std::vector<std::uint8_t> IbfvsRenderer::read_coverage() const {
+  const ImageF depth = read_depth();
+  std::vector<std::uint8_t> covered(depth.pixels.size());
+  for (std::size_t i = 0; i < covered.size(); ++i) covered[i] = depth.pixels[i] < 1.0f ? 1 : 0;
+  return covered;
+}
+
+void IbfvsRenderer::finish() const {
+  gl::finish();
+}
 
 }  // namespace ibfvs

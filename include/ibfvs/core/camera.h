@@ -12,11 +12,11 @@ namespace ibfvs {
 /// Camera settings. The default looks at the centre of the bounding box from
 /// +Z with +Y up and fits the whole mesh in the image.
 struct CameraParams {
-  float azimuth_deg = 0.0f;     ///< rotation about +Y; 90 looks from +X
-  float elevation_deg = 0.0f;   ///< above the XZ plane; 90 looks down from +Y
-  float distance = 0.0f;        ///< in bounding-box diagonals; 0 fits the mesh
-  bool orthographic = false;    ///< orthographic instead of perspective
-  float fov_deg = 30.0f;        ///< vertical field of view (perspective)
+  float azimuth_deg = 0.0f;    ///< rotation about +Y; 90 looks from +X
+  float elevation_deg = 0.0f;  ///< above the XZ plane; 90 looks down from +Y
+  float distance = 0.0f;       ///< in bounding-box diagonals; 0 fits the mesh
+  bool orthographic = false;   ///< orthographic instead of perspective
+  float fov_deg = 30.0f;       ///< vertical field of view (perspective)
 };
 
 /// Position and projection for one frame.

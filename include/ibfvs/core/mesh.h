@@ -37,7 +37,8 @@ struct Bounds {
 
 /// Bounding box of the vertices that some triangle references (unreferenced
 /// vertices do not move the camera), with the radius of the sphere about its
-/// centre that holds them (what a camera must fit, whatever its direction). Throws InputError for a mesh without triangles.
+/// centre that holds them (what a camera must fit, whatever its direction). Throws InputError for a
+/// mesh without triangles.
 Bounds mesh_bounds(const TriMesh& mesh);
 
 /// Angle-weighted vertex normals (Thuermer and Wuethrich). Degenerate

@@ -26,7 +26,7 @@ std::string to_string(NoiseProfile profile);
 struct NoiseParams {
   float scale = 4.0f;                           ///< s: pixels per grid cell
   NoiseProfile profile = NoiseProfile::Square;  ///< w
-  float rate = 0.05f;                           ///< v_g: profile periods per frame
+  float rate = 0.02f;                           ///< v_g: profile periods per frame
   std::uint32_t seed = 1;                       ///< seeds the phases phi_ij
   float spike_width = 0.1f;                     ///< fraction of the period a spike is on
 };

@@ -136,6 +136,8 @@ class Framebuffer : public Object<delete_framebuffer> {
   void clear_depth(float depth = 1.0f);
   /// Reads colour attachment `index` as RGBA8, rows bottom-up.
   void read_rgba8(unsigned index, int width, int height, std::span<std::uint8_t> out) const;
+  /// Reads the depth attachment as floats in [0, 1] (1: nothing drawn), rows bottom-up.
+  void read_depth(int width, int height, std::span<float> out) const;
 };
 
 /// Linked shader program, with uniform setters by name (locations cached by GL).

@@ -16,7 +16,10 @@
 // without perspective correction (section 3.9), F_t in 16-bit float, and an
 // option to advect with the previous frame's transform (section 3.7).
 
+#include <cstdint>
 #include <span>
+#include <string_view>
+#include <vector>
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
@@ -35,18 +38,19 @@ enum class AdvectView {
   Previous,  ///< T_{k-1}: the texture follows the surface; same as Current for a still view
 };
 
-AdvectView parse_advect_view(std::string_view text);  ///< "current" or "previous"; throws InputError
+AdvectView parse_advect_view(
+    std::string_view text);  ///< "current" or "previous"; throws InputError
 
 /// Everything that shapes the picture apart from mesh, field and camera.
 struct RenderSettings {
-  int width = 512;                            ///< image width in pixels
-  int height = 512;                           ///< image height in pixels
-  float alpha = 0.1f;                         ///< blend weight of fresh noise (eq. 5, 12)
-  float beta = 0.5f;                          ///< texture strength against shading (eq. 11)
-  NoiseParams noise;                          ///< G (eq. 6-8)
-  InjectMode inject = InjectMode::Blend;      ///< blend (eq. 10) or add (particles)
-  glm::vec3 background{0.5f};                 ///< B, grey by default (section 3.5)
-  glm::vec3 surface_color{0.82f, 0.80f, 0.76f};  ///< diffuse colour of the shaded surface F_s
+  int width = 512;                                ///< image width in pixels
+  int height = 512;                               ///< image height in pixels
+  float alpha = 0.1f;                             ///< blend weight of fresh noise (eq. 5, 12)
+  float beta = 0.5f;                              ///< texture strength against shading (eq. 11)
+  NoiseParams noise;                              ///< G (eq. 6-8)
+  InjectMode inject = InjectMode::Blend;          ///< blend (eq. 10) or add (particles)
+  glm::vec3 background{0.5f};                     ///< B, grey by default (section 3.5)
+  glm::vec3 surface_color{0.82f, 0.80f, 0.76f};   ///< diffuse colour of the shaded surface F_s
   AdvectView advect_view = AdvectView::Previous;  ///< see AdvectView
 
   /// Throws InputError naming the first impossible value.
@@ -84,6 +88,11 @@ class IbfvsRenderer {
   [[nodiscard]] ImageU8 read_output() const;
   /// The texture image F_t, RGBA float (values as stored in 16-bit float).
   [[nodiscard]] ImageF read_texture() const;
+  /// Window depth of the last frame, one channel in [0, 1]; 1 where the
+  /// surface does not cover the pixel (the projected surface Omega' of eq. 12).
+  [[nodiscard]] ImageF read_depth() const;
+  /// 1 where the surface covers the pixel in the last frame, else 0 (rows bottom-up).
+  [[nodiscard]] std::vector<std::uint8_t> read_coverage() const;
   /// Blocks until the GPU has finished every submitted frame.
   void finish() const;
 
@@ -108,7 +117,7 @@ class IbfvsRenderer {
 
   struct Uniforms {
     int view_projection, advect_view_projection, view, dt, alpha, beta, inject, noise_time,
-        noise_scale, profile, spike_width, background, surface_color, phase_size;
+        noise_scale, profile, spike_width, surface_color, phase_size;
   } u_{};
   void apply_settings_uniforms();
 };

@@ -1,0 +1,182 @@
+// `ibfvs render` run as a user runs it: real process, exit status, stderr.
+
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "helpers.h"
+#include "ibfvs/core/image.h"
+#include "ibfvs/core/mesh_io.h"
+#include "ibfvs/core/procedural.h"
+
+namespace ibfvs {
+namespace {
+
+struct Result {
+  int status = -1;
+  std::string out, err;
+};
+
+class RenderCommand : public ::testing::Test {
+ protected:
+  // Runs `ibfvs ARGS` in the temp folder with a time limit, so a hang fails
+  // instead of blocking the suite. `env` is prefixed to the command.
+  Result run(const std::string& args, const std::string& env = "") {
+    const std::string cmd = "cd '" + dir_.path().string() + "' && " + env + " timeout 120 '" +
+                            IBFVS_EXE + "' " + args + " >stdout.txt 2>stderr.txt </dev/null";
+    const int raw = std::system(cmd.c_str());
+    Result r;
+    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
+    r.out = test::read_file(dir_ / "stdout.txt");
+    r.err = test::read_file(dir_ / "stderr.txt");
+    return r;
+  }
+  // Expects a clean failure: exit 1 (not a crash, not the timeout), one line
+  // on stderr that starts with "ibfvs: error:" and contains `needle`.
+  void expect_error(const std::string& args, const std::string& needle) {
+    const Result r = run(args);
+    EXPECT_EQ(r.status, 1) << args << "\n" << r.err;
+    EXPECT_EQ(r.err.rfind("ibfvs: error: ", 0), 0u) << args << "\n" << r.err;
+    EXPECT_NE(r.err.find(needle), std::string::npos) << args << ": expected '" << needle << "' in\n"
+                                                     << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << "\n" << r.err;
+  }
+  std::string file(const std::string& name, const std::string& text) {
+    return test::write_file(dir_ / name, text).string();
+  }
+  test::TempDir dir_;
+};
+
+const char* kTri = "OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n";
+
+TEST_F(RenderCommand, HelpDocumentsEveryOptionWithDefaults) {
+  const Result r = run("render --help");
+  EXPECT_EQ(r.status, 0);
+  for (const char* opt :
+       {"--mesh",        "--field", "--tangent",     "--size",       "--frames",  "--out",
+        "--texture-out", "--alpha", "--beta",        "--scale",      "--profile", "--vg",
+        "--seed",        "--step",  "--dt",          "--background", "--camera",  "--ortho",
+        "--fov",         "--orbit", "--advect-view", "--subdivide",  "--inject"})
+    EXPECT_NE(r.out.find(opt), std::string::npos) << opt;
+  EXPECT_NE(r.out.find("512x512"), std::string::npos);
+  EXPECT_NE(r.out.find("0.5,0.5,0.5"), std::string::npos);
+}
+
+TEST_F(RenderCommand, RendersPngTextureAndSequence) {
+  const std::string mesh = file("sq.off", kTri);
+  const Result r =
+      run("render --mesh sq.off --field uniform:1,0,0 --size 64x48 --frames 5 "
+          "--out last.png --texture-out tex.png");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("wrote last.png"), std::string::npos) << r.out;
+  const ImageU8 img = read_png(dir_ / "last.png");
+  EXPECT_EQ(img.width, 64);
+  EXPECT_EQ(img.height, 48);
+  EXPECT_TRUE(std::filesystem::exists(dir_ / "tex.png"));
+  const Result seq = run("render --mesh sq.off --size 32x32 --frames 3 --out f%03d.png -q");
+  ASSERT_EQ(seq.status, 0) << seq.err;
+  for (const char* f : {"f000.png", "f001.png", "f002.png"})
+    EXPECT_TRUE(std::filesystem::exists(dir_ / f)) << f;
+  EXPECT_TRUE(seq.out.empty());
+}
+
+TEST_F(RenderCommand, RendersVideo) {
+  file("sq.off", kTri);
+  const Result r = run("render --mesh sq.off --size 64x64 --frames 10 --out clip.mp4 -q");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string bytes = test::read_file(dir_ / "clip.mp4");
+  ASSERT_GT(bytes.size(), 100u);
+  EXPECT_EQ(bytes.substr(4, 4), "ftyp");
+}
+
+TEST_F(RenderCommand, DemoFallsBackToAProceduralSurface) {
+  const Result r = run("render --size 64x64 --frames 3 --out demo.png",
+                       "IBFVS_DATA_DIR='" + (dir_ / "no-data").string() + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("procedural torus"), std::string::npos) << r.err;
+  EXPECT_NE(r.out.find("wrote demo.png"), std::string::npos) << r.out;
+}
+
+TEST_F(RenderCommand, NanVectorsAreZeroedWithAWarning) {
+  TriMesh sq = make_square(1.0f, 2);
+  sq.vectors.assign(sq.vertex_count(), glm::vec3(1, 0, 0));
+  sq.vectors[4].x = std::nanf("");
+  write_ply(sq, dir_ / "v.ply", true);
+  const Result r = run("render --mesh v.ply --size 32x32 --frames 2 --out v.png -q");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("v.ply: 1 vectors were NaN or infinite"), std::string::npos) << r.err;
+  for (glm::vec3& v : sq.vectors) v = glm::vec3(std::nanf(""));
+  write_ply(sq, dir_ / "allnan.ply", false);
+  expect_error("render --mesh allnan.ply --frames 2 --out x.png", "allnan.ply");
+}
+
+TEST_F(RenderCommand, MalformedMeshesFailCleanly) {
+  expect_error("render --mesh missing.off --out x.png", "missing.off: no such file");
+  file("empty.off", "");
+  expect_error("render --mesh empty.off --out x.png", "empty.off: the file is empty");
+  file("trunc.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n");
+  expect_error("render --mesh trunc.off --out x.png", "trunc.off: truncated");
+  file("counts.off", "OFF\n-3 x 0\n");
+  expect_error("render --mesh counts.off --out x.png", "counts.off: bad vertex count");
+  file("index.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 5\n");
+  expect_error("render --mesh index.off --out x.png",
+               "index.off: truncated or malformed: a face references");
+  file("nan.off", "OFF\n3 1 0\n0 0 0\n1 NaN 0\n0 1 0\n3 0 1 2\n");
+  expect_error("render --mesh nan.off --out x.png", "nan.off: line 4 holds a non-finite");
+  file("inf.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 inf\n3 0 1 2\n");
+  expect_error("render --mesh inf.off --out x.png", "inf.off");
+  file("notmesh.off", "#!/bin/sh\necho hello\n");
+  expect_error("render --mesh notmesh.off --out x.png", "notmesh.off: not an OFF file");
+  file("notmesh.ply", std::string("\x7f"
+                                  "ELF\x02\x01\x01\0\0\0",
+                                  10));
+  expect_error("render --mesh notmesh.ply --out x.png", "notmesh.ply: not a PLY file");
+  file("mesh.txt", "1 2 3");
+  expect_error("render --mesh mesh.txt --out x.png", "mesh.txt: unknown mesh format");
+  file("flat.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n2 0 0\n3 0 1 2\n");
+  expect_error("render --mesh flat.off --out x.png", "flat.off: every triangle is degenerate");
+  file("stl.stl", std::string(84, '\0') + "xx");
+  expect_error("render --mesh stl.stl --out x.png", "stl.stl: truncated or malformed binary STL");
+  file("sq.off", kTri);
+  expect_error("render --mesh sq.off --field file --out x.png",
+               "sq.off: --field file: the mesh has no per-vertex vectors");
+}
+
+TEST_F(RenderCommand, ImpossibleOptionsFailCleanly) {
+  file("sq.off", kTri);
+  const std::string m = "render --mesh sq.off --frames 1 ";
+  expect_error(m + "--alpha 2 --out x.png", "--alpha");
+  expect_error(m + "--beta -0.1 --out x.png", "--beta");
+  expect_error(m + "--size 0x10 --out x.png", "--size");
+  expect_error(m + "--size big --out x.png", "--size");
+  expect_error(m + "--scale 0 --out x.png", "--scale");
+  expect_error(m + "--profile triangle --out x.png", "--profile");
+  expect_error(m + "--field swirl:1 --out x.png", "--field");
+  expect_error(m + "--field rotate:0,0,0 --out x.png", "--field rotate");
+  expect_error(m + "--tangent flat --out x.png", "--tangent");
+  expect_error(m + "--background 2,0,0 --out x.png", "--background");
+  expect_error(m + "--background 0.5,0.5 --out x.png", "--background");
+  expect_error(m + "--camera 10,20 --out x.png", "--camera");
+  expect_error(m + "--fov 0 --out x.png", "--fov");
+  expect_error(m + "--step 0 --out x.png", "--step");
+  expect_error(m + "--dt -1 --out x.png", "--dt");
+  expect_error(m + "--advect-view next --out x.png", "--advect-view");
+  expect_error(m + "--inject mix --out x.png", "--inject");
+  expect_error(m + "--subdivide 9 --out x.png", "--subdivide");
+  expect_error(m + "--orbit 1000 --out x.png", "--orbit");
+  expect_error(m + "--out x.xyz", "--out");
+  expect_error(m + "--out nodir/x.png", "nodir");
+  expect_error(m + "--out x%d%d.png", "--out");
+  expect_error(m + "--out x.png --texture-out t.jpg", "--texture-out");
+  expect_error("render --frames 0 --out x.png", "--frames");
+  // CLI11 parse errors (a word where a number goes) also exit non-zero.
+  const Result r = run("render --alpha lots --out x.png");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.err.find("--alpha"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace ibfvs

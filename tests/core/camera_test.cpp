@@ -1,0 +1,82 @@
+#include <gtest/gtest.h>
+#include <glm/geometric.hpp>
+
+#include "ibfvs/core/camera.h"
+#include "ibfvs/core/error.h"
+#include "ibfvs/core/procedural.h"
+
+namespace ibfvs {
+namespace {
+
+// True when every vertex projects inside the image.
+bool all_inside(const TriMesh& m, const Camera& c, int w, int h) {
+  for (const glm::vec3& p : m.positions) {
+    const glm::vec2 px = project_to_pixels(c.view_projection(), p, w, h);
+    if (px.x < 0 || px.y < 0 || px.x > w || px.y > h) return false;
+  }
+  return true;
+}
+
+TEST(Camera, DefaultLooksFromPlusZAndFitsTheMesh) {
+  const TriMesh m = make_torus(1.0f, 0.3f, 48, 16);
+  const Bounds b = mesh_bounds(m);
+  Camera c(b, {}, 1.0f);
+  const glm::vec3 dir = glm::normalize(c.eye() - b.centre());
+  EXPECT_NEAR(dir.z, 1.0f, 1e-6f);
+  EXPECT_TRUE(all_inside(m, c, 256, 256));
+  const glm::vec2 centre = project_to_pixels(c.view_projection(), b.centre(), 256, 256);
+  EXPECT_NEAR(centre.x, 128.0f, 1e-3f);
+  EXPECT_NEAR(centre.y, 128.0f, 1e-3f);
+  // Fitted, not lost in the middle: the torus spans most of the width.
+  float min_x = 1e9f, max_x = -1e9f;
+  for (const glm::vec3& p : m.positions) {
+    const float x = project_to_pixels(c.view_projection(), p, 256, 256).x;
+    min_x = std::min(min_x, x);
+    max_x = std::max(max_x, x);
+  }
+  EXPECT_GT(max_x - min_x, 0.8f * 256);
+}
+
+TEST(Camera, OrbitAndWideImagesKeepTheMeshInView) {
+  const TriMesh m = make_cylinder(0.3f, 2.0f, 32, 8);
+  for (const bool ortho : {false, true}) {
+    CameraParams p;
+    p.orthographic = ortho;
+    p.elevation_deg = 20.0f;
+    Camera c(mesh_bounds(m), p, 640.0f / 360.0f);
+    for (int k = 0; k < 36; ++k) {
+      EXPECT_TRUE(all_inside(m, c, 640, 360)) << "ortho " << ortho << " step " << k;
+      c.orbit(10.0f);
+    }
+  }
+}
+
+TEST(Camera, AzimuthElevationDistance) {
+  const TriMesh m = make_sphere(1.0f, 16, 32);
+  CameraParams p;
+  p.azimuth_deg = 90.0f;
+  p.distance = 3.0f;
+  Camera c(mesh_bounds(m), p, 1.0f);
+  EXPECT_NEAR(c.eye().x, 3.0f * mesh_bounds(m).diagonal(), 1e-4f);
+  p.azimuth_deg = 0.0f;
+  p.elevation_deg = 90.0f;  // straight down: the up vector must not degenerate
+  Camera top(mesh_bounds(m), p, 1.0f);
+  const glm::mat4 v = top.view();
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) EXPECT_TRUE(std::isfinite(v[i][j]));
+}
+
+TEST(Camera, RejectsImpossibleValues) {
+  const Bounds b = mesh_bounds(make_square(1.0f, 1));
+  CameraParams p;
+  p.fov_deg = 0.0f;
+  EXPECT_THROW(Camera(b, p, 1.0f), InputError);
+  p.fov_deg = 180.0f;
+  EXPECT_THROW(Camera(b, p, 1.0f), InputError);
+  p = {};
+  p.distance = -1.0f;
+  EXPECT_THROW(Camera(b, p, 1.0f), InputError);
+}
+
+}  // namespace
+}  // namespace ibfvs

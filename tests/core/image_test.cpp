@@ -1,0 +1,71 @@
+#include <gtest/gtest.h>
+
+#include "helpers.h"
+#include "ibfvs/core/error.h"
+#include "ibfvs/core/image.h"
+#include "ibfvs/core/image_analysis.h"
+
+namespace ibfvs {
+namespace {
+
+TEST(Image, PngRoundTripKeepsRowsBottomUp) {
+  test::TempDir dir;
+  ImageU8 img;
+  img.width = 3;
+  img.height = 2;
+  img.channels = 4;
+  for (int i = 0; i < 24; ++i) img.pixels.push_back(static_cast<std::uint8_t>(i * 10));
+  write_png(img, dir / "a.png");
+  const ImageU8 back = read_png(dir / "a.png");
+  ASSERT_EQ(back.width, 3);
+  ASSERT_EQ(back.height, 2);
+  EXPECT_EQ(back.pixels, img.pixels);
+}
+
+TEST(Image, SixteenBitPngKeepsPrecision) {
+  test::TempDir dir;
+  ImageF img;
+  img.width = 2;
+  img.height = 1;
+  img.channels = 1;
+  img.pixels = {0.5001f, 0.25f};
+  write_png16(img, dir / "f.png");
+  const std::string bytes = test::read_file(dir / "f.png");
+  EXPECT_EQ(bytes.substr(1, 3), "PNG");
+  EXPECT_EQ(static_cast<unsigned char>(bytes[24]), 16u);  // IHDR bit depth
+}
+
+TEST(Image, ErrorsNameThePath) {
+  test::TempDir dir;
+  EXPECT_THROW(read_png(test::write_file(dir / "x.png", "not a png")), InputError);
+  ImageU8 img;
+  img.width = img.height = 1;
+  img.pixels = {1, 2, 3, 4};
+  try {
+    write_png(img, dir / "missing" / "x.png");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("missing/x.png"), std::string::npos);
+  }
+}
+
+TEST(ImageAnalysis, AlignmentOfStripes) {
+  // Stripes along x: all gradient across the flow (1, 0) -> A = 1; across it -> 0.
+  ImageF img;
+  img.width = img.height = 64;
+  img.channels = 1;
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x) img.pixels.push_back(std::sin(0.7f * static_cast<float>(y)));
+  std::vector<std::uint8_t> mask(64 * 64, 1);
+  const auto along = [](float, float) { return glm::vec2(1, 0); };
+  const auto across = [](float, float) { return glm::vec2(0, 1); };
+  EXPECT_GT(flow_alignment(img, mask, along, 2), 0.999);
+  EXPECT_LT(flow_alignment(img, mask, across, 2), 0.001);
+  // No pixel far enough from the unmasked ones: NaN.
+  std::vector<std::uint8_t> thin(64 * 64, 0);
+  thin[32 * 64 + 32] = 1;
+  EXPECT_TRUE(std::isnan(flow_alignment(img, thin, along, 2)));
+}
+
+}  // namespace
+}  // namespace ibfvs

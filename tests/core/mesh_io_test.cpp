@@ -1,0 +1,204 @@
+#include <cmath>
+#include <cstring>
+
+#include <gtest/gtest.h>
+#include <glm/geometric.hpp>
+
+#include "helpers.h"
+#include "ibfvs/core/error.h"
+#include "ibfvs/core/mesh_io.h"
+#include "ibfvs/core/procedural.h"
+
+namespace ibfvs {
+namespace {
+
+using test::TempDir;
+using test::write_file;
+
+const char* kTetraOff =
+    "OFF\n# a tetrahedron\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n"
+    "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+
+// Expects read_mesh(path) to throw InputError whose message names the file
+// and contains `problem`.
+void expect_read_error(const std::filesystem::path& path, const std::string& problem) {
+  try {
+    read_mesh(path);
+    FAIL() << "no error for " << path;
+  } catch (const InputError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find(path.string()), std::string::npos) << msg;
+    EXPECT_NE(msg.find(problem), std::string::npos) << "expected '" << problem << "' in: " << msg;
+  }
+}
+
+TEST(MeshIo, ReadsOffWithComputedOutwardNormals) {
+  TempDir dir;
+  MeshReadReport report;
+  const TriMesh m = read_mesh(write_file(dir / "tetra.off", kTetraOff), &report);
+  EXPECT_EQ(m.vertex_count(), 4u);
+  EXPECT_EQ(m.triangle_count(), 4u);
+  EXPECT_FALSE(report.normals_from_file);
+  ASSERT_EQ(m.normals.size(), 4u);
+  const glm::vec3 centre(0.25f);
+  for (std::size_t i = 0; i < 4; ++i) {
+    EXPECT_NEAR(glm::length(m.normals[i]), 1.0f, 1e-5f);
+    if (i > 0) {
+      EXPECT_GT(glm::dot(m.normals[i], m.positions[i] - centre), 0.0f) << i;
+    }
+  }
+}
+
+TEST(MeshIo, TriangulatesObjPolygons) {
+  TempDir dir;
+  MeshReadReport report;
+  const TriMesh m = read_mesh(
+      write_file(dir / "quad.obj",
+                 "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nv 2 1 0\nf 1 2 3 4\nf 2 5 6 3\n"),
+      &report);
+  EXPECT_EQ(m.triangle_count(), 4u);
+  EXPECT_EQ(report.polygons_triangulated, 2u);
+  for (const glm::vec3& n : m.normals) EXPECT_NEAR(n.z, 1.0f, 1e-5f);
+}
+
+TEST(MeshIo, MergesDuplicateStlVertices) {
+  TempDir dir;
+  const std::string ascii =
+      "solid two\n"
+      "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 1 1 "
+      "0\nendloop\nendfacet\n"
+      "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 1 0\nvertex 0 1 "
+      "0\nendloop\nendfacet\n"
+      "endsolid two\n";
+  const TriMesh a = read_mesh(write_file(dir / "two.stl", ascii));
+  EXPECT_EQ(a.vertex_count(), 4u);
+  EXPECT_EQ(a.triangle_count(), 2u);
+
+  // The same two triangles as binary STL.
+  std::string bin(80, '\0');
+  const std::uint32_t n = 2;
+  bin.append(reinterpret_cast<const char*>(&n), 4);
+  const float tris[2][12] = {{0, 0, 1, 0, 0, 0, 1, 0, 0, 1, 1, 0},
+                             {0, 0, 1, 0, 0, 0, 1, 1, 0, 0, 1, 0}};
+  for (const auto& t : tris) {
+    bin.append(reinterpret_cast<const char*>(t), sizeof t);
+    bin.append(2, '\0');
+  }
+  const TriMesh b = read_mesh(write_file(dir / "two_bin.stl", bin));
+  EXPECT_EQ(b.vertex_count(), 4u);
+  EXPECT_EQ(b.triangle_count(), 2u);
+
+  write_file(dir / "cut.stl", bin.substr(0, bin.size() - 7));
+  expect_read_error(dir / "cut.stl", "binary STL");
+}
+
+TEST(MeshIo, PlyVectorsAndScalarsAsciiAndBinary) {
+  TempDir dir;
+  const std::string ply =
+      "ply\nformat ascii 1.0\nelement vertex 3\n"
+      "property float x\nproperty float y\nproperty float z\n"
+      "property float vx\nproperty float vy\nproperty float vz\nproperty float pressure\n"
+      "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+      "0 0 0 1 0 0 0.5\n1 0 0 0 1 0 1.5\n0 1 0 0 0 1 2.5\n3 0 1 2\n";
+  const TriMesh m = read_mesh(write_file(dir / "f.ply", ply));
+  ASSERT_EQ(m.vectors.size(), 3u);
+  EXPECT_EQ(m.vectors[1], glm::vec3(0, 1, 0));
+  ASSERT_EQ(m.scalars.count("pressure"), 1u);
+  EXPECT_FLOAT_EQ(m.scalars.at("pressure")[2], 2.5f);
+  EXPECT_EQ(m.scalars.count("vx"), 0u);
+
+  // Round trip through our binary and ASCII writers.
+  for (const bool binary : {true, false}) {
+    const auto path = dir / (binary ? "bin.ply" : "ascii.ply");
+    write_ply(m, path, binary);
+    const TriMesh r = read_mesh(path);
+    ASSERT_EQ(r.vertex_count(), 3u);
+    ASSERT_EQ(r.vectors.size(), 3u);
+    EXPECT_EQ(r.vectors[2], glm::vec3(0, 0, 1));
+    EXPECT_FLOAT_EQ(r.scalars.at("pressure")[1], 1.5f);
+    EXPECT_EQ(r.positions[1], glm::vec3(1, 0, 0));
+  }
+}
+
+TEST(MeshIo, DropsDegenerateTrianglesAndCountsUnreferencedVertices) {
+  TempDir dir;
+  MeshReadReport report;
+  const TriMesh m = read_mesh(write_file(dir / "d.off",
+                                         "OFF\n6 3 0\n0 0 0\n1 0 0\n0 1 0\n2 0 0\n5 5 5\n6 6 6\n"
+                                         "3 0 1 2\n3 0 1 3\n3 0 2 1\n"),
+                              &report);
+  // 0 1 3 is collinear (zero area): dropped, which leaves vertex 3 unused
+  // beside 4 and 5. 0 2 1 repeats 0 1 2 reversed: non-manifold, but kept on
+  // the same vertices (a two-sided sheet), with no duplicated vertex.
+  EXPECT_EQ(m.vertex_count(), 6u);
+  EXPECT_EQ(m.triangle_count(), 2u);
+  EXPECT_EQ(report.degenerate_removed, 1u);
+  EXPECT_EQ(report.unreferenced_vertices, 3u);
+  EXPECT_FALSE(report.warnings.empty());
+  const Bounds b = mesh_bounds(m);
+  EXPECT_EQ(b.max, glm::vec3(1, 1, 0));  // unused vertices do not widen the box
+}
+
+TEST(MeshIo, RejectsMissingEmptyAndUnknownFiles) {
+  TempDir dir;
+  expect_read_error(dir / "nope.off", "no such file");
+  expect_read_error(dir.path(), "not a regular file");
+  expect_read_error(write_file(dir / "empty.off", ""), "empty");
+  expect_read_error(write_file(dir / "mesh.xyz", "1 2 3\n"), "unknown mesh format");
+}
+
+TEST(MeshIo, RejectsMalformedOff) {
+  TempDir dir;
+  expect_read_error(write_file(dir / "trunc.off", "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n"),
+                    "truncated");
+  expect_read_error(write_file(dir / "count.off", "OFF\nfour 4 0\n0 0 0\n"), "bad vertex count");
+  expect_read_error(write_file(dir / "huge.off", "OFF\n999999999 1 0\n0 0 0\n"), "declares");
+  expect_read_error(write_file(dir / "index.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n"),
+                    "out of range");
+  expect_read_error(write_file(dir / "nan.off", "OFF\n3 1 0\n0 0 0\nnan 0 0\n0 1 0\n3 0 1 2\n"),
+                    "non-finite");
+  expect_read_error(write_file(dir / "inf.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 -inf 0\n3 0 1 2\n"),
+                    "non-finite");
+  expect_read_error(write_file(dir / "text.off", "hello, this is not a mesh\n"), "not an OFF file");
+  expect_read_error(write_file(dir / "nofaces.off", "OFF\n3 0 0\n0 0 0\n1 0 0\n0 1 0\n"),
+                    "no faces");
+}
+
+TEST(MeshIo, RejectsMalformedPlyObjAndBinaryJunk) {
+  TempDir dir;
+  expect_read_error(write_file(dir / "png.ply", std::string("\x89PNG\r\n\x1a\n\0\0\0\rIHDR", 16)),
+                    "not a PLY file");
+  expect_read_error(write_file(dir / "noend.ply", "ply\nformat ascii 1.0\nelement vertex 3\n"),
+                    "end_header");
+  // A binary PLY cut short in its vertex data.
+  TriMesh sq = make_square(1.0f, 4);
+  write_ply(sq, dir / "full.ply", true);
+  const std::string full = test::read_file(dir / "full.ply");
+  write_file(dir / "cut.ply", full.substr(0, full.size() / 2));
+  expect_read_error(dir / "cut.ply", "");
+  expect_read_error(write_file(dir / "points.obj", "v 0 0 0\nv 1 0 0\n"), "no faces");
+  expect_read_error(write_file(dir / "idx.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n"), "");
+}
+
+TEST(MeshIo, BinaryPlyWithNonFiniteCoordinateIsRejected) {
+  TempDir dir;
+  TriMesh sq = make_square(1.0f, 2);
+  sq.positions[3].y = std::nanf("");
+  write_ply(sq, dir / "nan.ply", true);
+  expect_read_error(dir / "nan.ply", "non-finite");
+}
+
+TEST(MeshIo, NonFiniteVectorsAreReadAsIs) {
+  // The reader keeps what the file says; evaluate_field zeroes and reports.
+  TempDir dir;
+  TriMesh sq = make_square(1.0f, 2);
+  sq.vectors.assign(sq.vertex_count(), glm::vec3(1, 0, 0));
+  sq.vectors[4] = glm::vec3(std::nanf(""), 0, 0);
+  write_ply(sq, dir / "v.ply", true);
+  const TriMesh m = read_mesh(dir / "v.ply");
+  ASSERT_EQ(m.vectors.size(), sq.vertex_count());
+  EXPECT_TRUE(std::isnan(m.vectors[4].x));
+}
+
+}  // namespace
+}  // namespace ibfvs

@@ -1,0 +1,61 @@
+#include <gtest/gtest.h>
+#include <glm/geometric.hpp>
+
+#include "ibfvs/core/error.h"
+#include "ibfvs/core/mesh.h"
+#include "ibfvs/core/procedural.h"
+
+namespace ibfvs {
+namespace {
+
+TEST(Mesh, ComputedNormalsMatchTheSphere) {
+  TriMesh m = make_sphere(2.0f, 32, 64);
+  const std::vector<glm::vec3> exact = m.normals;
+  compute_vertex_normals(m);
+  float worst = 1.0f;
+  for (std::size_t i = 0; i < exact.size(); ++i) {
+    const float y = exact[i].y;
+    if (std::abs(y) > 0.99f) continue;  // the collapsed pole rows
+    worst = std::min(worst, glm::dot(m.normals[i], exact[i]));
+  }
+  EXPECT_GT(worst, 0.995f);
+}
+
+TEST(Mesh, BoundsAndRadius) {
+  const TriMesh m = make_torus(1.0f, 0.25f, 64, 16);
+  const Bounds b = mesh_bounds(m);
+  EXPECT_NEAR(b.max.x, 1.25f, 1e-5f);
+  EXPECT_NEAR(b.max.y, 0.25f, 1e-5f);
+  EXPECT_NEAR(b.radius, 1.25f, 1e-4f);
+  EXPECT_LT(b.radius, 0.5f * b.diagonal());
+}
+
+TEST(Mesh, ValidateNamesTheProblem) {
+  TriMesh m = make_square(1.0f, 1);
+  m.triangles.push_back({0, 1, 17});
+  try {
+    validate_mesh(m, "in.off");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("in.off: triangle 2 references vertex 17"),
+              std::string::npos)
+        << e.what();
+  }
+  TriMesh empty;
+  EXPECT_THROW(validate_mesh(empty, "x"), InputError);
+  EXPECT_THROW(mesh_bounds(empty), InputError);
+}
+
+TEST(Mesh, DegenerateTrianglesAreRemovedAndNormalsStayFinite) {
+  TriMesh m = make_square(1.0f, 1);
+  m.triangles.push_back({0, 0, 1});
+  m.positions.push_back(m.positions[0]);  // a copy of vertex 0: zero-area triangle
+  m.triangles.push_back({0, 4, 1});
+  compute_vertex_normals(m);
+  for (const glm::vec3& n : m.normals) EXPECT_NEAR(glm::length(n), 1.0f, 1e-5f);
+  EXPECT_EQ(remove_degenerate_triangles(m), 2u);
+  EXPECT_EQ(m.triangle_count(), 2u);
+}
+
+}  // namespace
+}  // namespace ibfvs

@@ -21,9 +21,15 @@ cd "$work"
 # cannot enter only costs a warning.
 chmod 777 "$work"
 if ! apt-get download libcgal-demo >download.log 2>&1; then
-  cat download.log >&2
-  echo "fetch_data: apt-get download libcgal-demo failed (run 'apt-get update' first?)" >&2
-  exit 1
+  # A fresh machine may have no package lists yet; root can fetch them.
+  if [[ $(id -u) -eq 0 ]] && apt-get update -qq >>download.log 2>&1 &&
+    apt-get download libcgal-demo >>download.log 2>&1; then
+    :
+  else
+    cat download.log >&2
+    echo "fetch_data: apt-get download libcgal-demo failed (run 'apt-get update' first?)" >&2
+    exit 1
+  fi
 fi
 dpkg-deb -x libcgal-demo_*.deb pkg
 members=()

@@ -12,14 +12,27 @@
 int main(int argc, char** argv) {
   CLI::App app{"ibfvs: image based flow visualization for curved surfaces"};
   app.require_subcommand(1, 1);
+  app.set_version_flag("--version", IBFVS_VERSION);
   auto render_options = std::make_unique<ibfvs::app::RenderOptions>();
   CLI::App* render = app.add_subcommand(
       "render", "Render IBFVS texture on a mesh headless (EGL) to a video or PNG");
   ibfvs::app::add_render_options(*render, *render_options);
+  if (argc < 2) {
+    std::fputs(app.help().c_str(), stderr);
+    return 1;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help
+    // One line in the same form as every other error.
+    if (*render)
+      std::fprintf(stderr, "ibfvs: error: %s (see ibfvs render --help)\n", e.what());
+    else
+      std::fprintf(stderr,
+                   "ibfvs: error: unknown command '%s' (expected: render; see ibfvs --help)\n",
+                   argv[1]);
+    return 1;
   }
   try {
     if (*render) return ibfvs::app::run_render(*render_options);

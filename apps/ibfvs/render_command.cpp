@@ -174,6 +174,7 @@ int run_render(const RenderOptions& o) {
   const Size size = parse_size(o.size);
   if (o.frames < 1 || o.frames > 1000000)
     throw InputError("--frames: must be between 1 and 1000000");
+  const int frames = static_cast<int>(o.frames);
   if (!(o.step > 0.0f) || !std::isfinite(o.step))
     throw InputError("--step: must be a positive number of pixels");
   if (!(o.dt >= 0.0f) || !std::isfinite(o.dt))
@@ -293,9 +294,9 @@ int run_render(const RenderOptions& o) {
   std::unique_ptr<VideoWriter> video;
   if (kind == OutputKind::Video)
     video = std::make_unique<VideoWriter>(out, size.width, size.height, o.fps);
-  Progress progress(o.frames, !o.quiet);
+  Progress progress(frames, !o.quiet);
   const auto start = std::chrono::steady_clock::now();
-  for (int k = 0; k < o.frames; ++k) {
+  for (int k = 0; k < frames; ++k) {
     if (k > 0 && o.orbit != 0.0f) camera.orbit(o.orbit);
     renderer.render_frame({camera.view(), camera.projection()}, dt);
     if (kind == OutputKind::Video) video->write(renderer.read_output());
@@ -325,8 +326,8 @@ int run_render(const RenderOptions& o) {
     std::printf(
         "ibfvs: wrote %s (%d frames, %dx%d) from %s: %zu vertices, %zu triangles, field %s, "
         "dt %.4g (max %.2f px/frame), %.1f fps on %s\n",
-        out.c_str(), o.frames, size.width, size.height, mesh_name.c_str(), mesh.vertex_count(),
-        mesh.triangle_count(), field_spec->to_string().c_str(), dt, max_px, o.frames / seconds,
+        out.c_str(), frames, size.width, size.height, mesh_name.c_str(), mesh.vertex_count(),
+        mesh.triangle_count(), field_spec->to_string().c_str(), dt, max_px, frames / seconds,
         context.renderer().c_str());
     if (!o.texture_out.empty())
       std::printf("ibfvs: wrote texture image %s\n", o.texture_out.c_str());

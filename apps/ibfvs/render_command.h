@@ -16,8 +16,8 @@ struct RenderOptions {
   std::string field;  ///< empty: file if the mesh has vectors, else rotate:0,1,0
   std::string tangent = "project";
   std::string size = "512x512";
-  int frames = 150;
-  std::string out;  ///< empty: <mesh stem>.mp4 (ibfvs-demo.mp4 for the demo)
+  std::int64_t frames = 150;  // wide, so that a huge value gets our range message
+  std::string out;            ///< empty: <mesh stem>.mp4 (ibfvs-demo.mp4 for the demo)
   std::string texture_out;
   float alpha = 0.1f;
   float beta = 0.5f;

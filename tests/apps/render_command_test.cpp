@@ -172,10 +172,15 @@ TEST_F(RenderCommand, ImpossibleOptionsFailCleanly) {
   expect_error(m + "--out x%d%d.png", "--out");
   expect_error(m + "--out x.png --texture-out t.jpg", "--texture-out");
   expect_error("render --frames 0 --out x.png", "--frames");
-  // CLI11 parse errors (a word where a number goes) also exit non-zero.
-  const Result r = run("render --alpha lots --out x.png");
-  EXPECT_NE(r.status, 0);
-  EXPECT_NE(r.err.find("--alpha"), std::string::npos) << r.err;
+  expect_error("render --frames 99999999999 --out x.png", "--frames");
+  // Command-line syntax errors come in the same one-line form.
+  expect_error("render --alpha lots --out x.png", "--alpha");
+  expect_error("render --seed -1 --out x.png", "--seed");
+  expect_error("render --no-such-option", "--no-such-option");
+  expect_error("paint", "paint");
+  const Result bare = run("");
+  EXPECT_EQ(bare.status, 1);
+  EXPECT_NE(bare.err.find("render"), std::string::npos) << bare.err;
 }
 
 }  // namespace

@@ -74,16 +74,4 @@ inline double correlation(const std::vector<float>& a, const std::vector<float>&
   return cov / std::sqrt(va * vb);
 }
 
-/// One channel of an interleaved float image.
-inline ImageF channel(const ImageF& image, int c) {
-  ImageF out;
-  out.width = image.width;
-  out.height = image.height;
-  out.channels = 1;
-  out.pixels.resize(static_cast<std::size_t>(image.width) * image.height);
-  for (std::size_t i = 0; i < out.pixels.size(); ++i)
-    out.pixels[i] = image.pixels[i * image.channels + c];
-  return out;
-}
-
 }  // namespace ibfvs::test

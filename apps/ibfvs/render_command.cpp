@@ -312,15 +312,7 @@ int run_render(const RenderOptions& o) {
   if (kind == OutputKind::Png) write_png(renderer.read_output(), out);
   if (video) video->close();
   if (!o.texture_out.empty()) {
-    const ImageF tex = renderer.read_texture();
-    ImageF rgb;
-    rgb.width = tex.width;
-    rgb.height = tex.height;
-    rgb.channels = 3;
-    rgb.pixels.reserve(static_cast<std::size_t>(tex.width) * tex.height * 3);
-    for (std::size_t i = 0; i < tex.pixels.size(); i += 4)
-      rgb.pixels.insert(rgb.pixels.end(), {tex.pixels[i], tex.pixels[i + 1], tex.pixels[i + 2]});
-    write_png16(rgb, o.texture_out);
+    write_png16(renderer.read_texture().select_channels(0, 3), o.texture_out);
   }
   if (!o.quiet) {
     std::printf(

@@ -99,13 +99,17 @@ ImageU8 read_png(const std::filesystem::path& path) {
 }
 
 ImageF to_float_channel(const ImageU8& image, int channel) {
-  ImageF out;
-  out.width = image.width;
-  out.height = image.height;
-  out.channels = 1;
-  out.pixels.resize(static_cast<std::size_t>(image.width) * image.height);
+  ImageF out(image.width, image.height, 1);
   for (std::size_t i = 0; i < out.pixels.size(); ++i)
     out.pixels[i] = image.pixels[i * image.channels + channel] / 255.0f;
+  return out;
+}
+
+ImageF ImageF::select_channels(int first, int count) const {
+  ImageF out(width, height, count);
+  const std::size_t n = static_cast<std::size_t>(width) * height;
+  for (std::size_t i = 0; i < n; ++i)
+    for (int c = 0; c < count; ++c) out.pixels[i * count + c] = pixels[i * channels + first + c];
   return out;
 }
 

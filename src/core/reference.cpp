@@ -9,10 +9,7 @@ namespace ibfvs {
 
 ReferenceIbfvs::ReferenceIbfvs(int width, int height, float background, const NoiseParams& noise)
     : background_(background), noise_(width, height, noise) {
-  texture_.width = width;
-  texture_.height = height;
-  texture_.channels = 1;
-  texture_.pixels.assign(static_cast<std::size_t>(width) * height, background);
+  texture_ = ImageF(width, height, 1, background);
 }
 
 float ReferenceIbfvs::sample(float x, float y) const {

@@ -180,31 +180,19 @@ void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
 }
 
 ImageU8 IbfvsRenderer::read_output() const {
-  ImageU8 image;
-  image.width = settings_.width;
-  image.height = settings_.height;
-  image.channels = 4;
-  image.pixels.resize(static_cast<std::size_t>(image.width) * image.height * 4);
+  ImageU8 image(settings_.width, settings_.height, 4);
   framebuffer_[current_].read_rgba8(1, image.width, image.height, image.pixels);
   return image;
 }
 
 ImageF IbfvsRenderer::read_texture() const {
-  ImageF image;
-  image.width = settings_.width;
-  image.height = settings_.height;
-  image.channels = 4;
-  image.pixels.resize(static_cast<std::size_t>(image.width) * image.height * 4);
+  ImageF image(settings_.width, settings_.height, 4);
   texture_[current_].read_float(image.pixels, 4);
   return image;
 }
 
 ImageF IbfvsRenderer::read_depth() const {
-  ImageF image;
-  image.width = settings_.width;
-  image.height = settings_.height;
-  image.channels = 1;
-  image.pixels.resize(static_cast<std::size_t>(image.width) * image.height);
+  ImageF image(settings_.width, settings_.height, 1);
   framebuffer_[current_].read_depth(image.width, image.height, image.pixels);
   return image;
 }

@@ -171,6 +171,12 @@ TEST_F(RenderCommand, ImpossibleOptionsFailCleanly) {
   expect_error(m + "--out nodir/x.png", "nodir");
   expect_error(m + "--out x%d%d.png", "--out");
   expect_error(m + "--out x.png --texture-out t.jpg", "--texture-out");
+  expect_error(m + "--out x.png --texture-out nodir/t.png", "--texture-out: the folder 'nodir'");
+  expect_error(m + "--surface-color 0.5,0.5,7 --out x.png", "--surface-color");
+  expect_error(m + "--fps 0 --out x.mp4", "--fps");
+  expect_error(m + "--spike-width 0 --out x.png", "--spike-width");
+  expect_error(m + "--vg nan --out x.png", "--vg");
+  expect_error(m + "--camera 0,0,-2 --out x.png", "--camera");
   expect_error("render --frames 0 --out x.png", "--frames");
   expect_error("render --frames 99999999999 --out x.png", "--frames");
   // Command-line syntax errors come in the same one-line form.

@@ -104,7 +104,7 @@ double rotation_alignment(const TriMesh& mesh, const std::string& field, int fra
   const int w = settings.width, h = settings.height;
   const float dt = dt_for_pixel_step(mesh.positions, f, cam.view_projection(), w, h, step_pixels);
   for (int k = 0; k < frames; ++k) r.render_frame({cam.view(), cam.projection()}, dt);
-  const ImageF tex = test::channel(r.read_texture(), 0);
+  const ImageF tex = r.read_texture().select_channels(0, 1);
   const glm::vec2 c = project_to_pixels(cam.view_projection(), mesh_bounds(mesh).centre(), w, h);
   const double a = flow_alignment(
       tex, r.read_coverage(),
@@ -184,7 +184,7 @@ TEST_F(RendererGLTest, EqualsTheCpuReferenceOnAFlatSquare) {
       r.render_frame(flat_view(), dt);
       ref.step(map, k, settings.alpha);
     }
-    const ImageF gpu = test::channel(r.read_texture(), 0);
+    const ImageF gpu = r.read_texture().select_channels(0, 1);
     double max_diff = 0, sum_diff = 0;
     for (std::size_t i = 0; i < gpu.pixels.size(); ++i) {
       const double d = std::abs(gpu.pixels[i] - ref.texture().pixels[i]);
@@ -219,11 +219,11 @@ TEST_F(RendererGLTest, StillImageConvergesAsSection37Predicts) {
   settings.background = glm::vec3(0.0f);  // the worst case of the paper: from 0 to 1
   IbfvsRenderer r(settings);
   r.set_mesh(square, field);
-  ImageF previous = test::channel(r.read_texture(), 0);
+  ImageF previous = r.read_texture().select_channels(0, 1);
   std::vector<double> change;
   for (int k = 0; k < 3 * n; ++k) {
     r.render_frame(flat_view(), 1.0f);
-    const ImageF now = test::channel(r.read_texture(), 0);
+    const ImageF now = r.read_texture().select_channels(0, 1);
     double m = 0;
     for (std::size_t i = 0; i < now.pixels.size(); ++i)
       m = std::max(m, static_cast<double>(std::abs(now.pixels[i] - previous.pixels[i])));
@@ -253,7 +253,7 @@ TEST_F(RendererGLTest, ZeroFieldSettlesOnTheNoise) {
   IbfvsRenderer r(settings);
   r.set_mesh(square, zero);
   for (int k = 0; k < 60; ++k) r.render_frame(flat_view(), 1.0f);
-  const ImageF tex = test::channel(r.read_texture(), 0);
+  const ImageF tex = r.read_texture().select_channels(0, 1);
   const NoiseGrid g(w, h, settings.noise);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x)
@@ -295,7 +295,7 @@ Attachment orbit_attachment(AdvectView view) {
   IbfvsRenderer r(settings);
   r.set_mesh(s.mesh, s.field);
   for (int k = 0; k < 40; ++k) r.render_frame({s.camera.view(), s.camera.projection()}, 0.0f);
-  const ImageF before = test::channel(r.read_texture(), 0);
+  const ImageF before = r.read_texture().select_channels(0, 1);
   const glm::mat4 vp0 = s.camera.view_projection();
   settings.alpha = 0.0f;  // no fresh ink: only transport
   r.update_settings(settings);
@@ -303,7 +303,7 @@ Attachment orbit_attachment(AdvectView view) {
     s.camera.orbit(1.5f);
     r.render_frame({s.camera.view(), s.camera.projection()}, 0.0f);
   }
-  const ImageF after = test::channel(r.read_texture(), 0);
+  const ImageF after = r.read_texture().select_channels(0, 1);
   const ImageF depth = r.read_depth();
   const glm::mat4 inv = glm::inverse(s.camera.view_projection());
   std::vector<float> final_values, same_pixel, same_point;
@@ -352,7 +352,7 @@ TEST_F(RendererGLTest, SpikesAddedGiveSparseBrightParticles) {
   IbfvsRenderer r(settings);
   r.set_mesh(s.mesh, s.field);
   for (int k = 0; k < 60; ++k) r.render_frame({s.camera.view(), s.camera.projection()}, 0.005f);
-  const ImageF tex = test::channel(r.read_texture(), 0);
+  const ImageF tex = r.read_texture().select_channels(0, 1);
   const auto covered = r.read_coverage();
   std::vector<float> values;
   for (std::size_t i = 0; i < covered.size(); ++i)

@@ -10,6 +10,10 @@ namespace ibfvs {
 
 /// 8-bit image, `channels` interleaved (1, 3 or 4), rows bottom-up.
 struct ImageU8 {
+  ImageU8() = default;
+  /// A zeroed image of the given size.
+  ImageU8(int w, int h, int c)
+      : width(w), height(h), channels(c), pixels(static_cast<std::size_t>(w) * h * c) {}
   int width = 0;
   int height = 0;
   int channels = 4;
@@ -21,6 +25,10 @@ struct ImageU8 {
 
 /// Float image, `channels` interleaved, rows bottom-up.
 struct ImageF {
+  ImageF() = default;
+  /// An image of the given size filled with `value`.
+  ImageF(int w, int h, int c, float value = 0.0f)
+      : width(w), height(h), channels(c), pixels(static_cast<std::size_t>(w) * h * c, value) {}
   int width = 0;
   int height = 0;
   int channels = 1;
@@ -31,6 +39,8 @@ struct ImageF {
   float& at(int x, int y, int c = 0) {
     return pixels[(static_cast<std::size_t>(y) * width + x) * channels + c];
   }
+  /// Channels [first, first + count) as an image of their own.
+  [[nodiscard]] ImageF select_channels(int first, int count) const;
 };
 
 /// Writes a PNG (8 bits per channel). Throws InputError naming the path.

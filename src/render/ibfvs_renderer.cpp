@@ -61,6 +61,7 @@ IbfvsRenderer::IbfvsRenderer(const RenderSettings& settings) : settings_(setting
   u_.spike_width = program_.location("u_spike_width");
   u_.surface_color = program_.location("u_surface_color");
   u_.phase_size = program_.location("u_phase_size");
+  u_.inverse_size = program_.location("u_inverse_size");
 
   const int w = settings_.width, h = settings_.height;
   for (int i = 0; i < 2; ++i) texture_[i] = gl::Texture2D(w, h, gl::Format::RGBA16F, true);
@@ -81,6 +82,8 @@ IbfvsRenderer::IbfvsRenderer(const RenderSettings& settings) : settings_(setting
   glm::ivec2 size(grid.columns(), grid.rows());
   program_.use();
   program_.set(u_.phase_size, size);
+  program_.set(u_.inverse_size, glm::vec2(1.0f / static_cast<float>(settings_.width),
+                                          1.0f / static_cast<float>(settings_.height)));
   apply_settings_uniforms();
   reset();
 }

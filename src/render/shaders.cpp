@@ -12,24 +12,28 @@ uniform mat4 u_advect_view_projection;   // T_k or T_{k-1}: where its texture co
 uniform mat4 u_view;
 uniform float u_dt;
 
-// Equation 13, t_i = T(r_i - v_i dt), interpolated linearly in screen space:
-// the synthesis works in image space, so perspective-correct interpolation
-// would bend the texture (section 3.9).
-noperspective out vec2 v_texcoord;
+// Equation 13, t = T(r - v dt), evaluated per fragment: the homogeneous
+// clip-space point T(r_i - v_i dt) of each vertex is interpolated
+// perspective-correctly, which gives exactly T(r(x) - v(x) dt) for the
+// surface point r(x) under the pixel, and the fragment divides by w. On small
+// triangles this equals the paper's screen-linear interpolation of t_i; on
+// large triangles in perspective it is exact where both vertex-level
+// interpolations err (section 3.9's artifact). It also avoids noperspective
+// varyings, which llvmpipe (Mesa 22.3) corrupts on triangles it clips.
+out vec4 v_from;
 out vec3 v_normal_eye;
 out vec3 v_position_eye;
 
 void main() {
   gl_Position = u_view_projection * vec4(a_position, 1.0);
-  vec4 p = u_advect_view_projection * vec4(a_position - a_vector * u_dt, 1.0);
-  v_texcoord = p.xy / max(p.w, 1e-6) * 0.5 + 0.5;
+  v_from = u_advect_view_projection * vec4(a_position - a_vector * u_dt, 1.0);
   v_normal_eye = mat3(u_view) * a_normal;
   v_position_eye = (u_view * vec4(a_position, 1.0)).xyz;
 }
 )";
 
 const char* const kIbfvsFragment = R"(#version 450 core
-noperspective in vec2 v_texcoord;
+in vec4 v_from;
 in vec3 v_normal_eye;
 in vec3 v_position_eye;
 
@@ -47,6 +51,7 @@ uniform float u_noise_scale; // s
 uniform int u_profile;       // 0 square, 1 sawtooth, 2 sine, 3 spike
 uniform float u_spike_width;
 uniform ivec2 u_phase_size;
+uniform vec2 u_inverse_size;  // 1 / image size in pixels
 uniform vec3 u_surface_color;
 
 // w(t), period 1 (equation 8).
@@ -74,7 +79,10 @@ float noise(vec2 x) {
 }
 
 void main() {
-  vec3 previous = texture(u_previous, v_texcoord).rgb;
+  // A point that was behind the eye has no image position: no advection there.
+  vec2 texcoord = v_from.w > 1e-6 ? v_from.xy / v_from.w * 0.5 + 0.5
+                                  : gl_FragCoord.xy * u_inverse_size;
+  vec3 previous = texture(u_previous, texcoord).rgb;
   float g = noise(gl_FragCoord.xy);
   vec3 ft = u_inject == 0 ? mix(previous, vec3(g), u_alpha)
                           : min(previous * (1.0 - u_alpha) + vec3(g), vec3(1.0));

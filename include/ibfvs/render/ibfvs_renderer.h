@@ -12,9 +12,10 @@
 // The depth test keeps only the nearest surface per pixel, so gamma = alpha
 // exactly on the projected surface and 0 on the background (eq. 12) without
 // the paper's reversed-z noise rectangle. Beyond the 2003 implementation:
-// texture coordinates on the GPU (moving camera costs nothing), interpolated
-// without perspective correction (section 3.9), F_t in 16-bit float, and an
-// option to advect with the previous frame's transform (section 3.7).
+// texture coordinates on the GPU (moving camera costs nothing), evaluated
+// exactly per fragment so large triangles in perspective do not bend the warp
+// (section 3.9), F_t in 16-bit float, and an option to advect with the
+// previous frame's transform (section 3.7).
 
 #include <cstdint>
 #include <span>
@@ -117,7 +118,7 @@ class IbfvsRenderer {
 
   struct Uniforms {
     int view_projection, advect_view_projection, view, dt, alpha, beta, inject, noise_time,
-        noise_scale, profile, spike_width, surface_color, phase_size;
+        noise_scale, profile, spike_width, surface_color, phase_size, inverse_size;
   } u_{};
   void apply_settings_uniforms();
 };

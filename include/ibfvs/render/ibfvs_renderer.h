@@ -4,7 +4,7 @@
 //
 //   clear F_t' and F to the background B, clear depth            (steps 2, 4)
 //   draw the mesh once into two colour attachments (MRT):
-//     t_i = T(r_i - v_i dt) computed in the vertex shader         (step 3, eq. 13)
+//     t = T(r - v dt): homogeneous per vertex, divided per pixel   (step 3, eq. 13)
 //     F_t'(x) = (1 - alpha) F_t(t(x)) + alpha G(x; k)             (steps 4-5, eq. 10)
 //     F(x)    = beta F_t'(x) + (1 - beta) F_s(x)                  (step 7, eq. 11)
 //   swap F_t and F_t' (ping-pong)                                 (step 6)

@@ -274,13 +274,16 @@ int run_render(const RenderOptions& o) {
   // ---- camera and displacement
   const Bounds bounds = mesh_bounds(mesh);
   Camera camera(bounds, cam, static_cast<float>(size.width) / static_cast<float>(size.height));
-  float dt = o.dt;
-  if (dt == 0.0f)
-    dt = dt_for_pixel_step(mesh.positions, field, camera.view_projection(), size.width, size.height,
-                           o.step);
-  const float max_px =
-      max_pixel_speed(mesh.positions, field, camera.view_projection(), size.width, size.height) *
-      dt;
+  // Pixels per unit of dt at the fastest vertex: sets dt from --step, and
+  // says how far the fastest vertex moves with a given --dt.
+  const float speed =
+      max_pixel_speed(mesh.positions, field, camera.view_projection(), size.width, size.height);
+  const float dt = o.dt > 0.0f ? o.dt : (speed > 0.0f ? o.step / speed : 0.0f);
+  const float max_px = speed * dt;
+  if (speed == 0.0f)
+    std::fprintf(stderr,
+                 "ibfvs: warning: the field does not move any vertex in the image (zero after "
+                 "projection?); the texture will stand still\n");
   if (max_px > settings.noise.scale)
     std::fprintf(stderr,
                  "ibfvs: warning: the largest displacement is %.1f pixels per frame, more than "

@@ -4,7 +4,8 @@
 set -euo pipefail
 packages=(
   build-essential cmake pkg-config git
-  libopenmesh-dev libglm-dev libepoxy-dev libpng-dev libcli11-dev
+  libopenmesh-dev libglm-dev libepoxy-dev libpng-dev libcli11-dev libeigen3-dev
+  libmeshoptimizer-dev
   libegl-dev libegl-mesa0 libgl1-mesa-dri libgbm1
   libgtest-dev googletest libbenchmark-dev
   ffmpeg

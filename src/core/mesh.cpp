@@ -83,6 +83,49 @@ void validate_mesh(const TriMesh& mesh, const std::string& source) {
       throw InputError(source + ": property '" + name + "' count differs from vertex count");
 }
 
+Topology analyze_topology(const TriMesh& mesh) {
+  Topology top;
+  std::vector<std::uint64_t> keys;  // one per triangle side: (min, max) vertex index
+  keys.reserve(mesh.triangles.size() * 3);
+  std::vector<bool> used(mesh.vertex_count(), false);
+  for (const Triangle& t : mesh.triangles)
+    for (int k = 0; k < 3; ++k) {
+      const std::uint64_t a = t[k], b = t[(k + 1) % 3];
+      keys.push_back(std::min(a, b) << 32 | std::max(a, b));
+      used[t[k]] = true;
+    }
+  std::sort(keys.begin(), keys.end());
+  // Union-find over the vertices of boundary edges: each set is one loop.
+  std::vector<std::uint32_t> parent(mesh.vertex_count());
+  for (std::size_t i = 0; i < parent.size(); ++i) parent[i] = static_cast<std::uint32_t>(i);
+  const auto find = [&](std::uint32_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  std::vector<std::uint32_t> on_boundary;
+  for (std::size_t i = 0; i < keys.size();) {
+    std::size_t j = i;
+    while (j < keys.size() && keys[j] == keys[i]) ++j;
+    ++top.edges;
+    if (j - i == 1) {
+      ++top.boundary_edges;
+      const auto a = static_cast<std::uint32_t>(keys[i] >> 32);
+      const auto b = static_cast<std::uint32_t>(keys[i] & 0xffffffffu);
+      parent[find(a)] = find(b);
+      on_boundary.push_back(a);
+      on_boundary.push_back(b);
+    } else if (j - i > 2) {
+      ++top.nonmanifold_edges;
+    }
+    i = j;
+  }
+  std::sort(on_boundary.begin(), on_boundary.end());
+  on_boundary.erase(std::unique(on_boundary.begin(), on_boundary.end()), on_boundary.end());
+  for (const std::uint32_t v : on_boundary) top.boundary_loops += find(v) == v;
+  top.isolated_vertices = static_cast<std::size_t>(std::count(used.begin(), used.end(), false));
+  return top;
+}
+
 std::size_t remove_degenerate_triangles(TriMesh& mesh) {
   const std::size_t before = mesh.triangles.size();
   std::erase_if(mesh.triangles, [&](const Triangle& t) {

@@ -94,4 +94,34 @@ TriMesh make_cylinder(float r, float h, int segments, int rings) {
   return m;
 }
 
+TriMesh make_icosahedron(float radius) {
+  TriMesh m;
+  const float t = (1.0f + std::sqrt(5.0f)) / 2.0f;
+  const glm::vec3 v[12] = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0},
+                           {0, -1, t}, {0, 1, t}, {0, -1, -t}, {0, 1, -t},
+                           {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+  for (const glm::vec3& p : v) {
+    m.positions.push_back(radius * glm::normalize(p));
+    m.normals.push_back(glm::normalize(p));
+  }
+  m.triangles = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
+                 {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
+                 {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
+                 {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
+  return m;
+}
+
+TriMesh make_height_field(float (*f)(float, float), float half, int n) {
+  TriMesh m;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      const float x = -half + 2 * half * static_cast<float>(i) / static_cast<float>(n);
+      const float y = -half + 2 * half * static_cast<float>(j) / static_cast<float>(n);
+      m.positions.emplace_back(x, y, f(x, y));
+    }
+  grid_triangles(m, n, n, false, false);
+  compute_vertex_normals(m);
+  return m;
+}
+
 }  // namespace ibfvs

@@ -4,6 +4,7 @@
 #include <OpenMesh/Tools/Subdivider/Uniform/LoopT.hh>
 
 #include "ibfvs/core/error.h"
+#include "openmesh_errors.h"
 
 namespace ibfvs {
 namespace {
@@ -11,21 +12,37 @@ namespace {
 using OmTriMesh = OpenMesh::TriMesh_ArrayKernelT<>;
 
 // Builds an OpenMesh mesh with the given per-vertex "points" (positions or any
-// other three channels of vertex data) on the connectivity of `mesh`.
-OmTriMesh build(const TriMesh& mesh, const std::vector<glm::vec3>& points) {
+// other three channels of vertex data) on the connectivity of `mesh`. A face
+// OpenMesh cannot join to its manifold connectivity (a third face on an edge,
+// a duplicate) gets its own copies of its vertices rather than being dropped,
+// as OpenMesh's file importer does; every channel is built the same way, so
+// the copies line up. Returns the number of such faces in `split`.
+OmTriMesh build(const TriMesh& mesh, const std::vector<glm::vec3>& points, std::size_t* split) {
   OmTriMesh om;
   om.reserve(points.size(), 3 * mesh.triangles.size(), mesh.triangles.size());
   for (const glm::vec3& p : points) om.add_vertex(OmTriMesh::Point(p.x, p.y, p.z));
-  for (const Triangle& t : mesh.triangles)
-    om.add_face(OmTriMesh::VertexHandle(static_cast<int>(t[0])),
-                OmTriMesh::VertexHandle(static_cast<int>(t[1])),
-                OmTriMesh::VertexHandle(static_cast<int>(t[2])));
+  std::size_t n_split = 0;
+  OmErrCapture quiet;  // add_face reports each refusal on omerr
+  for (const Triangle& t : mesh.triangles) {
+    const auto fh = om.add_face(OmTriMesh::VertexHandle(static_cast<int>(t[0])),
+                                OmTriMesh::VertexHandle(static_cast<int>(t[1])),
+                                OmTriMesh::VertexHandle(static_cast<int>(t[2])));
+    if (fh.is_valid()) continue;
+    OmTriMesh::VertexHandle copy[3];
+    for (int k = 0; k < 3; ++k) {
+      const glm::vec3& p = points[t[k]];
+      copy[k] = om.add_vertex(OmTriMesh::Point(p.x, p.y, p.z));
+    }
+    om.add_face(copy[0], copy[1], copy[2]);
+    ++n_split;
+  }
+  if (split) *split = n_split;
   return om;
 }
 
 std::vector<glm::vec3> subdivided_points(const TriMesh& mesh, const std::vector<glm::vec3>& points,
                                          int levels, std::vector<Triangle>* triangles) {
-  OmTriMesh om = build(mesh, points);
+  OmTriMesh om = build(mesh, points, nullptr);
   OpenMesh::Subdivider::Uniform::LoopT<OmTriMesh> loop;
   loop.attach(om);
   loop(static_cast<std::size_t>(levels));

@@ -1,4 +1,7 @@
 #include <gtest/gtest.h>
+#include <cmath>
+#include <cstdio>
+
 #include <glm/geometric.hpp>
 
 #include "ibfvs/core/error.h"
@@ -44,6 +47,73 @@ TEST(Subdivision, RejectsBadLevels) {
   EXPECT_THROW(loop_subdivide(t, -1), InputError);
   EXPECT_THROW(loop_subdivide(t, 9), InputError);
   EXPECT_EQ(loop_subdivide(t, 0).triangle_count(), t.triangle_count());
+}
+
+}  // namespace
+}  // namespace ibfvs
+
+namespace ibfvs {
+namespace {
+
+TEST(Subdivision, ClosedStaysClosedAndTheIcosahedronApproachesASphere) {
+  const TriMesh ico = make_icosahedron(1.0f);
+  EXPECT_EQ(analyze_topology(ico).boundary_edges, 0u);
+  double previous_move = 1e9;
+  TriMesh previous = ico;
+  for (int level = 1; level <= 4; ++level) {
+    const TriMesh s = loop_subdivide(ico, level);
+    const Topology top = analyze_topology(s);
+    EXPECT_EQ(top.boundary_edges, 0u);
+    EXPECT_EQ(top.nonmanifold_edges, 0u);
+    EXPECT_EQ(s.triangle_count(), 20u << (2 * level));
+    // Euler characteristic 2: V - E + F.
+    EXPECT_EQ(static_cast<long>(s.vertex_count()) - static_cast<long>(top.edges) +
+                  static_cast<long>(s.triangle_count()),
+              2);
+    float lo = 1e9f, hi = 0.0f;
+    for (const glm::vec3& p : s.positions) {
+      lo = std::min(lo, glm::length(p));
+      hi = std::max(hi, glm::length(p));
+    }
+    // The limit surface of Loop on an icosahedron is close to a sphere.
+    EXPECT_LT(hi - lo, 0.01f) << level;
+    // Positions converge: the vertices of the previous level (which keep their
+    // indices) move less and less from one level to the next.
+    double move = 0.0;
+    for (std::size_t i = 0; i < previous.vertex_count(); ++i)
+      move =
+          std::max(move, static_cast<double>(glm::length(s.positions[i] - previous.positions[i])));
+    std::printf("loop level %d: radii %.4f..%.4f, old vertices moved %.2e\n", level, lo, hi, move);
+    EXPECT_LT(move, 0.5 * previous_move) << level;
+    previous_move = move;
+    previous = s;
+  }
+}
+
+TEST(Subdivision, NonManifoldFacesAreKept) {
+  TriMesh m;
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}};
+  m.triangles = {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}, {0, 1, 2}};  // a third face on 0-1, a duplicate
+  compute_vertex_normals(m);
+  const TriMesh s = loop_subdivide(m, 1);
+  EXPECT_EQ(s.triangle_count(), 16u);
+  for (const glm::vec3& p : s.positions) EXPECT_TRUE(std::isfinite(p.x + p.y + p.z));
+}
+
+TEST(Topology, CountsBoundaryLoopsAndNonManifoldEdges) {
+  const Topology sq = analyze_topology(make_square(1.0f, 3));
+  EXPECT_EQ(sq.boundary_loops, 1u);
+  EXPECT_EQ(sq.boundary_edges, 12u);
+  const Topology cyl = analyze_topology(make_cylinder(1.0f, 1.0f, 12, 3));
+  EXPECT_EQ(cyl.boundary_loops, 2u);
+  TriMesh fan = make_square(1.0f, 1);
+  fan.positions.emplace_back(0, 0, 5);
+  fan.positions.emplace_back(7, 7, 7);  // isolated
+  fan.triangles.push_back({0, 1, 4});   // third triangle on edge 0-1? no: 0-1 is a boundary edge
+  fan.triangles.push_back({0, 1, 4});
+  const Topology t = analyze_topology(fan);
+  EXPECT_EQ(t.nonmanifold_edges, 1u);
+  EXPECT_EQ(t.isolated_vertices, 1u);
 }
 
 }  // namespace

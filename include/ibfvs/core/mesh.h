@@ -53,4 +53,16 @@ void validate_mesh(const TriMesh& mesh, const std::string& source);
 /// Drops triangles with a repeated vertex index or zero area; returns how many.
 std::size_t remove_degenerate_triangles(TriMesh& mesh);
 
+/// Edge and vertex counts that say whether a mesh is closed and manifold.
+struct Topology {
+  std::size_t edges = 0;              ///< distinct undirected edges
+  std::size_t boundary_edges = 0;     ///< edges of one triangle
+  std::size_t boundary_loops = 0;     ///< connected chains of boundary edges
+  std::size_t nonmanifold_edges = 0;  ///< edges of three or more triangles
+  std::size_t isolated_vertices = 0;  ///< vertices of no triangle
+};
+
+/// Counts edges, boundary loops, non-manifold edges and isolated vertices.
+Topology analyze_topology(const TriMesh& mesh);
+
 }  // namespace ibfvs

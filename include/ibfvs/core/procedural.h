@@ -21,4 +21,11 @@ TriMesh make_square(float half, int n);
 /// Open cylinder around the Y axis, radius r, height h, centred at the origin.
 TriMesh make_cylinder(float r, float h, int segments, int rings);
 
+/// Regular icosahedron with vertices on the sphere of radius `radius`.
+TriMesh make_icosahedron(float radius);
+
+/// Height field z = f(x, y) over [-half, half]^2, n x n cells, normals
+/// computed from the triangles.
+TriMesh make_height_field(float (*f)(float, float), float half, int n);
+
 }  // namespace ibfvs

@@ -9,6 +9,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "ibfvs/geometry_command.h"
 #include "ibfvs/render_command.h"
 
 int main(int argc, char** argv) {
@@ -25,6 +26,12 @@ int main(int argc, char** argv) {
   CLI::App* render = app.add_subcommand(
       "render", "Render IBFVS texture on a mesh headless (EGL) to a video or PNG");
   ibfvs::app::add_render_options(*render, *render_options);
+  auto geometry_options = std::make_unique<ibfvs::app::GeometryOptions>();
+  CLI::App* geometry = app.add_subcommand(
+      "geometry",
+      "Normals, principal curvatures and directions (Goldfeather-Interrante), Loop "
+      "subdivision: print a summary and write a PLY");
+  ibfvs::app::add_geometry_options(*geometry, *geometry_options);
   if (argc < 2) {
     std::fputs(app.help().c_str(), stderr);
     return 1;
@@ -34,16 +41,19 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help
     // One line in the same form as every other error.
-    if (*render)
-      std::fprintf(stderr, "ibfvs: error: %s (see ibfvs render --help)\n", e.what());
+    if (*render || *geometry)
+      std::fprintf(stderr, "ibfvs: error: %s (see ibfvs %s --help)\n", e.what(),
+                   *render ? "render" : "geometry");
     else
       std::fprintf(stderr,
-                   "ibfvs: error: unknown command '%s' (expected: render; see ibfvs --help)\n",
+                   "ibfvs: error: unknown command '%s' (expected render or geometry; see ibfvs "
+                   "--help)\n",
                    argv[1]);
     return 1;
   }
   try {
     if (*render) return ibfvs::app::run_render(*render_options);
+    if (*geometry) return ibfvs::app::run_geometry(*geometry_options);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "ibfvs: error: %s\n", e.what());
     return 1;

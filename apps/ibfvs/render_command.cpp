@@ -19,6 +19,7 @@
 #include "ibfvs/core/vector_field.h"
 #include "ibfvs/data_paths.h"
 #include "ibfvs/gl/context.h"
+#include "ibfvs/mesh_loading.h"
 #include "ibfvs/progress.h"
 #include "ibfvs/render/ibfvs_renderer.h"
 #include "ibfvs/video_writer.h"
@@ -215,31 +216,10 @@ int run_render(const RenderOptions& o) {
   cam.fov_deg = o.fov;
 
   // ---- mesh
-  TriMesh mesh;
-  std::string mesh_name;
-  const bool demo = o.mesh.empty();
-  if (demo) {
-    std::optional<fs::path> path = find_data_file("meshes/bunny00.off");
-    if (!path) path = find_data_file("meshes/cow.off");
-    if (path) {
-      mesh = read_mesh(*path);
-      mesh_name = path->filename().string();
-    } else {
-      std::fprintf(stderr,
-                   "ibfvs: the fetched meshes are missing (%s); rendering a procedural torus "
-                   "instead. Run scripts/fetch_data.sh for the bunny.\n",
-                   (data_dir() / "meshes").c_str());
-      mesh = make_torus(1.0f, 0.4f, 160, 64);
-      mesh_name = "procedural torus";
-    }
-  } else {
-    MeshReadReport report;
-    mesh = read_mesh(o.mesh, &report);
-    for (const std::string& w : report.warnings)
-      std::fprintf(stderr, "ibfvs: warning: %s\n", w.c_str());
-    mesh_name = fs::path(o.mesh).filename().string();
-  }
-  if (o.subdivide > 0) mesh = loop_subdivide(mesh, o.subdivide);
+  LoadedMesh loaded = load_mesh(o.mesh, o.subdivide);
+  TriMesh& mesh = loaded.mesh;
+  const std::string mesh_name = loaded.demo ? loaded.name : fs::path(o.mesh).filename().string();
+  const bool demo = loaded.demo;
 
   // ---- field
   if (!field_spec) {

@@ -1,0 +1,104 @@
+#include "ibfvs/geometry_command.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+
+#include <CLI/CLI.hpp>
+
+#include "ibfvs/core/curvature.h"
+#include "ibfvs/core/error.h"
+#include "ibfvs/core/mesh_io.h"
+#include "ibfvs/mesh_loading.h"
+
+namespace ibfvs::app {
+namespace fs = std::filesystem;
+
+void add_geometry_options(CLI::App& cmd, GeometryOptions& o) {
+  cmd.add_option("mesh", o.mesh, "Triangle mesh: .off .obj .ply .stl")->required();
+  cmd.add_option("--subdivide", o.subdivide, "Loop subdivision levels (0..8)")
+      ->capture_default_str();
+  cmd.add_option("-o,--out", o.out,
+                 "Write a PLY with per-vertex nx ny nz (refined normals), kmin kmax, dminx dminy "
+                 "dminz, dmaxx dmaxy dmaxz (principal curvatures and directions), and any vx vy "
+                 "vz and scalars of the input. Default: only print the summary");
+  cmd.add_flag("--ascii", o.ascii, "Write ASCII PLY instead of binary");
+  cmd.add_flag("--quiet,-q", o.quiet, "No summary");
+}
+
+namespace {
+
+// The value below which a fraction `q` of `v` lies.
+float percentile(std::vector<float> v, double q) {
+  if (v.empty()) return 0.0f;
+  const auto k = static_cast<std::size_t>(q * static_cast<double>(v.size() - 1));
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
+  return v[k];
+}
+
+}  // namespace
+
+int run_geometry(const GeometryOptions& o) {
+  if (o.subdivide < 0 || o.subdivide > 8)
+    throw InputError("--subdivide: levels must be between 0 and 8");
+  if (!o.out.empty()) {
+    std::string ext = fs::path(o.out).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return std::tolower(c); });
+    if (ext != ".ply") throw InputError("--out: must be a .ply file, got '" + o.out + "'");
+    const fs::path parent = fs::path(o.out).parent_path();
+    std::error_code ec;
+    if (!parent.empty() && !fs::is_directory(parent, ec))
+      throw InputError("--out: the folder '" + parent.string() + "' does not exist");
+  }
+  using clock = std::chrono::steady_clock;
+  const auto seconds = [](clock::time_point a, clock::time_point b) {
+    return std::chrono::duration<double>(b - a).count();
+  };
+  const auto t0 = clock::now();
+  LoadedMesh loaded = load_mesh(o.mesh, o.subdivide);  // read, subdivide, cache order
+  TriMesh& mesh = loaded.mesh;
+  const auto t1 = clock::now();
+  compute_vertex_normals(mesh);
+  const Curvature curvature = compute_curvature(mesh);
+  const auto t2 = clock::now();
+  store_curvature(mesh, curvature);
+  if (!o.out.empty()) write_ply(mesh, o.out, !o.ascii);
+  const auto t3 = clock::now();
+
+  if (!o.quiet) {
+    const Topology top = analyze_topology(mesh);
+    std::string shape = top.boundary_loops == 0
+                            ? "closed"
+                            : std::to_string(top.boundary_loops) + " boundary loop" +
+                                  (top.boundary_loops == 1 ? "" : "s");
+    if (top.nonmanifold_edges)
+      shape += ", " + std::to_string(top.nonmanifold_edges) + " non-manifold edges";
+    std::printf(
+        "%s: %zu vertices, %zu triangles%s; %s. kmin from %.4g to %.4g (1st-99th percentile "
+        "%.4g..%.4g), kmax from %.4g to %.4g (%.4g..%.4g)%s. Read, subdivision and cache order "
+        "%.3f s; normals and curvature %.3f s%s.\n",
+        o.mesh.c_str(), mesh.vertex_count(), mesh.triangle_count(),
+        o.subdivide ? (" after " + std::to_string(o.subdivide) + " Loop subdivisions").c_str() : "",
+        shape.c_str(), *std::min_element(curvature.kmin.begin(), curvature.kmin.end()),
+        *std::max_element(curvature.kmin.begin(), curvature.kmin.end()),
+        percentile(curvature.kmin, 0.01), percentile(curvature.kmin, 0.99),
+        *std::min_element(curvature.kmax.begin(), curvature.kmax.end()),
+        *std::max_element(curvature.kmax.begin(), curvature.kmax.end()),
+        percentile(curvature.kmax, 0.01), percentile(curvature.kmax, 0.99),
+        curvature.fallback_vertices
+            ? (" (" + std::to_string(curvature.fallback_vertices) + " vertex" +
+               (curvature.fallback_vertices == 1 ? "" : "es") + " by the fallback fit)")
+                  .c_str()
+            : "",
+        seconds(t0, t1), seconds(t1, t2),
+        o.out.empty()
+            ? ""
+            : ("; wrote " + o.out + " in " + std::to_string(seconds(t2, t3)).substr(0, 5) + " s")
+                  .c_str());
+  }
+  return 0;
+}
+
+}  // namespace ibfvs::app

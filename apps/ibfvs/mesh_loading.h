@@ -1,0 +1,23 @@
+#pragma once
+// Loading a mesh for a command: the file (warnings printed), or the demo, then
+// Loop subdivision and the one-time preparation for the GPU.
+
+#include <string>
+
+#include "ibfvs/core/mesh.h"
+
+namespace ibfvs::app {
+
+struct LoadedMesh {
+  TriMesh mesh;
+  std::string name;   ///< what to call it in messages: the path, or the demo's name
+  bool demo = false;  ///< no path was given
+};
+
+/// Reads `path` (printing the reader's warnings), or with an empty path the
+/// demo: the fetched bunny, else the cow, else a procedural torus (saying so).
+/// Then subdivides `subdivide` times and orders the mesh for the GPU's vertex
+/// cache (optimize_for_gpu). Throws InputError naming the file.
+LoadedMesh load_mesh(const std::string& path, int subdivide);
+
+}  // namespace ibfvs::app

@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "ibfvs/core/error.h"
 #include "ibfvs/core/gpu_prep.h"
@@ -13,6 +15,40 @@
 
 namespace ibfvs::app {
 namespace fs = std::filesystem;
+
+namespace {
+
+int parse_int(const std::string& text, const std::string& spec, int lo, int hi) {
+  std::size_t used = 0;
+  int v = 0;
+  try {
+    v = std::stoi(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != text.size() || v < lo || v > hi)
+    throw InputError("--mesh " + spec + ": '" + text + "' must be a whole number in " +
+                     std::to_string(lo) + ".." + std::to_string(hi));
+  return v;
+}
+
+TriMesh make_landscape(const std::string& spec) {
+  std::vector<std::string> parts;
+  std::size_t start = 0;
+  for (std::size_t c; (c = spec.find(':', start)) != std::string::npos; start = c + 1)
+    parts.push_back(spec.substr(start, c - start));
+  parts.push_back(spec.substr(start));
+  if (parts[0] != "landscape" || parts.size() > 4)
+    throw InputError("--mesh " + spec + ": expected landscape[:SEED[:CONTROLS[:RESOLUTION]]]");
+  const int seed = parts.size() > 1 ? parse_int(parts[1], spec, 0, 1 << 30) : 1;
+  const int controls = parts.size() > 2 ? parse_int(parts[2], spec, 4, 256) : 8;
+  const int resolution = parts.size() > 3 ? parse_int(parts[3], spec, 1, 4096) : 256;
+  return make_bspline_height_field(
+      random_controls(controls, controls, 0.3f, static_cast<std::uint32_t>(seed)), controls,
+      controls, resolution);
+}
+
+}  // namespace
 
 LoadedMesh load_mesh(const std::string& path, int subdivide) {
   LoadedMesh out;
@@ -31,6 +67,10 @@ LoadedMesh load_mesh(const std::string& path, int subdivide) {
       out.mesh = make_torus(1.0f, 0.4f, 160, 64);
       out.name = "procedural torus";
     }
+  } else if (path.rfind("landscape", 0) == 0 && !fs::exists(path)) {
+    out.mesh = make_landscape(path);
+    out.name = path;
+    out.generated_landscape = true;
   } else {
     MeshReadReport report;
     out.mesh = read_mesh(path, &report);

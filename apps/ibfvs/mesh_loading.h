@@ -10,12 +10,16 @@ namespace ibfvs::app {
 
 struct LoadedMesh {
   TriMesh mesh;
-  std::string name;   ///< what to call it in messages: the path, or the demo's name
-  bool demo = false;  ///< no path was given
+  std::string name;                  ///< what to call it in messages: the path, or the demo's name
+  bool demo = false;                 ///< no path was given
+  bool generated_landscape = false;  ///< made by `landscape[:SEED[:CONTROLS[:RESOLUTION]]]`
 };
 
 /// Reads `path` (printing the reader's warnings), or with an empty path the
 /// demo: the fetched bunny, else the cow, else a procedural torus (saying so).
+/// `landscape[:SEED[:CONTROLS[:RESOLUTION]]]`, when no such file exists, is a
+/// B-spline height field over [-1, 1]^2 on a random CONTROLS x CONTROLS grid
+/// (default seed 1, 8 controls, 256 cells), heights within +-0.3.
 /// Then subdivides `subdivide` times and orders the mesh for the GPU's vertex
 /// cache (optimize_for_gpu). Throws InputError naming the file.
 LoadedMesh load_mesh(const std::string& path, int subdivide);

@@ -34,9 +34,21 @@ void add_render_options(CLI::App& cmd, RenderOptions& o) {
                  "a procedural torus");
   cmd.add_option(
       "--field", o.field,
-      "Vector field: file (PLY vx vy vz), uniform:X,Y,Z, or rotate:X,Y,Z (rotation about "
-      "axis X,Y,Z through the bounding-box centre). Default: file when the mesh has "
-      "vectors, else rotate:0,1,0");
+      "Vector field: file (PLY vx vy vz); uniform:X,Y,Z; rotate:X,Y,Z (rotation about axis "
+      "X,Y,Z through the bounding-box centre); elements[:X,Y,Z] (uniform flow X,Y,Z plus the "
+      "--element list); principal:min|max[:X,Y,Z][:rot90] (principal directions signed along "
+      "X,Y,Z, default +Y, optionally turned 90 degrees, paper 4.2); gradient:down|up[:X,Y,Z]"
+      "[:normalize] (steepest descent/ascent of the height along X,Y,Z, default +Y). "
+      "Default: file when the mesh has vectors, elements with --element, gradient:down on a "
+      "landscape, else rotate:0,1,0");
+  cmd.add_option("--element", o.elements,
+                 "A potential-flow element (paper 4.1), repeatable: the segment A-B and its "
+                 "strengths AX,AY,AZ,BX,BY,BZ,ROTATIONAL,RADIAL,TANGENTIAL[,CORE]; rotational "
+                 "swirls about A->B, radial > 0 repels and < 0 attracts, tangential flows along "
+                 "A->B; speeds fall as 1/distance, clamped within CORE (default 5% of |AB|). "
+                 "Implies --field elements")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   cmd.add_option("--tangent", o.tangent,
                  "project: project vectors on the tangent plane; 3d: use them as given (paper 3.8)")
       ->capture_default_str();
@@ -204,6 +216,11 @@ int run_render(const RenderOptions& o) {
   const TangentMode tangent = parse_tangent_mode(o.tangent);
   std::optional<FieldSpec> field_spec;
   if (!o.field.empty()) field_spec = FieldSpec::parse(o.field);
+  if (!field_spec && !o.elements.empty()) field_spec = FieldSpec::parse("elements");
+  if (!o.elements.empty() && field_spec->kind != FieldKind::Elements)
+    throw InputError("--element: needs --field elements (or no --field), got --field " + o.field);
+  if (field_spec)
+    for (const std::string& e : o.elements) field_spec->elements.push_back(FlowElement::parse(e));
   CameraParams cam;
   if (!o.camera.empty()) {
     const glm::vec3 c = parse_vec3(o.camera, "--camera");
@@ -224,6 +241,7 @@ int run_render(const RenderOptions& o) {
   // ---- field
   if (!field_spec) {
     field_spec = mesh.vectors.size() == mesh.positions.size() ? FieldSpec::parse("file")
+                 : loaded.generated_landscape                 ? FieldSpec::parse("gradient:down")
                                                               : FieldSpec::parse("rotate:0,1,0");
   }
   FieldReport field_report;

@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace CLI {
 class App;
@@ -13,7 +14,9 @@ namespace ibfvs::app {
 /// The options of `ibfvs render`, as typed (validated by run_render).
 struct RenderOptions {
   std::string mesh;   ///< empty: the built-in demo
-  std::string field;  ///< empty: file if the mesh has vectors, else rotate:0,1,0
+  std::string field;  ///< empty: see the --field help
+  std::vector<std::string>
+      elements;  ///< potential-flow elements, AX,AY,AZ,BX,BY,BZ,ROT,RAD,TAN[,CORE]
   std::string tangent = "project";
   std::string size = "512x512";
   std::int64_t frames = 150;  // wide, so that a huge value gets our range message

@@ -3,7 +3,13 @@
 #include <cmath>
 #include <numbers>
 
+#include <algorithm>
+#include <string>
+
 #include <glm/geometric.hpp>
+
+#include "ibfvs/core/error.h"
+#include "ibfvs/core/noise.h"
 
 namespace ibfvs {
 namespace {
@@ -92,6 +98,63 @@ TriMesh make_cylinder(float r, float h, int segments, int rings) {
     }
   grid_triangles(m, segments, rings, true, false);
   return m;
+}
+
+TriMesh make_bspline_height_field(const std::vector<float>& controls, int columns, int rows,
+                                  int resolution) {
+  if (columns < 4 || rows < 4)
+    throw InputError("height field: the control grid must be at least 4 x 4");
+  if (controls.size() != static_cast<std::size_t>(columns) * static_cast<std::size_t>(rows))
+    throw InputError("height field: " + std::to_string(controls.size()) +
+                     " control heights for a " + std::to_string(columns) + " x " +
+                     std::to_string(rows) + " grid");
+  if (resolution < 1 || resolution > 4096)
+    throw InputError("height field: the resolution must be between 1 and 4096 cells");
+  // Uniform cubic B-spline basis on one span, t in [0, 1].
+  const auto basis = [](float t, float b[4]) {
+    const float s = 1.0f - t;
+    b[0] = s * s * s / 6.0f;
+    b[1] = (3 * t * t * t - 6 * t * t + 4) / 6.0f;
+    b[2] = (-3 * t * t * t + 3 * t * t + 3 * t + 1) / 6.0f;
+    b[3] = t * t * t / 6.0f;
+  };
+  // Parameter u in [0, columns - 3] covers x in [-1, 1].
+  const auto span = [](float u, int spans, int& i, float& t) {
+    i = std::min(static_cast<int>(std::floor(u)), spans - 1);
+    t = u - static_cast<float>(i);
+  };
+  TriMesh m;
+  std::vector<float>& height = m.scalars["height"];
+  for (int j = 0; j <= resolution; ++j)
+    for (int i = 0; i <= resolution; ++i) {
+      const float fx = static_cast<float>(i) / resolution, fy = static_cast<float>(j) / resolution;
+      int si = 0, sj = 0;
+      float tx = 0, ty = 0, bx[4], by[4];
+      span(fx * static_cast<float>(columns - 3), columns - 3, si, tx);
+      span(fy * static_cast<float>(rows - 3), rows - 3, sj, ty);
+      basis(tx, bx);
+      basis(ty, by);
+      float z = 0.0f;
+      for (int b = 0; b < 4; ++b)
+        for (int a = 0; a < 4; ++a)
+          z += bx[a] * by[b] *
+               controls[static_cast<std::size_t>(sj + b) * static_cast<std::size_t>(columns) +
+                        static_cast<std::size_t>(si + a)];
+      // Height along +Y, the camera's up: the grid's x runs along +X and its
+      // y along -Z (a rotation, so the triangles still face up).
+      m.positions.emplace_back(2 * fx - 1, z, 1 - 2 * fy);
+      height.push_back(z);
+    }
+  grid_triangles(m, resolution, resolution, false, false);
+  compute_vertex_normals(m);
+  return m;
+}
+
+std::vector<float> random_controls(int columns, int rows, float amplitude, std::uint32_t seed) {
+  std::vector<float> p(static_cast<std::size_t>(std::max(columns, 0)) *
+                       static_cast<std::size_t>(std::max(rows, 0)));
+  for (std::size_t k = 0; k < p.size(); ++k) p[k] = amplitude * (2 * hash_uniform(seed, k) - 1);
+  return p;
 }
 
 TriMesh make_icosahedron(float radius) {

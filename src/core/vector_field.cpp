@@ -5,6 +5,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "ibfvs/core/curvature.h"
 #include "ibfvs/core/error.h"
 
 namespace ibfvs {
@@ -33,6 +34,37 @@ glm::vec3 parse_vec3(std::string_view text, std::string_view what) {
   return {v[0], v[1], v[2]};
 }
 
+namespace {
+
+// Splits "a:b:c" at colons.
+std::vector<std::string> split_colons(const std::string& s) {
+  std::vector<std::string> parts;
+  std::size_t start = 0;
+  for (std::size_t colon; (colon = s.find(':', start)) != std::string::npos; start = colon + 1)
+    parts.push_back(s.substr(start, colon - start));
+  parts.push_back(s.substr(start));
+  return parts;
+}
+
+// The optional parts of principal: and gradient: (a vector and one flag word).
+void parse_options(const std::string& s, const std::vector<std::string>& parts, const char* flag,
+                   bool& flag_value, glm::vec3& vector) {
+  for (std::size_t i = 2; i < parts.size(); ++i) {
+    if (parts[i] == flag) {
+      flag_value = true;
+    } else if (parts[i].find(',') != std::string::npos) {
+      vector = parse_vec3(parts[i], "--field");
+      if (glm::length(vector) == 0.0f)
+        throw InputError("--field: the vector in '" + s + "' must not be zero");
+    } else {
+      throw InputError("--field: unknown part '" + parts[i] + "' in '" + s +
+                       "' (expected X,Y,Z or " + flag + ")");
+    }
+  }
+}
+
+}  // namespace
+
 FieldSpec FieldSpec::parse(std::string_view text) {
   FieldSpec spec;
   const std::string s(text);
@@ -40,11 +72,37 @@ FieldSpec FieldSpec::parse(std::string_view text) {
     spec.kind = FieldKind::File;
     return spec;
   }
+  const std::vector<std::string> parts = split_colons(s);
+  if (parts[0] == "elements") {
+    spec.kind = FieldKind::Elements;
+    spec.value = parts.size() > 1 ? parse_vec3(parts[1], "--field elements") : glm::vec3(0.0f);
+    if (parts.size() > 2) throw InputError("--field: expected elements[:X,Y,Z], got '" + s + "'");
+    return spec;
+  }
+  if (parts[0] == "principal") {
+    spec.kind = FieldKind::Principal;
+    if (parts.size() < 2 || (parts[1] != "min" && parts[1] != "max"))
+      throw InputError("--field: expected principal:min or principal:max, got '" + s + "'");
+    spec.use_max = parts[1] == "max";
+    spec.value = glm::vec3(0, 1, 0);
+    parse_options(s, parts, "rot90", spec.rotate90, spec.value);
+    return spec;
+  }
+  if (parts[0] == "gradient") {
+    spec.kind = FieldKind::Gradient;
+    if (parts.size() < 2 || (parts[1] != "down" && parts[1] != "up"))
+      throw InputError("--field: expected gradient:down or gradient:up, got '" + s + "'");
+    spec.downhill = parts[1] == "down";
+    spec.value = glm::vec3(0, 1, 0);
+    parse_options(s, parts, "normalize", spec.normalize, spec.value);
+    return spec;
+  }
   const std::size_t colon = s.find(':');
   const std::string name = s.substr(0, colon);
   if (colon == std::string::npos || (name != "uniform" && name != "rotate"))
     throw InputError("--field: unknown field '" + s +
-                     "' (expected file, uniform:X,Y,Z or rotate:X,Y,Z)");
+                     "' (expected file, uniform:X,Y,Z, rotate:X,Y,Z, elements, "
+                     "principal:min|max or gradient:down|up)");
   spec.kind = name == "uniform" ? FieldKind::Uniform : FieldKind::Rotate;
   spec.value = parse_vec3(std::string_view(s).substr(colon + 1), "--field " + name);
   if (spec.kind == FieldKind::Rotate && glm::length(spec.value) == 0.0f)
@@ -53,10 +111,35 @@ FieldSpec FieldSpec::parse(std::string_view text) {
 }
 
 std::string FieldSpec::to_string() const {
-  if (kind == FieldKind::File) return "file";
   std::ostringstream out;
-  out << (kind == FieldKind::Uniform ? "uniform:" : "rotate:") << value.x << "," << value.y << ","
-      << value.z;
+  const auto vec = [&] { out << value.x << "," << value.y << "," << value.z; };
+  switch (kind) {
+    case FieldKind::File:
+      return "file";
+    case FieldKind::Uniform:
+      out << "uniform:";
+      vec();
+      break;
+    case FieldKind::Rotate:
+      out << "rotate:";
+      vec();
+      break;
+    case FieldKind::Elements:
+      out << "elements:";
+      vec();
+      out << " with " << elements.size() << " element" << (elements.size() == 1 ? "" : "s");
+      break;
+    case FieldKind::Principal:
+      out << "principal:" << (use_max ? "max" : "min") << ":";
+      vec();
+      if (rotate90) out << ":rot90";
+      break;
+    case FieldKind::Gradient:
+      out << "gradient:" << (downhill ? "down" : "up") << ":";
+      vec();
+      if (normalize) out << ":normalize";
+      break;
+  }
   return out.str();
 }
 
@@ -84,6 +167,36 @@ std::vector<glm::vec3> evaluate_field(const TriMesh& mesh, const FieldSpec& spec
     case FieldKind::Rotate: {
       const glm::vec3 c = mesh_bounds(mesh).centre();
       for (std::size_t i = 0; i < n; ++i) v[i] = glm::cross(spec.value, mesh.positions[i] - c);
+      break;
+    }
+    case FieldKind::Elements: {
+      PotentialFlow flow{spec.value, spec.elements};
+      for (std::size_t i = 0; i < n; ++i) v[i] = flow.velocity(mesh.positions[i]);
+      break;
+    }
+    case FieldKind::Principal: {
+      const Curvature c = compute_curvature(mesh);
+      for (std::size_t i = 0; i < n; ++i) {
+        glm::vec3 d = spec.use_max ? c.dmax[i] : c.dmin[i];
+        // The sign rule of section 4.2: along the user vector, where the
+        // direction is not (nearly) perpendicular to it.
+        if (glm::dot(d, spec.value) < 0.0f) d = -d;
+        v[i] = spec.rotate90 ? glm::cross(c.normal[i], d) : d;
+      }
+      break;
+    }
+    case FieldKind::Gradient: {
+      if (mesh.normals.size() != n) throw InputError("the gradient field needs vertex normals");
+      const glm::vec3 up = glm::normalize(spec.value);
+      for (std::size_t i = 0; i < n; ++i) {
+        // Steepest ascent of h = up . r on the surface: up minus its normal part.
+        const glm::vec3& nrm = mesh.normals[i];
+        glm::vec3 g = up - glm::dot(up, nrm) * nrm;
+        if (spec.downhill) g = -g;
+        const float len = glm::length(g);
+        if (spec.normalize) g = len > 1e-6f ? g / len : glm::vec3(0.0f);
+        v[i] = g;
+      }
       break;
     }
   }

@@ -67,6 +67,33 @@ TEST_F(RenderCommand, DemoFallsBackToAProceduralSurface) {
   EXPECT_NE(r.out.find("wrote demo.png"), std::string::npos) << r.out;
 }
 
+TEST_F(RenderCommand, FlowElementsAndLandscapes) {
+  file("sq.off", kTri);
+  const Result e =
+      run("render --mesh sq.off --size 32x32 --frames 2 --out e.png "
+          "--element 0.5,0.5,-1,0.5,0.5,1,1,0,0 --element 0,0,-1,0,0,1,0,-0.5,0");
+  ASSERT_EQ(e.status, 0) << e.err;
+  EXPECT_NE(e.out.find("field elements:0,0,0 with 2 elements"), std::string::npos) << e.out;
+  const Result l = run("render --mesh landscape:2:6:32 --size 32x32 --frames 2 --out l.png");
+  ASSERT_EQ(l.status, 0) << l.err;
+  EXPECT_NE(l.out.find("field gradient:down:0,1,0"), std::string::npos) << l.out;
+  EXPECT_NE(l.out.find("2048 triangles"), std::string::npos) << l.out;
+  const Result p =
+      run("render --mesh landscape --field principal:max:rot90 --size 32x32 "
+          "--frames 2 --out p.png -q");
+  EXPECT_EQ(p.status, 0) << p.err;
+  const std::string m = "render --mesh sq.off --frames 1 --out x.png ";
+  expect_error(m + "--element 0,0,0,0,0,0,1,0,0", "--element: the flow element has zero length");
+  expect_error(m + "--element 1,2,3", "--element: expected AX,AY,AZ,BX,BY,BZ");
+  expect_error(m + "--element 0,0,0,0,1,0,1,0,0 --field rotate:0,1,0",
+               "--element: needs --field elements");
+  expect_error(m + "--field principal:sideways", "--field");
+  expect_error(m + "--field gradient:down:0,0,0", "--field");
+  expect_error("render --mesh landscape:x --out x.png", "--mesh landscape:x");
+  expect_error("render --mesh landscape:1:3 --out x.png", "--mesh landscape:1:3");
+  expect_error("render --mesh landscape:1:8:9999 --out x.png", "4096");
+}
+
 TEST_F(RenderCommand, NanVectorsAreZeroedWithAWarning) {
   TriMesh sq = make_square(1.0f, 2);
   sq.vectors.assign(sq.vertex_count(), glm::vec3(1, 0, 0));

@@ -2,6 +2,9 @@
 // Procedural meshes built in code: the demo's fallback surface when the fetched
 // data is missing, and the analytic surfaces the tests measure against.
 
+#include <cstdint>
+#include <vector>
+
 #include "ibfvs/core/mesh.h"
 
 namespace ibfvs {
@@ -27,5 +30,19 @@ TriMesh make_icosahedron(float radius);
 /// Height field z = f(x, y) over [-half, half]^2, n x n cells, normals
 /// computed from the triangles.
 TriMesh make_height_field(float (*f)(float, float), float half, int n);
+
+/// A landscape (paper figure 2 and 7): the uniform cubic B-spline height
+/// h(s, t) = sum_ij B_i(s) B_j(t) P_ij on a control grid of heights P
+/// (row-major, `columns` x `rows`, at least 4 x 4), meshed with `resolution` x
+/// `resolution` cells. The height is along +Y, the camera's up (the default
+/// camera sees it edge-on, `--camera 0,90,0` from above), over x in [-1, 1]
+/// (s) and z in [1, -1] (t), and is kept as the scalar "height". Throws InputError for a grid smaller than 4 x 4 or a size
+/// mismatch.
+TriMesh make_bspline_height_field(const std::vector<float>& controls, int columns, int rows,
+                                  int resolution);
+
+/// Control heights for make_bspline_height_field: uniform random in
+/// [-amplitude, amplitude], deterministic for a seed.
+std::vector<float> random_controls(int columns, int rows, float amplitude, std::uint32_t seed);
 
 }  // namespace ibfvs

@@ -1,7 +1,9 @@
 #pragma once
-// Per-vertex vector fields: from the mesh file, uniform, or a rigid rotation
-// (paper section 3.2: one velocity v_i per vertex), and the choice between
-// projecting them on the tangent plane or using them in 3D (section 3.8).
+// Per-vertex vector fields (paper section 3.2: one velocity v_i per vertex):
+// from the mesh file, uniform, a rigid rotation, potential-flow elements
+// (section 4.1), principal directions (section 4.2) and the gradient of a
+// height (section 4.1, figure 7); and the choice between projecting them on
+// the tangent plane or using them in 3D (section 3.8).
 
 #include <string>
 #include <string_view>
@@ -10,20 +12,39 @@
 #include <glm/vec3.hpp>
 
 #include "ibfvs/core/mesh.h"
+#include "ibfvs/core/potential_flow.h"
 
 namespace ibfvs {
 
 /// Where the vectors come from.
 enum class FieldKind {
-  File,     ///< PLY vertex properties vx vy vz
-  Uniform,  ///< a constant 3D vector
-  Rotate,   ///< v = w x (r - c), c the centre of the bounding box
+  File,       ///< PLY vertex properties vx vy vz
+  Uniform,    ///< a constant 3D vector
+  Rotate,     ///< v = w x (r - c), c the centre of the bounding box
+  Elements,   ///< a uniform flow plus potential-flow elements
+  Principal,  ///< unit principal directions, signed along a user vector
+  Gradient,   ///< steepest descent or ascent of the height along a user axis
 };
 
-/// A parsed `--field` value: `file`, `uniform:X,Y,Z` or `rotate:X,Y,Z`.
+/// A parsed `--field` value:
+///   file                                   PLY vertex properties vx vy vz
+///   uniform:X,Y,Z                          a constant vector
+///   rotate:X,Y,Z                           rotation about the axis through the box centre
+///   elements[:X,Y,Z]                       uniform flow X,Y,Z (default 0) plus `elements`
+///   principal:min|max[:X,Y,Z][:rot90]      kappa_min or kappa_max directions, each
+///                                          flipped to point along X,Y,Z (default +Y),
+///                                          then optionally turned 90 degrees about n
+///   gradient:down|up[:X,Y,Z][:normalize]   steepest descent or ascent of the height
+///                                          along X,Y,Z (default +Y, up) on the surface
 struct FieldSpec {
   FieldKind kind = FieldKind::Rotate;
-  glm::vec3 value{0.0f, 1.0f, 0.0f};  ///< the uniform vector or the rotation axis w
+  glm::vec3 value{0.0f, 1.0f, 0.0f};  ///< uniform vector, rotation axis, background flow,
+                                      ///< alignment vector or height axis
+  bool use_max = false;               ///< principal: kappa_max instead of kappa_min
+  bool rotate90 = false;              ///< principal: turn 90 degrees about the normal
+  bool downhill = true;               ///< gradient: descent (true) or ascent
+  bool normalize = false;             ///< gradient: unit vectors where the slope is not zero
+  std::vector<FlowElement> elements;  ///< elements: the flow elements (from --element)
 
   /// Parses the textual form; throws InputError naming the text.
   static FieldSpec parse(std::string_view text);

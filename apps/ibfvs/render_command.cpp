@@ -10,6 +10,7 @@
 #include <CLI/CLI.hpp>
 
 #include "ibfvs/core/camera.h"
+#include "ibfvs/core/colormap.h"
 #include "ibfvs/core/displacement.h"
 #include "ibfvs/core/error.h"
 #include "ibfvs/core/image.h"
@@ -88,6 +89,19 @@ void add_render_options(CLI::App& cmd, RenderOptions& o) {
       ->capture_default_str();
   cmd.add_option("--surface-color", o.surface_color, "Diffuse colour of the shaded surface, R,G,B")
       ->capture_default_str();
+  cmd.add_option("--color-by", o.color_by,
+                 "Colour the surface by a per-vertex scalar: a mesh property (PLY scalar; kmin, "
+                 "kmax from ibfvs geometry; height of a landscape) or speed, kmin, kmax, x, y, z");
+  cmd.add_option("--color-map", o.color_map, "Colour map: viridis, coolwarm (diverging), grey")
+      ->capture_default_str();
+  cmd.add_option("--color-range", o.color_range,
+                 "LO,HI: scalar values at the ends of the colour map. Default: the 1st and 99th "
+                 "percentile");
+  cmd.add_option("--beta-by", o.beta_by,
+                 "Modulate the texture strength beta by a per-vertex scalar (names as "
+                 "--color-by; paper 3.3 step 7, figures 6 and 9)");
+  cmd.add_option("--beta-range", o.beta_range,
+                 "LO,HI: beta is 0 at LO and --beta at HI. Default: the 1st and 99th percentile");
   cmd.add_option("--camera", o.camera,
                  "AZIMUTH,ELEVATION,DISTANCE: degrees about +Y and above the horizon, distance in "
                  "bounding-box diagonals (0 fits the mesh). Default 0,0,0: from +Z, +Y up, fitted");
@@ -134,6 +148,27 @@ glm::vec3 parse_colour(const std::string& text, const char* option) {
     if (c[i] < 0.0f || c[i] > 1.0f)
       throw InputError(std::string(option) + ": components must be in [0, 1], got '" + text + "'");
   return c;
+}
+
+// "LO,HI": two finite numbers with LO < HI.
+glm::vec2 parse_range(const std::string& text, const char* option) {
+  const std::size_t comma = text.find(',');
+  float v[2] = {0, 0};
+  bool ok = comma != std::string::npos && text.find(',', comma + 1) == std::string::npos;
+  for (int k = 0; ok && k < 2; ++k) {
+    const std::string part = k == 0 ? text.substr(0, comma) : text.substr(comma + 1);
+    std::size_t used = 0;
+    try {
+      v[k] = std::stof(part, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    ok = used > 0 && used == part.size() && std::isfinite(v[k]);
+  }
+  if (!ok || !(v[1] > v[0]))
+    throw InputError(std::string(option) + ": expected LO,HI, two numbers with LO < HI, got '" +
+                     text + "'");
+  return {v[0], v[1]};
 }
 
 InjectMode parse_inject(const std::string& text) {
@@ -290,8 +325,35 @@ int run_render(const RenderOptions& o) {
 
   // ---- render
   gl::HeadlessContext context;
+  // ---- scalars for colour and beta
+  std::vector<float> color_scalar, beta_scalar;
+  // The named scalar, and its range: given as LO,HI or the 1st to 99th percentile.
+  const auto scalar_range = [&](const std::string& name, const char* option,
+                                const std::string& range_text, const char* range_option,
+                                std::vector<float>& values) {
+    try {
+      values = vertex_scalar(mesh, field, name);
+    } catch (const InputError& e) {
+      throw InputError(std::string(option) + ": " + mesh_name + ": " + e.what());
+    }
+    return range_text.empty() ? quantile_range(values) : parse_range(range_text, range_option);
+  };
+  settings.color_map = parse_color_map(o.color_map);
+  if (!o.color_by.empty()) {
+    settings.use_color = true;
+    settings.color_range =
+        scalar_range(o.color_by, "--color-by", o.color_range, "--color-range", color_scalar);
+  }
+  if (!o.beta_by.empty()) {
+    settings.use_beta = true;
+    settings.beta_range =
+        scalar_range(o.beta_by, "--beta-by", o.beta_range, "--beta-range", beta_scalar);
+  }
+  settings.validate();
+
   IbfvsRenderer renderer(settings);
   renderer.set_mesh(mesh, field);
+  if (settings.use_color || settings.use_beta) renderer.set_scalars(color_scalar, beta_scalar);
   std::unique_ptr<VideoWriter> video;
   if (kind == OutputKind::Video)
     video = std::make_unique<VideoWriter>(out, size.width, size.height, o.fps);

@@ -43,6 +43,12 @@ void RenderSettings::validate() const {
     if (!in_unit(surface_color[c]))
       throw InputError("--surface-color: components must be in [0, 1]");
   }
+  const auto check_range = [](glm::vec2 r, const char* option) {
+    if (!std::isfinite(r.x) || !std::isfinite(r.y) || !(r.y > r.x))
+      throw InputError(std::string(option) + ": needs two finite numbers LO,HI with LO < HI");
+  };
+  check_range(color_range, "--color-range");
+  check_range(beta_range, "--beta-range");
 }
 
 IbfvsRenderer::IbfvsRenderer(const RenderSettings& settings) : settings_(settings) {
@@ -60,6 +66,11 @@ IbfvsRenderer::IbfvsRenderer(const RenderSettings& settings) : settings_(setting
   u_.profile = program_.location("u_profile");
   u_.spike_width = program_.location("u_spike_width");
   u_.surface_color = program_.location("u_surface_color");
+  u_.use_color = program_.location("u_use_color");
+  u_.color_range = program_.location("u_color_range");
+  u_.use_beta = program_.location("u_use_beta");
+  u_.beta_range = program_.location("u_beta_range");
+  color_map_ = gl::Texture2D(256, 1, gl::Format::RGBA32F, true);
   u_.phase_size = program_.location("u_phase_size");
   u_.inverse_size = program_.location("u_inverse_size");
 
@@ -95,6 +106,16 @@ void IbfvsRenderer::apply_settings_uniforms() {
   program_.set(u_.profile, static_cast<int>(settings_.noise.profile));
   program_.set(u_.spike_width, settings_.noise.spike_width);
   program_.set(u_.surface_color, settings_.surface_color);
+  program_.set(u_.use_color, settings_.use_color ? 1 : 0);
+  program_.set(u_.color_range, settings_.color_range);
+  program_.set(u_.use_beta, settings_.use_beta ? 1 : 0);
+  program_.set(u_.beta_range, settings_.beta_range);
+  std::vector<float> table(256 * 4);
+  for (int i = 0; i < 256; ++i) {
+    const glm::vec3 c = color_map(settings_.color_map, static_cast<float>(i) / 255.0f);
+    table[4 * i] = c.r, table[4 * i + 1] = c.g, table[4 * i + 2] = c.b, table[4 * i + 3] = 1.0f;
+  }
+  color_map_.upload_float(table, 4);
 }
 
 void IbfvsRenderer::update_settings(const RenderSettings& settings) {
@@ -123,11 +144,14 @@ void IbfvsRenderer::set_mesh(const TriMesh& mesh, std::span<const glm::vec3> fie
   }
   vertices_ = gl::Buffer(bytes_of(std::span<const float>(interleaved)));
   field_ = gl::Buffer(bytes_of(field), true);
+  const std::vector<glm::vec2> zeros(mesh.positions.size(), glm::vec2(0.0f));
+  scalars_ = gl::Buffer(bytes_of(std::span<const glm::vec2>(zeros)), true);
   indices_ = gl::Buffer(bytes_of(std::span<const Triangle>(mesh.triangles)));
   vao_ = gl::VertexArray::create();
   vao_.attribute(0, vertices_, 0, 3, 0, 6 * sizeof(float));
   vao_.attribute(1, vertices_, 1, 3, 3 * sizeof(float), 6 * sizeof(float));
   vao_.attribute(2, field_, 2, 3, 0, sizeof(glm::vec3));
+  vao_.attribute(3, scalars_, 3, 2, 0, sizeof(glm::vec2));
   vao_.index_buffer(indices_);
   index_count_ = mesh.triangles.size() * 3;
   vertex_count_ = mesh.positions.size();
@@ -138,6 +162,16 @@ void IbfvsRenderer::set_field(std::span<const glm::vec3> field) {
   if (field.size() != vertex_count_)
     throw InputError("renderer: the field needs one vector per vertex");
   field_.update(0, bytes_of(field));
+}
+
+void IbfvsRenderer::set_scalars(std::span<const float> color, std::span<const float> beta) {
+  if ((!color.empty() && color.size() != vertex_count_) ||
+      (!beta.empty() && beta.size() != vertex_count_))
+    throw InputError("renderer: scalars need one value per vertex");
+  std::vector<glm::vec2> packed(vertex_count_, glm::vec2(0.0f));
+  for (std::size_t i = 0; i < vertex_count_; ++i)
+    packed[i] = {color.empty() ? 0.0f : color[i], beta.empty() ? 0.0f : beta[i]};
+  scalars_.update(0, bytes_of(std::span<const glm::vec2>(packed)));
 }
 
 void IbfvsRenderer::reset() {
@@ -173,6 +207,7 @@ void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
     program_.set(u_.noise_time, settings_.noise.rate * static_cast<float>(frame_));
     texture_[current_].bind(0);
     phases_.bind(1);
+    color_map_.bind(2);
     vao_.bind();
     gl::draw_triangles(index_count_, true);
   }

@@ -6,6 +6,7 @@ const char* const kIbfvsVertex = R"(#version 450 core
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
 layout(location = 2) in vec3 a_vector;
+layout(location = 3) in vec2 a_scalars;  // (colour scalar, beta scalar)
 
 uniform mat4 u_view_projection;          // T_k: where the vertex is drawn
 uniform mat4 u_advect_view_projection;   // T_k or T_{k-1}: where its texture comes from
@@ -21,12 +22,14 @@ uniform float u_dt;
 // interpolations err (section 3.9's artifact). It also avoids noperspective
 // varyings, which llvmpipe (Mesa 22.3) corrupts on triangles it clips.
 out vec4 v_from;
+out vec2 v_scalars;
 out vec3 v_normal_eye;
 out vec3 v_position_eye;
 
 void main() {
   gl_Position = u_view_projection * vec4(a_position, 1.0);
   v_from = u_advect_view_projection * vec4(a_position - a_vector * u_dt, 1.0);
+  v_scalars = a_scalars;
   v_normal_eye = mat3(u_view) * a_normal;
   v_position_eye = (u_view * vec4(a_position, 1.0)).xyz;
 }
@@ -34,6 +37,7 @@ void main() {
 
 const char* const kIbfvsFragment = R"(#version 450 core
 in vec4 v_from;
+in vec2 v_scalars;
 in vec3 v_normal_eye;
 in vec3 v_position_eye;
 
@@ -53,6 +57,11 @@ uniform float u_spike_width;
 uniform ivec2 u_phase_size;
 uniform vec2 u_inverse_size;  // 1 / image size in pixels
 uniform vec3 u_surface_color;
+layout(binding = 2) uniform sampler2D u_color_map;  // 256 x 1
+uniform int u_use_color;     // colour the surface by v_scalars.x
+uniform vec2 u_color_range;  // scalar values at the ends of the map
+uniform int u_use_beta;      // modulate beta by v_scalars.y
+uniform vec2 u_beta_range;   // beta is 0 at the first value, u_beta at the second
 
 // w(t), period 1 (equation 8).
 float profile(float t) {
@@ -94,8 +103,16 @@ void main() {
   if (dot(n, to_eye) < 0.0) n = -n;
   float diffuse = max(dot(n, to_eye), 0.0);
   float specular = pow(max(dot(n, to_eye), 0.0), 40.0);  // half vector = view for a headlight
-  vec3 shaded = u_surface_color * (0.18 + 0.82 * diffuse) + vec3(0.25 * specular);
-  o_color = vec4(u_beta * ft + (1.0 - u_beta) * shaded, 1.0);
+  vec3 albedo = u_surface_color;
+  if (u_use_color != 0) {
+    float t = clamp((v_scalars.x - u_color_range.x) / (u_color_range.y - u_color_range.x), 0.0, 1.0);
+    albedo = texture(u_color_map, vec2((t * 255.0 + 0.5) / 256.0, 0.5)).rgb;
+  }
+  vec3 shaded = albedo * (0.18 + 0.82 * diffuse) + vec3(0.25 * specular);
+  float beta = u_beta;
+  if (u_use_beta != 0)
+    beta *= clamp((v_scalars.y - u_beta_range.x) / (u_beta_range.y - u_beta_range.x), 0.0, 1.0);
+  o_color = vec4(beta * ft + (1.0 - beta) * shaded, 1.0);
 }
 )";
 

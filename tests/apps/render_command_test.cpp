@@ -94,6 +94,21 @@ TEST_F(RenderCommand, FlowElementsAndLandscapes) {
   expect_error("render --mesh landscape:1:8:9999 --out x.png", "4096");
 }
 
+TEST_F(RenderCommand, ColourAndBetaByScalars) {
+  file("sq.off", kTri);
+  const Result r =
+      run("render --mesh sq.off --size 32x32 --frames 2 --out c.png -q "
+          "--field uniform:1,0,0 --color-by x --color-map coolwarm --beta-by speed "
+          "--beta-range 0,2");
+  EXPECT_EQ(r.status, 0) << r.err;
+  const std::string m = "render --mesh sq.off --field uniform:1,0,0 --frames 1 --out x.png ";
+  expect_error(m + "--color-by pressure", "--color-by: sq.off: no per-vertex scalar 'pressure'");
+  expect_error(m + "--color-by x --color-map jet", "--color-map");
+  expect_error(m + "--color-by x --color-range 1", "--color-range");
+  expect_error(m + "--color-by x --color-range 2,1", "--color-range");
+  expect_error(m + "--beta-by y --beta-range 0,nan", "--beta-range");
+}
+
 TEST_F(RenderCommand, NanVectorsAreZeroedWithAWarning) {
   TriMesh sq = make_square(1.0f, 2);
   sq.vectors.assign(sq.vertex_count(), glm::vec3(1, 0, 0));

@@ -474,6 +474,57 @@ TEST_F(RendererGLTest, SpikesAddedGiveSparseBrightParticles) {
   EXPECT_GT(top, 0.6f) << "with bright particles";
 }
 
+TEST_F(RendererGLTest, ScalarsColourTheSurfaceAndModulateBeta) {
+  // The flat square, coloured by x through viridis, with beta modulated by x:
+  // purple and no texture on the left, yellow and textured on the right.
+  constexpr int w = 128, h = 64;
+  TriMesh square = make_square(2.0f, 8);
+  std::vector<float> x(square.vertex_count());
+  for (std::size_t i = 0; i < x.size(); ++i) x[i] = square.positions[i].x;
+  const std::vector<glm::vec3> field(square.vertex_count(), glm::vec3(0.1f, 0.05f, 0.0f));
+  RenderSettings settings;
+  settings.width = w;
+  settings.height = h;
+  settings.beta = 0.8f;
+  settings.use_color = true;
+  settings.color_range = {-1.0f, 1.0f};
+  settings.use_beta = true;
+  settings.beta_range = {-0.5f, 1.0f};
+  IbfvsRenderer r(settings);
+  r.set_mesh(square, field);
+  r.set_scalars(x, x);
+  for (int k = 0; k < 40; ++k) r.render_frame(flat_view(), 0.05f);
+  const ImageU8 out = r.read_output();
+  const auto column_stats = [&](int x0, int x1, glm::dvec3& mean, double& spread) {
+    glm::dvec3 sum(0), sum2(0);
+    int n = 0;
+    for (int y = 8; y < h - 8; ++y)
+      for (int xx = x0; xx < x1; ++xx) {
+        const glm::dvec3 c(out.at(xx, y, 0), out.at(xx, y, 1), out.at(xx, y, 2));
+        sum += c;
+        sum2 += c * c;
+        ++n;
+      }
+    mean = sum / double(n);
+    const glm::dvec3 var = sum2 / double(n) - mean * mean;
+    spread = std::sqrt(var.x + var.y + var.z);
+  };
+  glm::dvec3 left, right;
+  double left_spread = 0, right_spread = 0;
+  column_stats(2, 12, left, left_spread);
+  column_stats(w - 12, w - 2, right, right_spread);
+  std::printf("left mean %.0f,%.0f,%.0f spread %.1f; right mean %.0f,%.0f,%.0f spread %.1f\n",
+              left.x, left.y, left.z, left_spread, right.x, right.y, right.z, right_spread);
+  EXPECT_GT(left.z, left.x);    // viridis(0): dark purple, more blue than red
+  EXPECT_GT(right.x, right.z);  // viridis(1): yellow
+  EXPECT_GT(right.y, right.z);
+  EXPECT_LT(left_spread, 3.0);                        // beta 0: shading only, no texture
+  EXPECT_GT(right_spread, 8.0 * left_spread + 10.0);  // textured
+  EXPECT_THROW(r.set_scalars(std::vector<float>(3), {}), InputError);
+  settings.color_range = {1.0f, 1.0f};
+  EXPECT_THROW(settings.validate(), InputError);
+}
+
 TEST_F(RendererGLTest, RejectsMismatchedInput) {
   RenderSettings settings;
   settings.width = settings.height = 32;

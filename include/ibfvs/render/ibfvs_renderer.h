@@ -25,6 +25,7 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
+#include "ibfvs/core/colormap.h"
 #include "ibfvs/core/image.h"
 #include "ibfvs/core/mesh.h"
 #include "ibfvs/core/noise.h"
@@ -53,6 +54,11 @@ struct RenderSettings {
   glm::vec3 background{0.5f};                     ///< B, grey by default (section 3.5)
   glm::vec3 surface_color{0.82f, 0.80f, 0.76f};   ///< diffuse colour of the shaded surface F_s
   AdvectView advect_view = AdvectView::Previous;  ///< see AdvectView
+  ColorMap color_map = ColorMap::Viridis;         ///< map for the colour scalar
+  bool use_color = false;                         ///< colour F_s by the colour scalar (set_scalars)
+  glm::vec2 color_range{0.0f, 1.0f};              ///< scalar values at the two ends of the map
+  bool use_beta = false;             ///< modulate beta by the beta scalar (paper 3.3, step 7)
+  glm::vec2 beta_range{0.0f, 1.0f};  ///< beta scalar at which the texture strength is 0 and beta
 
   /// Throws InputError naming the first impossible value.
   void validate() const;
@@ -74,6 +80,9 @@ class IbfvsRenderer {
   void set_mesh(const TriMesh& mesh, std::span<const glm::vec3> field);
   /// Replaces the field (same vertex count); keeps the texture.
   void set_field(std::span<const glm::vec3> field);
+  /// Per-vertex scalars for colouring (`color`) and for modulating beta
+  /// (`beta`); either may be empty (zeros). Sizes must match the mesh.
+  void set_scalars(std::span<const float> color, std::span<const float> beta);
   /// Changes alpha, beta, noise profile/rate, colours and advect view. The
   /// image size and noise scale/seed need a new renderer.
   void update_settings(const RenderSettings& settings);
@@ -107,6 +116,8 @@ class IbfvsRenderer {
   gl::Framebuffer framebuffer_[2];  // [i] draws into texture_[i] and output_
   gl::Buffer vertices_;
   gl::Buffer field_;
+  gl::Buffer scalars_;       // (colour, beta) per vertex
+  gl::Texture2D color_map_;  // 256 x 1 RGBA float
   gl::Buffer indices_;
   gl::VertexArray vao_;
   std::size_t index_count_ = 0;
@@ -118,7 +129,8 @@ class IbfvsRenderer {
 
   struct Uniforms {
     int view_projection, advect_view_projection, view, dt, alpha, beta, inject, noise_time,
-        noise_scale, profile, spike_width, surface_color, phase_size, inverse_size;
+        noise_scale, profile, spike_width, surface_color, phase_size, inverse_size, use_color,
+        color_range, use_beta, beta_range;
   } u_{};
   void apply_settings_uniforms();
 };

@@ -1,0 +1,90 @@
+#include "ibfvs/core/colormap.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+#include "ibfvs/core/curvature.h"
+#include "ibfvs/core/error.h"
+
+namespace ibfvs {
+namespace {
+
+#include "colormap_tables.inc"
+
+}  // namespace
+
+ColorMap parse_color_map(std::string_view text) {
+  if (text == "viridis") return ColorMap::Viridis;
+  if (text == "coolwarm" || text == "diverging") return ColorMap::CoolWarm;
+  if (text == "grey" || text == "gray") return ColorMap::Grey;
+  throw InputError("--color-map: expected viridis, coolwarm (diverging) or grey, got '" +
+                   std::string(text) + "'");
+}
+
+std::string to_string(ColorMap map) {
+  switch (map) {
+    case ColorMap::Viridis:
+      return "viridis";
+    case ColorMap::CoolWarm:
+      return "coolwarm";
+    case ColorMap::Grey:
+      return "grey";
+  }
+  return "?";
+}
+
+glm::vec3 color_map(ColorMap map, float t) {
+  t = std::isfinite(t) ? std::clamp(t, 0.0f, 1.0f) : 0.0f;
+  if (map == ColorMap::Grey) return glm::vec3(t);
+  const float(*table)[3] = map == ColorMap::Viridis ? kViridis : kCoolWarm;
+  const float x = t * 255.0f;
+  const int i = std::min(static_cast<int>(x), 254);
+  const float f = x - static_cast<float>(i);
+  const glm::vec3 a(table[i][0], table[i][1], table[i][2]);
+  const glm::vec3 b(table[i + 1][0], table[i + 1][1], table[i + 1][2]);
+  return a + f * (b - a);
+}
+
+std::vector<float> vertex_scalar(const TriMesh& mesh, const std::vector<glm::vec3>& field,
+                                 std::string_view name) {
+  const std::string key(name);
+  if (const auto it = mesh.scalars.find(key); it != mesh.scalars.end()) return it->second;
+  std::vector<float> out(mesh.vertex_count());
+  if (key == "speed") {
+    if (field.size() != out.size()) throw InputError("scalar 'speed': no field to measure");
+    for (std::size_t i = 0; i < out.size(); ++i) out[i] = glm::length(field[i]);
+    return out;
+  }
+  if (key == "kmin" || key == "kmax") {
+    const Curvature c = compute_curvature(mesh);
+    return key == "kmin" ? c.kmin : c.kmax;
+  }
+  if (key == "x" || key == "y" || key == "z") {
+    const int axis = key[0] - 'x';
+    for (std::size_t i = 0; i < out.size(); ++i) out[i] = mesh.positions[i][axis];
+    return out;
+  }
+  std::string known = "speed, kmin, kmax, x, y, z";
+  for (const auto& [n, v] : mesh.scalars) known += ", " + n;
+  throw InputError("no per-vertex scalar '" + key + "' (available: " + known + ")");
+}
+
+glm::vec2 quantile_range(const std::vector<float>& values, float lo, float hi) {
+  std::vector<float> v;
+  v.reserve(values.size());
+  for (const float x : values)
+    if (std::isfinite(x)) v.push_back(x);
+  if (v.empty()) return {0.0f, 1.0f};
+  const auto at = [&](float q) {
+    const auto k = static_cast<std::size_t>(q * static_cast<float>(v.size() - 1));
+    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
+    return v[k];
+  };
+  glm::vec2 r(at(lo), at(hi));
+  if (!(r.y > r.x)) r = {r.x - 0.5f, r.x + 0.5f};
+  return r;
+}
+
+}  // namespace ibfvs

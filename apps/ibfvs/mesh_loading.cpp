@@ -8,6 +8,7 @@
 
 #include "ibfvs/core/error.h"
 #include "ibfvs/core/gpu_prep.h"
+#include "ibfvs/core/lonlat_grid.h"
 #include "ibfvs/core/mesh_io.h"
 #include "ibfvs/core/procedural.h"
 #include "ibfvs/core/subdivision.h"
@@ -67,6 +68,14 @@ LoadedMesh load_mesh(const std::string& path, int subdivide) {
       out.mesh = make_torus(1.0f, 0.4f, 160, 64);
       out.name = "procedural torus";
     }
+  } else if (path.rfind("globe", 0) == 0 && !fs::exists(path)) {
+    const std::size_t colon = path.find(':');
+    if (path.substr(0, colon) != "globe")
+      throw InputError("--mesh " + path + ": expected globe[:LEVEL]");
+    const int level =
+        colon == std::string::npos ? 6 : parse_int(path.substr(colon + 1), path, 0, 8);
+    out.mesh = make_globe(level);
+    out.name = path;
   } else if (path.rfind("landscape", 0) == 0 && !fs::exists(path)) {
     out.mesh = make_landscape(path);
     out.name = path;

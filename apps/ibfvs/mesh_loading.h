@@ -20,6 +20,8 @@ struct LoadedMesh {
 /// `landscape[:SEED[:CONTROLS[:RESOLUTION]]]`, when no such file exists, is a
 /// B-spline height field over [-1, 1]^2 on a random CONTROLS x CONTROLS grid
 /// (default seed 1, 8 controls, 256 cells), heights within +-0.3.
+/// `globe[:LEVEL]` is a geodesic unit sphere (default level 6: 81,920
+/// triangles), north at +Y, longitude 0 at +Z, for wind: fields.
 /// Then subdivides `subdivide` times and orders the mesh for the GPU's vertex
 /// cache (optimize_for_gpu). Throws InputError naming the file.
 LoadedMesh load_mesh(const std::string& path, int subdivide);

@@ -14,6 +14,7 @@
 #include "ibfvs/core/displacement.h"
 #include "ibfvs/core/error.h"
 #include "ibfvs/core/image.h"
+#include "ibfvs/core/lonlat_grid.h"
 #include "ibfvs/core/mesh_io.h"
 #include "ibfvs/core/procedural.h"
 #include "ibfvs/core/subdivision.h"
@@ -102,6 +103,16 @@ void add_render_options(CLI::App& cmd, RenderOptions& o) {
                  "--color-by; paper 3.3 step 7, figures 6 and 9)");
   cmd.add_option("--beta-range", o.beta_range,
                  "LO,HI: beta is 0 at LO and --beta at HI. Default: the 1st and 99th percentile");
+  cmd.add_option("--scalar", o.scalars,
+                 "NAME=FILE:VAR, repeatable: a per-vertex scalar NAME sampled from the netCDF "
+                 "lon/lat grid VAR (at --time when it has a time axis), for --color-by and "
+                 "--beta-by; e.g. relief=data/earth/etopo20.cdf:ROSE")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  cmd.add_option("--time", o.time,
+                 "Time index of netCDF data (wind: and --scalar), from 0: a month of "
+                 "monthly_navy_winds.cdf (0 = January 1980) or of coads_climatology.cdf")
+      ->capture_default_str();
   cmd.add_option("--camera", o.camera,
                  "AZIMUTH,ELEVATION,DISTANCE: degrees about +Y and above the horizon, distance in "
                  "bounding-box diagonals (0 fits the mesh). Default 0,0,0: from +Z, +Y up, fitted");
@@ -256,6 +267,8 @@ int run_render(const RenderOptions& o) {
     throw InputError("--element: needs --field elements (or no --field), got --field " + o.field);
   if (field_spec)
     for (const std::string& e : o.elements) field_spec->elements.push_back(FlowElement::parse(e));
+  if (o.time < 0) throw InputError("--time: must not be negative");
+  if (field_spec) field_spec->time = static_cast<std::size_t>(o.time);
   CameraParams cam;
   if (!o.camera.empty()) {
     const glm::vec3 c = parse_vec3(o.camera, "--camera");
@@ -272,6 +285,19 @@ int run_render(const RenderOptions& o) {
   TriMesh& mesh = loaded.mesh;
   const std::string mesh_name = loaded.demo ? loaded.name : fs::path(o.mesh).filename().string();
   const bool demo = loaded.demo;
+
+  // ---- scalars sampled from netCDF grids
+  for (const std::string& spec : o.scalars) {
+    const std::size_t eq = spec.find('='), colon = spec.rfind(':');
+    if (eq == std::string::npos || colon == std::string::npos || colon < eq || eq == 0 ||
+        colon == eq + 1 || colon + 1 == spec.size())
+      throw InputError("--scalar: expected NAME=FILE:VAR, got '" + spec + "'");
+    const std::string name = spec.substr(0, eq), path = spec.substr(eq + 1, colon - eq - 1);
+    const std::string var = spec.substr(colon + 1);
+    LonLatGrid grid = read_lonlat_grid(path, var, 0);
+    if (grid.time_steps > 1) grid = read_lonlat_grid(path, var, static_cast<std::size_t>(o.time));
+    mesh.scalars[name] = lonlat_scalars(mesh, grid);
+  }
 
   // ---- field
   if (!field_spec) {

@@ -34,12 +34,14 @@ struct RenderOptions {
   std::string inject = "blend";
   std::string background = "0.5,0.5,0.5";
   std::string surface_color = "0.82,0.80,0.76";
-  std::string color_by;     ///< per-vertex scalar that colours the surface
+  std::string color_by;  ///< per-vertex scalar that colours the surface
   std::string color_map = "viridis";
-  std::string color_range;  ///< "LO,HI"; empty: 1st to 99th percentile
-  std::string beta_by;      ///< per-vertex scalar that modulates beta
-  std::string beta_range;   ///< "LO,HI"; empty: 1st to 99th percentile
-  std::string camera;  ///< "AZ,EL,DIST"
+  std::string color_range;           ///< "LO,HI"; empty: 1st to 99th percentile
+  std::string beta_by;               ///< per-vertex scalar that modulates beta
+  std::string beta_range;            ///< "LO,HI"; empty: 1st to 99th percentile
+  std::vector<std::string> scalars;  ///< NAME=FILE:VAR, sampled from netCDF grids
+  int time = 0;                      ///< time index of netCDF data, from 0
+  std::string camera;                ///< "AZ,EL,DIST"
   bool ortho = false;
   float fov = 30.0f;
   float orbit = 0.0f;

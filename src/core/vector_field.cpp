@@ -7,6 +7,7 @@
 
 #include "ibfvs/core/curvature.h"
 #include "ibfvs/core/error.h"
+#include "ibfvs/core/lonlat_grid.h"
 
 namespace ibfvs {
 
@@ -88,6 +89,16 @@ FieldSpec FieldSpec::parse(std::string_view text) {
     parse_options(s, parts, "rot90", spec.rotate90, spec.value);
     return spec;
   }
+  if (parts[0] == "wind") {
+    spec.kind = FieldKind::Wind;
+    if (parts.size() != 2 && parts.size() != 4)
+      throw InputError("--field: expected wind:FILE or wind:FILE:UVAR:VVAR, got '" + s + "'");
+    spec.path = parts[1];
+    if (parts.size() == 4) spec.east = parts[2], spec.north = parts[3];
+    if (spec.path.empty() || spec.east.empty() || spec.north.empty())
+      throw InputError("--field: empty file or variable name in '" + s + "'");
+    return spec;
+  }
   if (parts[0] == "gradient") {
     spec.kind = FieldKind::Gradient;
     if (parts.size() < 2 || (parts[1] != "down" && parts[1] != "up"))
@@ -102,7 +113,7 @@ FieldSpec FieldSpec::parse(std::string_view text) {
   if (colon == std::string::npos || (name != "uniform" && name != "rotate"))
     throw InputError("--field: unknown field '" + s +
                      "' (expected file, uniform:X,Y,Z, rotate:X,Y,Z, elements, "
-                     "principal:min|max or gradient:down|up)");
+                     "principal:min|max, gradient:down|up or wind:FILE)");
   spec.kind = name == "uniform" ? FieldKind::Uniform : FieldKind::Rotate;
   spec.value = parse_vec3(std::string_view(s).substr(colon + 1), "--field " + name);
   if (spec.kind == FieldKind::Rotate && glm::length(spec.value) == 0.0f)
@@ -138,6 +149,9 @@ std::string FieldSpec::to_string() const {
       out << "gradient:" << (downhill ? "down" : "up") << ":";
       vec();
       if (normalize) out << ":normalize";
+      break;
+    case FieldKind::Wind:
+      out << "wind:" << path << ":" << east << ":" << north << " at time index " << time;
       break;
   }
   return out.str();
@@ -182,6 +196,16 @@ std::vector<glm::vec3> evaluate_field(const TriMesh& mesh, const FieldSpec& spec
         // direction is not (nearly) perpendicular to it.
         if (glm::dot(d, spec.value) < 0.0f) d = -d;
         v[i] = spec.rotate90 ? glm::cross(c.normal[i], d) : d;
+      }
+      break;
+    }
+    case FieldKind::Wind: {
+      const LonLatGrid u = read_lonlat_grid(spec.path, spec.east, spec.time);
+      const LonLatGrid w = read_lonlat_grid(spec.path, spec.north, spec.time);
+      try {
+        v = lonlat_vectors(mesh, u, w);
+      } catch (const InputError& e) {
+        throw InputError(spec.path + ": " + e.what());
       }
       break;
     }

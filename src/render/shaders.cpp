@@ -104,14 +104,16 @@ void main() {
   float diffuse = max(dot(n, to_eye), 0.0);
   float specular = pow(max(dot(n, to_eye), 0.0), 40.0);  // half vector = view for a headlight
   vec3 albedo = u_surface_color;
-  if (u_use_color != 0) {
+  if (u_use_color != 0 && !isnan(v_scalars.x)) {  // missing data keeps the surface colour
     float t = clamp((v_scalars.x - u_color_range.x) / (u_color_range.y - u_color_range.x), 0.0, 1.0);
     albedo = texture(u_color_map, vec2((t * 255.0 + 0.5) / 256.0, 0.5)).rgb;
   }
   vec3 shaded = albedo * (0.18 + 0.82 * diffuse) + vec3(0.25 * specular);
   float beta = u_beta;
   if (u_use_beta != 0)
-    beta *= clamp((v_scalars.y - u_beta_range.x) / (u_beta_range.y - u_beta_range.x), 0.0, 1.0);
+    beta *= isnan(v_scalars.y)
+                ? 0.0
+                : clamp((v_scalars.y - u_beta_range.x) / (u_beta_range.y - u_beta_range.x), 0.0, 1.0);
   o_color = vec4(beta * ft + (1.0 - beta) * shaded, 1.0);
 }
 )";

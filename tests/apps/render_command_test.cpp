@@ -1,6 +1,7 @@
 // `ibfvs render` run as a user runs it: real process, exit status, stderr.
 
 #include <cstdlib>
+#include <filesystem>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -107,6 +108,31 @@ TEST_F(RenderCommand, ColourAndBetaByScalars) {
   expect_error(m + "--color-by x --color-range 1", "--color-range");
   expect_error(m + "--color-by x --color-range 2,1", "--color-range");
   expect_error(m + "--beta-by y --beta-range 0,nan", "--beta-range");
+}
+
+TEST_F(RenderCommand, WindOnTheGlobe) {
+  expect_error("render --mesh globe:2 --field wind:missing.cdf --out x.png",
+               "missing.cdf: no such file");
+  expect_error("render --mesh globe:9 --out x.png", "--mesh globe:9");
+  expect_error("render --mesh globe:2 --scalar relief --out x.png",
+               "--scalar: expected NAME=FILE:VAR");
+  expect_error("render --mesh globe:2 --time -1 --out x.png", "--time");
+  const std::string earth = std::string(IBFVS_TEST_DATA_DIR) + "/earth/";
+  if (!std::filesystem::exists(earth + "monthly_navy_winds.cdf"))
+    GTEST_SKIP() << "fetched data missing: " << earth;
+  const std::string winds = earth + "monthly_navy_winds.cdf";
+  expect_error("render --mesh globe:2 --field wind:" + winds + ":UWND:NOPE --out x.png",
+               "no variable 'NOPE'");
+  expect_error("render --mesh globe:2 --field wind:" + winds + " --time 132 --out x.png",
+               "time index 132 is out of range for 'UWND' (132 time steps");
+  expect_error("render --mesh globe:2 --scalar r=" + earth + "etopo20.cdf:RELIEF --out x.png",
+               "no variable 'RELIEF'");
+  const Result r =
+      run("render --mesh globe:3 --field wind:" + winds + " --time 6 --scalar r=" + earth +
+          "etopo20.cdf:ROSE --color-by r --beta-by speed --size 64x64 "
+          "--frames 3 --out g.png");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("UWND:VWND at time index 6"), std::string::npos) << r.out;
 }
 
 TEST_F(RenderCommand, NanVectorsAreZeroedWithAWarning) {

@@ -24,6 +24,7 @@ enum class FieldKind {
   Elements,   ///< a uniform flow plus potential-flow elements
   Principal,  ///< unit principal directions, signed along a user vector
   Gradient,   ///< steepest descent or ascent of the height along a user axis
+  Wind,       ///< eastward and northward components from a netCDF lon/lat grid
 };
 
 /// A parsed `--field` value:
@@ -36,6 +37,9 @@ enum class FieldKind {
 ///                                          then optionally turned 90 degrees about n
 ///   gradient:down|up[:X,Y,Z][:normalize]   steepest descent or ascent of the height
 ///                                          along X,Y,Z (default +Y, up) on the surface
+///   wind:FILE[:UVAR:VVAR]                  eastward and northward components (default
+///                                          UWND, VWND) of a netCDF lon/lat grid at time
+///                                          index `time`, on a sphere about the origin
 struct FieldSpec {
   FieldKind kind = FieldKind::Rotate;
   glm::vec3 value{0.0f, 1.0f, 0.0f};  ///< uniform vector, rotation axis, background flow,
@@ -45,6 +49,10 @@ struct FieldSpec {
   bool downhill = true;               ///< gradient: descent (true) or ascent
   bool normalize = false;             ///< gradient: unit vectors where the slope is not zero
   std::vector<FlowElement> elements;  ///< elements: the flow elements (from --element)
+  std::string path;                   ///< wind: the netCDF file
+  std::string east = "UWND";          ///< wind: eastward component variable
+  std::string north = "VWND";         ///< wind: northward component variable
+  std::size_t time = 0;               ///< wind: time index, from 0
 
   /// Parses the textual form; throws InputError naming the text.
   static FieldSpec parse(std::string_view text);

@@ -87,6 +87,7 @@ LoadedMesh load_mesh(const std::string& path, int subdivide) {
       std::fprintf(stderr, "ibfvs: warning: %s\n", w.c_str());
     out.name = path;
   }
+  out.file_vertices = out.mesh.vertex_count();
   if (subdivide > 0) {
     try {
       out.mesh = loop_subdivide(out.mesh, subdivide);
@@ -94,7 +95,7 @@ LoadedMesh load_mesh(const std::string& path, int subdivide) {
       throw InputError(out.name + ": " + e.what());
     }
   }
-  optimize_for_gpu(out.mesh);
+  out.vertex_order = optimize_for_gpu(out.mesh);
   return out;
 }
 

@@ -13,6 +13,8 @@ struct LoadedMesh {
   std::string name;                  ///< what to call it in messages: the path, or the demo's name
   bool demo = false;                 ///< no path was given
   bool generated_landscape = false;  ///< made by `landscape[:SEED[:CONTROLS[:RESOLUTION]]]`
+  std::size_t file_vertices = 0;     ///< vertex count as read, before subdivision
+  std::vector<unsigned> vertex_order;  ///< new index of each vertex after subdivision (GPU order)
 };
 
 /// Reads `path` (printing the reader's warnings), or with an empty path the

@@ -4,8 +4,10 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <optional>
+#include <utility>
 
 #include <CLI/CLI.hpp>
 
@@ -13,6 +15,7 @@
 #include "ibfvs/core/colormap.h"
 #include "ibfvs/core/displacement.h"
 #include "ibfvs/core/error.h"
+#include "ibfvs/core/gpu_prep.h"
 #include "ibfvs/core/image.h"
 #include "ibfvs/core/lonlat_grid.h"
 #include "ibfvs/core/mesh_io.h"
@@ -110,8 +113,18 @@ void add_render_options(CLI::App& cmd, RenderOptions& o) {
       ->expected(1)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   cmd.add_option("--time", o.time,
-                 "Time index of netCDF data (wind: and --scalar), from 0: a month of "
-                 "monthly_navy_winds.cdf (0 = January 1980) or of coads_climatology.cdf")
+                 "Time index of netCDF data (wind: and --scalar), from 0, e.g. a month of "
+                 "monthly_navy_winds.cdf (0 = January 1980) or of coads_climatology.cdf; or a "
+                 "range A:B that the animation plays through, --frames-per-step frames per "
+                 "step, interpolating linearly between steps and looping")
+      ->capture_default_str();
+  cmd.add_option("--field-step", o.field_steps,
+                 "A PLY file with vx vy vz on the mesh's vertices: one time step of an unsteady "
+                 "field, repeatable, played in order like --time A:B")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  cmd.add_option("--frames-per-step", o.frames_per_step,
+                 "Frames from one time step of an unsteady field to the next")
       ->capture_default_str();
   cmd.add_option("--camera", o.camera,
                  "AZIMUTH,ELEVATION,DISTANCE: degrees about +Y and above the horizon, distance in "
@@ -180,6 +193,27 @@ glm::vec2 parse_range(const std::string& text, const char* option) {
     throw InputError(std::string(option) + ": expected LO,HI, two numbers with LO < HI, got '" +
                      text + "'");
   return {v[0], v[1]};
+}
+
+// "A" or "A:B": time indices from 0, A <= B.
+std::pair<std::size_t, std::size_t> parse_time_range(const std::string& text) {
+  const std::size_t colon = text.find(':');
+  const auto index = [&](const std::string& part) {
+    std::size_t used = 0;
+    long v = -1;
+    try {
+      v = std::stol(part, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || used != part.size() || v < 0)
+      throw InputError("--time: expected an index from 0 or a range A:B, got '" + text + "'");
+    return static_cast<std::size_t>(v);
+  };
+  const std::size_t a = index(text.substr(0, colon));
+  const std::size_t b = colon == std::string::npos ? a : index(text.substr(colon + 1));
+  if (b < a) throw InputError("--time: the range " + text + " runs backwards");
+  return {a, b};
 }
 
 InjectMode parse_inject(const std::string& text) {
@@ -267,8 +301,16 @@ int run_render(const RenderOptions& o) {
     throw InputError("--element: needs --field elements (or no --field), got --field " + o.field);
   if (field_spec)
     for (const std::string& e : o.elements) field_spec->elements.push_back(FlowElement::parse(e));
-  if (o.time < 0) throw InputError("--time: must not be negative");
-  if (field_spec) field_spec->time = static_cast<std::size_t>(o.time);
+  const auto [time_first, time_last] = parse_time_range(o.time);
+  if (field_spec) field_spec->time = time_first;
+  if (o.frames_per_step < 1 || o.frames_per_step > 100000)
+    throw InputError("--frames-per-step: must be between 1 and 100000");
+  if (!o.field_steps.empty() && o.subdivide > 0)
+    throw InputError("--field-step: cannot be combined with --subdivide");
+  if (!o.field_steps.empty() && field_spec && field_spec->kind != FieldKind::File)
+    throw InputError("--field-step: needs --field file (or no --field), got --field " + o.field);
+  if (time_last > time_first && (!field_spec || field_spec->kind != FieldKind::Wind))
+    throw InputError("--time: a range A:B needs --field wind:...");
   CameraParams cam;
   if (!o.camera.empty()) {
     const glm::vec3 c = parse_vec3(o.camera, "--camera");
@@ -295,7 +337,7 @@ int run_render(const RenderOptions& o) {
     const std::string name = spec.substr(0, eq), path = spec.substr(eq + 1, colon - eq - 1);
     const std::string var = spec.substr(colon + 1);
     LonLatGrid grid = read_lonlat_grid(path, var, 0);
-    if (grid.time_steps > 1) grid = read_lonlat_grid(path, var, static_cast<std::size_t>(o.time));
+    if (grid.time_steps > 1) grid = read_lonlat_grid(path, var, time_first);
     mesh.scalars[name] = lonlat_scalars(mesh, grid);
   }
 
@@ -305,10 +347,38 @@ int run_render(const RenderOptions& o) {
                  : loaded.generated_landscape                 ? FieldSpec::parse("gradient:down")
                                                               : FieldSpec::parse("rotate:0,1,0");
   }
+  // An unsteady field: its steps, evaluated when the animation reaches them.
+  std::size_t step_count = 1;
+  std::function<std::vector<glm::vec3>(std::size_t)> step_field;
+  if (!o.field_steps.empty()) {
+    step_count = o.field_steps.size();
+    step_field = [&](std::size_t s) {
+      const std::string& file = o.field_steps[s];
+      const TriMesh step = read_mesh(file);
+      if (step.vertex_count() != loaded.file_vertices)
+        throw InputError("--field-step: " + file + ": " + std::to_string(step.vertex_count()) +
+                         " vertices, the mesh has " + std::to_string(loaded.file_vertices));
+      if (step.vectors.empty()) throw InputError("--field-step: " + file + ": has no vx vy vz");
+      TriMesh on_mesh;
+      on_mesh.positions = mesh.positions;
+      on_mesh.normals = mesh.normals;
+      on_mesh.triangles = mesh.triangles;
+      on_mesh.vectors = remap_vertex_data(step.vectors, loaded.vertex_order);
+      return evaluate_field(on_mesh, FieldSpec::parse("file"), tangent);
+    };
+  } else if (time_last > time_first) {
+    step_count = time_last - time_first + 1;
+    read_lonlat_grid(field_spec->path, field_spec->east, time_last);  // the range exists
+    step_field = [&](std::size_t s) {
+      FieldSpec at = *field_spec;
+      at.time = time_first + s;
+      return evaluate_field(mesh, at, tangent);
+    };
+  }
   FieldReport field_report;
   std::vector<glm::vec3> field;
   try {
-    field = evaluate_field(mesh, *field_spec, tangent, &field_report);
+    field = step_field ? step_field(0) : evaluate_field(mesh, *field_spec, tangent, &field_report);
   } catch (const InputError& e) {
     throw InputError((demo ? mesh_name : o.mesh) + ": " + e.what());
   }
@@ -385,7 +455,25 @@ int run_render(const RenderOptions& o) {
     video = std::make_unique<VideoWriter>(out, size.width, size.height, o.fps);
   Progress progress(frames, !o.quiet);
   const auto start = std::chrono::steady_clock::now();
+  // Unsteady: the current and next step live on the GPU, mixed per frame.
+  std::size_t step = 0;
+  std::vector<glm::vec3> next_field;
+  if (step_count > 1) {
+    next_field = step_field(1 % step_count);
+    renderer.set_field_steps(field, next_field);
+  }
   for (int k = 0; k < frames; ++k) {
+    if (step_count > 1) {
+      const double t = static_cast<double>(k) / o.frames_per_step;
+      const auto s = static_cast<std::size_t>(t) % step_count;
+      if (s != step) {  // one step on: t grows by at most 1 per frame
+        step = s;
+        field = std::move(next_field);
+        next_field = step_field((s + 1) % step_count);
+        renderer.set_field_steps(field, next_field);
+      }
+      renderer.set_field_mix(static_cast<float>(t - std::floor(t)));
+    }
     if (k > 0 && o.orbit != 0.0f) camera.orbit(o.orbit);
     renderer.render_frame({camera.view(), camera.projection()}, dt);
     if (kind == OutputKind::Video) video->write(renderer.read_output());

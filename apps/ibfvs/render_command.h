@@ -40,8 +40,11 @@ struct RenderOptions {
   std::string beta_by;               ///< per-vertex scalar that modulates beta
   std::string beta_range;            ///< "LO,HI"; empty: 1st to 99th percentile
   std::vector<std::string> scalars;  ///< NAME=FILE:VAR, sampled from netCDF grids
-  int time = 0;                      ///< time index of netCDF data, from 0
-  std::string camera;                ///< "AZ,EL,DIST"
+  std::string time = "0";            ///< time index of netCDF data, from 0, or a range A:B
+  std::vector<std::string>
+      field_steps;           ///< PLY files whose vx vy vz are the steps of an unsteady field
+  int frames_per_step = 30;  ///< frames from one time step to the next
+  std::string camera;        ///< "AZ,EL,DIST"
   bool ortho = false;
   float fov = 30.0f;
   float orbit = 0.0f;

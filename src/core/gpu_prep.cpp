@@ -23,7 +23,7 @@ float vertex_cache_acmr(const TriMesh& mesh) {
       .acmr;
 }
 
-void optimize_for_gpu(TriMesh& mesh) {
+std::vector<unsigned> optimize_for_gpu(TriMesh& mesh) {
   static_assert(sizeof(Triangle) == 3 * sizeof(unsigned));
   auto* indices = reinterpret_cast<unsigned*>(mesh.triangles.data());
   const std::size_t index_count = mesh.triangles.size() * 3;
@@ -36,6 +36,7 @@ void optimize_for_gpu(TriMesh& mesh) {
   remap(mesh.normals, map, kept);
   remap(mesh.vectors, map, kept);
   for (auto& [name, values] : mesh.scalars) remap(values, map, kept);
+  return map;
 }
 
 }  // namespace ibfvs

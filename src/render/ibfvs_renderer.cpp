@@ -1,5 +1,6 @@
 #include "ibfvs/render/ibfvs_renderer.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <string>
@@ -70,6 +71,7 @@ IbfvsRenderer::IbfvsRenderer(const RenderSettings& settings) : settings_(setting
   u_.color_range = program_.location("u_color_range");
   u_.use_beta = program_.location("u_use_beta");
   u_.beta_range = program_.location("u_beta_range");
+  u_.field_mix = program_.location("u_field_mix");
   color_map_ = gl::Texture2D(256, 1, gl::Format::RGBA32F, true);
   u_.phase_size = program_.location("u_phase_size");
   u_.inverse_size = program_.location("u_inverse_size");
@@ -144,6 +146,7 @@ void IbfvsRenderer::set_mesh(const TriMesh& mesh, std::span<const glm::vec3> fie
   }
   vertices_ = gl::Buffer(bytes_of(std::span<const float>(interleaved)));
   field_ = gl::Buffer(bytes_of(field), true);
+  field_next_ = gl::Buffer(bytes_of(field), true);
   const std::vector<glm::vec2> zeros(mesh.positions.size(), glm::vec2(0.0f));
   scalars_ = gl::Buffer(bytes_of(std::span<const glm::vec2>(zeros)), true);
   indices_ = gl::Buffer(bytes_of(std::span<const Triangle>(mesh.triangles)));
@@ -151,6 +154,7 @@ void IbfvsRenderer::set_mesh(const TriMesh& mesh, std::span<const glm::vec3> fie
   vao_.attribute(0, vertices_, 0, 3, 0, 6 * sizeof(float));
   vao_.attribute(1, vertices_, 1, 3, 3 * sizeof(float), 6 * sizeof(float));
   vao_.attribute(2, field_, 2, 3, 0, sizeof(glm::vec3));
+  vao_.attribute(4, field_next_, 4, 3, 0, sizeof(glm::vec3));
   vao_.attribute(3, scalars_, 3, 2, 0, sizeof(glm::vec2));
   vao_.index_buffer(indices_);
   index_count_ = mesh.triangles.size() * 3;
@@ -162,6 +166,20 @@ void IbfvsRenderer::set_field(std::span<const glm::vec3> field) {
   if (field.size() != vertex_count_)
     throw InputError("renderer: the field needs one vector per vertex");
   field_.update(0, bytes_of(field));
+  field_next_.update(0, bytes_of(field));
+  program_.set(u_.field_mix, 0.0f);
+}
+
+void IbfvsRenderer::set_field_steps(std::span<const glm::vec3> current,
+                                    std::span<const glm::vec3> next) {
+  if (current.size() != vertex_count_ || next.size() != vertex_count_)
+    throw InputError("renderer: each field step needs one vector per vertex");
+  field_.update(0, bytes_of(current));
+  field_next_.update(0, bytes_of(next));
+}
+
+void IbfvsRenderer::set_field_mix(float mix) {
+  program_.set(u_.field_mix, std::clamp(mix, 0.0f, 1.0f));
 }
 
 void IbfvsRenderer::set_scalars(std::span<const float> color, std::span<const float> beta) {

@@ -5,13 +5,15 @@ namespace ibfvs::shaders {
 const char* const kIbfvsVertex = R"(#version 450 core
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
-layout(location = 2) in vec3 a_vector;
+layout(location = 2) in vec3 a_vector;       // the field at the current time step
+layout(location = 4) in vec3 a_vector_next;  // and at the next one (unsteady flow)
 layout(location = 3) in vec2 a_scalars;  // (colour scalar, beta scalar)
 
 uniform mat4 u_view_projection;          // T_k: where the vertex is drawn
 uniform mat4 u_advect_view_projection;   // T_k or T_{k-1}: where its texture comes from
 uniform mat4 u_view;
 uniform float u_dt;
+uniform float u_field_mix;  // 0: a_vector, 1: a_vector_next
 
 // Equation 13, t = T(r - v dt), evaluated per fragment: the homogeneous
 // clip-space point T(r_i - v_i dt) of each vertex is interpolated
@@ -28,7 +30,8 @@ out vec3 v_position_eye;
 
 void main() {
   gl_Position = u_view_projection * vec4(a_position, 1.0);
-  v_from = u_advect_view_projection * vec4(a_position - a_vector * u_dt, 1.0);
+  vec3 v = mix(a_vector, a_vector_next, u_field_mix);
+  v_from = u_advect_view_projection * vec4(a_position - v * u_dt, 1.0);
   v_scalars = a_scalars;
   v_normal_eye = mat3(u_view) * a_normal;
   v_position_eye = (u_view * vec4(a_position, 1.0)).xyz;

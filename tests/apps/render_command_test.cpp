@@ -135,6 +135,42 @@ TEST_F(RenderCommand, WindOnTheGlobe) {
   EXPECT_NE(r.out.find("UWND:VWND at time index 6"), std::string::npos) << r.out;
 }
 
+TEST_F(RenderCommand, UnsteadyFields) {
+  TriMesh sq = make_square(1.0f, 4);
+  sq.vectors.assign(sq.vertex_count(), glm::vec3(1, 0, 0));
+  write_ply(sq, dir_ / "f0.ply", true);
+  sq.vectors.assign(sq.vertex_count(), glm::vec3(0, 1, 0));
+  write_ply(sq, dir_ / "f1.ply", true);
+  const Result r =
+      run("render --mesh f0.ply --field-step f0.ply --field-step f1.ply "
+          "--frames-per-step 3 --frames 8 --size 32x32 --out u.png -q");
+  EXPECT_EQ(r.status, 0) << r.err;
+  TriMesh small = make_square(1.0f, 2);
+  small.vectors.assign(small.vertex_count(), glm::vec3(1, 0, 0));
+  write_ply(small, dir_ / "small.ply", true);
+  expect_error(
+      "render --mesh f0.ply --field-step f0.ply --field-step small.ply --frames 8 "
+      "--frames-per-step 2 --out x.png",
+      "--field-step: small.ply: 9 vertices, the mesh has 25");
+  expect_error("render --mesh f0.ply --field-step f0.ply --subdivide 1 --out x.png",
+               "--field-step: cannot be combined with --subdivide");
+  expect_error("render --mesh f0.ply --time 3:1 --out x.png",
+               "--time: the range 3:1 runs backwards");
+  expect_error("render --mesh f0.ply --time 0:2 --out x.png",
+               "--time: a range A:B needs --field wind");
+  expect_error("render --mesh f0.ply --time x --out x.png", "--time");
+  expect_error("render --mesh f0.ply --frames-per-step 0 --out x.png", "--frames-per-step");
+  const std::string coads = std::string(IBFVS_TEST_DATA_DIR) + "/earth/coads_climatology.cdf";
+  if (!std::filesystem::exists(coads)) GTEST_SKIP() << "fetched data missing: " << coads;
+  const Result year = run("render --mesh globe:3 --field wind:" + coads +
+                          ":UWND:VWND --time 0:11 --frames-per-step 2 --frames 25 --size 32x32 "
+                          "--out y.png -q");
+  EXPECT_EQ(year.status, 0) << year.err;
+  expect_error("render --mesh globe:3 --field wind:" + coads +
+                   ":UWND:VWND --time 0:12 --frames 2 --out x.png",
+               "time index 12 is out of range");
+}
+
 TEST_F(RenderCommand, NanVectorsAreZeroedWithAWarning) {
   TriMesh sq = make_square(1.0f, 2);
   sq.vectors.assign(sq.vertex_count(), glm::vec3(1, 0, 0));

@@ -525,6 +525,42 @@ TEST_F(RendererGLTest, ScalarsColourTheSurfaceAndModulateBeta) {
   EXPECT_THROW(settings.validate(), InputError);
 }
 
+TEST_F(RendererGLTest, UnsteadyFieldHalfwayIsTheMeanField) {
+  // Two time steps mixed 0.5 on the GPU advect exactly like their mean.
+  Scene s = sphere_scene("rotate:0,1,0", TangentMode::Project);
+  const auto other =
+      evaluate_field(s.mesh, FieldSpec::parse("uniform:0.3,0.8,0"), TangentMode::Project);
+  std::vector<glm::vec3> mean(other.size());
+  for (std::size_t i = 0; i < mean.size(); ++i) mean[i] = 0.5f * (s.field[i] + other[i]);
+  RenderSettings settings;
+  settings.width = settings.height = 96;
+  const auto render = [&](bool steps) {
+    IbfvsRenderer r(settings);
+    r.set_mesh(s.mesh, steps ? s.field : mean);
+    if (steps) {
+      r.set_field_steps(s.field, other);
+      r.set_field_mix(0.5f);
+    }
+    for (int k = 0; k < 30; ++k) r.render_frame({s.camera.view(), s.camera.projection()}, 0.01f);
+    return r.read_texture().select_channels(0, 1).pixels;
+  };
+  const auto a = render(true), b = render(false);
+  double worst = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) worst = std::max(worst, double(std::abs(a[i] - b[i])));
+  EXPECT_LT(worst, 2e-3);
+  // And mix 0 is the first step: different from the mean.
+  IbfvsRenderer r(settings);
+  r.set_mesh(s.mesh, s.field);
+  r.set_field_steps(s.field, other);
+  r.set_field_mix(0.0f);
+  for (int k = 0; k < 30; ++k) r.render_frame({s.camera.view(), s.camera.projection()}, 0.01f);
+  const auto c = r.read_texture().select_channels(0, 1).pixels;
+  double diff = 0;
+  for (std::size_t i = 0; i < c.size(); ++i) diff = std::max(diff, double(std::abs(c[i] - b[i])));
+  EXPECT_GT(diff, 0.1);
+  EXPECT_THROW(r.set_field_steps(s.field, std::vector<glm::vec3>(3)), InputError);
+}
+
 TEST_F(RendererGLTest, RejectsMismatchedInput) {
   RenderSettings settings;
   settings.width = settings.height = 32;

@@ -80,6 +80,11 @@ class IbfvsRenderer {
   void set_mesh(const TriMesh& mesh, std::span<const glm::vec3> field);
   /// Replaces the field (same vertex count); keeps the texture.
   void set_field(std::span<const glm::vec3> field);
+  /// An unsteady field: two time steps, interpolated linearly on the GPU with
+  /// set_field_mix (paper section 1: "it can handle ... unsteady flow").
+  void set_field_steps(std::span<const glm::vec3> current, std::span<const glm::vec3> next);
+  /// Position between the two steps, in [0, 1].
+  void set_field_mix(float mix);
   /// Per-vertex scalars for colouring (`color`) and for modulating beta
   /// (`beta`); either may be empty (zeros). Sizes must match the mesh.
   void set_scalars(std::span<const float> color, std::span<const float> beta);
@@ -116,6 +121,7 @@ class IbfvsRenderer {
   gl::Framebuffer framebuffer_[2];  // [i] draws into texture_[i] and output_
   gl::Buffer vertices_;
   gl::Buffer field_;
+  gl::Buffer field_next_;
   gl::Buffer scalars_;       // (colour, beta) per vertex
   gl::Texture2D color_map_;  // 256 x 1 RGBA float
   gl::Buffer indices_;
@@ -130,7 +136,7 @@ class IbfvsRenderer {
   struct Uniforms {
     int view_projection, advect_view_projection, view, dt, alpha, beta, inject, noise_time,
         noise_scale, profile, spike_width, surface_color, phase_size, inverse_size, use_color,
-        color_range, use_beta, beta_range;
+        color_range, use_beta, beta_range, field_mix;
   } u_{};
   void apply_settings_uniforms();
 };

@@ -3,14 +3,18 @@
 
 #include <malloc.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <exception>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
 #include "ibfvs/geometry_command.h"
 #include "ibfvs/render_command.h"
+#include "ibfvs/scene.h"
 
 int main(int argc, char** argv) {
   // Mesa's llvmpipe allocates and frees large buffers every frame; glibc's
@@ -36,8 +40,22 @@ int main(int argc, char** argv) {
     std::fputs(app.help().c_str(), stderr);
     return 1;
   }
+  // `ibfvs render SCENE.toml [options]`: the scene's settings go first, so the
+  // command line's own options override them.
+  std::vector<std::string> args(argv + 1, argv + argc);
+  if (args.size() >= 2 && args[0] == "render" && ibfvs::app::is_scene_path(args[1])) {
+    try {
+      std::vector<std::string> scene = ibfvs::app::scene_arguments(args[1]);
+      args.erase(args.begin() + 1);
+      args.insert(args.begin() + 1, scene.begin(), scene.end());
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "ibfvs: error: %s\n", e.what());
+      return 1;
+    }
+  }
+  std::reverse(args.begin(), args.end());  // CLI11 takes them last-first
   try {
-    app.parse(argc, argv);
+    app.parse(args);
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help
     // One line in the same form as every other error.

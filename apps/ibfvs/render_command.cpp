@@ -33,6 +33,8 @@ namespace ibfvs::app {
 namespace fs = std::filesystem;
 
 void add_render_options(CLI::App& cmd, RenderOptions& o) {
+  // A scene's value comes first on the command line; the user's, later, wins.
+  cmd.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
   cmd.add_option("--mesh", o.mesh,
                  "Triangle mesh: .off .obj .ply .stl (PLY vertex properties vx vy vz are a "
                  "vector field). Default: the demo, data/meshes/bunny00.off, else cow.off, else "

@@ -1,5 +1,7 @@
 #include "ibfvs/mesh_loading.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <optional>
@@ -31,6 +33,91 @@ int parse_int(const std::string& text, const std::string& spec, int lo, int hi) 
     throw InputError("--mesh " + spec + ": '" + text + "' must be a whole number in " +
                      std::to_string(lo) + ".." + std::to_string(hi));
   return v;
+}
+
+// `count` comma-separated finite numbers.
+std::vector<float> parse_floats(const std::string& text, std::size_t count,
+                                const std::string& what) {
+  std::vector<float> out;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', start), text.size());
+    const std::string part = text.substr(start, comma - start);
+    std::size_t used = 0;
+    float v = 0.0f;
+    try {
+      v = std::stof(part, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || used != part.size() || !std::isfinite(v)) break;
+    out.push_back(v);
+    start = comma + 1;
+  }
+  if (out.size() != count || start <= text.size())
+    throw InputError(what + ": expected " + std::to_string(count) + " numbers in '" + text + "'");
+  return out;
+}
+
+// relief:FILE:VAR:LON0,LON1,LAT0,LAT1[:SCALE[:RESOLUTION]]: a height field of
+// a gridded variable over a longitude/latitude box; x along longitude, -z
+// along latitude, the longer side spanning [-1, 1], height = SCALE * value
+// (default: the largest |value| lifts 0.1).
+TriMesh make_relief(const std::string& spec) {
+  std::vector<std::string> parts;
+  std::size_t start = 0;
+  for (std::size_t c; (c = spec.find(':', start)) != std::string::npos; start = c + 1)
+    parts.push_back(spec.substr(start, c - start));
+  parts.push_back(spec.substr(start));
+  if (parts.size() < 4 || parts.size() > 6)
+    throw InputError("--mesh " + spec +
+                     ": expected relief:FILE:VAR:LON0,LON1,LAT0,LAT1[:SCALE[:RESOLUTION]]");
+  const std::vector<float> box = parse_floats(parts[3], 4, "--mesh " + spec);
+  const float lon0 = box[0], lon1 = box[1], lat0 = box[2], lat1 = box[3];
+  if (!(lon1 > lon0) || !(lat1 > lat0) || lat0 < -90 || lat1 > 90 || lon1 - lon0 > 360)
+    throw InputError("--mesh " + spec + ": the box needs LON0 < LON1 and -90 <= LAT0 < LAT1 <= 90");
+  const LonLatGrid grid = read_lonlat_grid(parts[1], parts[2], 0);
+  const int res = parts.size() > 5 ? parse_int(parts[5], spec, 1, 4096) : 256;
+  const float span = std::max(lon1 - lon0, lat1 - lat0);
+  const int nx = std::max(1, static_cast<int>(std::lround(res * (lon1 - lon0) / span)));
+  const int ny = std::max(1, static_cast<int>(std::lround(res * (lat1 - lat0) / span)));
+  std::vector<float> values;
+  float largest = 0.0f;
+  for (int j = 0; j <= ny; ++j)
+    for (int i = 0; i <= nx; ++i) {
+      const float v = grid.sample(lon0 + (lon1 - lon0) * i / nx, lat0 + (lat1 - lat0) * j / ny);
+      values.push_back(v);
+      if (std::isfinite(v)) largest = std::max(largest, std::abs(v));
+    }
+  float scale = largest > 0.0f ? 0.1f / largest : 0.0f;
+  if (parts.size() > 4 && !parts[4].empty()) {
+    std::size_t used = 0;
+    try {
+      scale = std::stof(parts[4], &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || used != parts[4].size() || !std::isfinite(scale))
+      throw InputError("--mesh " + spec + ": the scale '" + parts[4] + "' is not a number");
+  }
+  TriMesh m;
+  std::vector<float>& relief = m.scalars[parts[2]];
+  for (int j = 0; j <= ny; ++j)
+    for (int i = 0; i <= nx; ++i) {
+      const float v = values[static_cast<std::size_t>(j) * (nx + 1) + i];
+      const float h = std::isfinite(v) ? v : 0.0f;
+      m.positions.emplace_back((2.0f * i / nx - 1.0f) * (lon1 - lon0) / span, scale * h,
+                               -(2.0f * j / ny - 1.0f) * (lat1 - lat0) / span);
+      relief.push_back(v);
+    }
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const auto id = [&](int a, int b) { return static_cast<std::uint32_t>(b * (nx + 1) + a); };
+      m.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      m.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  compute_vertex_normals(m);
+  return m;
 }
 
 TriMesh make_landscape(const std::string& spec) {
@@ -76,6 +163,10 @@ LoadedMesh load_mesh(const std::string& path, int subdivide) {
         colon == std::string::npos ? 6 : parse_int(path.substr(colon + 1), path, 0, 8);
     out.mesh = make_globe(level);
     out.name = path;
+  } else if (path.rfind("relief:", 0) == 0 && !fs::exists(path)) {
+    out.mesh = make_relief(path);
+    out.name = path;
+    out.generated_landscape = true;
   } else if (path.rfind("landscape", 0) == 0 && !fs::exists(path)) {
     out.mesh = make_landscape(path);
     out.name = path;

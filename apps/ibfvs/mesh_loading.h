@@ -24,6 +24,10 @@ struct LoadedMesh {
 /// (default seed 1, 8 controls, 256 cells), heights within +-0.3.
 /// `globe[:LEVEL]` is a geodesic unit sphere (default level 6: 81,920
 /// triangles), north at +Y, longitude 0 at +Z, for wind: fields.
+/// `relief:FILE:VAR:LON0,LON1,LAT0,LAT1[:SCALE[:RESOLUTION]]` is a height field
+/// of a netCDF lon/lat variable over a box (x east, -z north, the longer side
+/// spanning [-1, 1], height SCALE * value, by default 0.1 at the largest
+/// |value|), with the variable kept as a scalar of the same name.
 /// Then subdivides `subdivide` times and orders the mesh for the GPU's vertex
 /// cache (optimize_for_gpu). Throws InputError naming the file.
 LoadedMesh load_mesh(const std::string& path, int subdivide);

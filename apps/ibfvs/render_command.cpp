@@ -114,6 +114,10 @@ void add_render_options(CLI::App& cmd, RenderOptions& o) {
                  "--beta-by; e.g. relief=data/earth/etopo20.cdf:ROSE")
       ->expected(1)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  cmd.add_option("--displace", o.displace,
+                 "NAME:FACTOR: move every vertex along its normal by FACTOR times the scalar NAME "
+                 "(names as --color-by), e.g. relief:0.00002 on the globe for an exaggerated "
+                 "relief; normals are recomputed");
   cmd.add_option("--time", o.time,
                  "Time index of netCDF data (wind: and --scalar), from 0, e.g. a month of "
                  "monthly_navy_winds.cdf (0 = January 1980) or of coads_climatology.cdf; or a "
@@ -341,6 +345,32 @@ int run_render(const RenderOptions& o) {
     LonLatGrid grid = read_lonlat_grid(path, var, 0);
     if (grid.time_steps > 1) grid = read_lonlat_grid(path, var, time_first);
     mesh.scalars[name] = lonlat_scalars(mesh, grid);
+  }
+
+  // ---- displacement along the normals (the vertical scale of a relief)
+  if (!o.displace.empty()) {
+    const std::size_t colon = o.displace.rfind(':');
+    float factor = 0.0f;
+    std::size_t used = 0;
+    if (colon != std::string::npos && colon > 0) {
+      try {
+        factor = std::stof(o.displace.substr(colon + 1), &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+    }
+    if (colon == std::string::npos || colon == 0 || used == 0 ||
+        used != o.displace.size() - colon - 1 || !std::isfinite(factor))
+      throw InputError("--displace: expected NAME:FACTOR, got '" + o.displace + "'");
+    std::vector<float> amount;
+    try {
+      amount = vertex_scalar(mesh, {}, o.displace.substr(0, colon));
+    } catch (const InputError& e) {
+      throw InputError("--displace: " + mesh_name + ": " + e.what());
+    }
+    for (std::size_t i = 0; i < mesh.vertex_count(); ++i)
+      if (std::isfinite(amount[i])) mesh.positions[i] += factor * amount[i] * mesh.normals[i];
+    compute_vertex_normals(mesh);
   }
 
   // ---- field

@@ -171,6 +171,30 @@ TEST_F(RenderCommand, UnsteadyFields) {
                "time index 12 is out of range");
 }
 
+TEST_F(RenderCommand, ReliefAndDisplacement) {
+  file("sq.off", kTri);
+  const Result d =
+      run("render --mesh sq.off --field uniform:1,0,0 --displace x:0.2 --size 32x32 "
+          "--frames 2 --out d.png -q");
+  EXPECT_EQ(d.status, 0) << d.err;
+  const std::string m = "render --mesh sq.off --field uniform:1,0,0 --frames 1 --out x.png ";
+  expect_error(m + "--displace x", "--displace: expected NAME:FACTOR");
+  expect_error(m + "--displace x:big", "--displace: expected NAME:FACTOR");
+  expect_error(m + "--displace depth:1", "--displace: sq.off: no per-vertex scalar 'depth'");
+  expect_error("render --mesh relief:none.cdf:ROSE:0,10,0,10 --out x.png",
+               "none.cdf: no such file");
+  expect_error("render --mesh relief:f.cdf:ROSE:0,10,0 --out x.png", "expected 4 numbers");
+  expect_error("render --mesh relief:f.cdf:ROSE:10,0,0,10 --out x.png", "the box needs");
+  const std::string etopo = std::string(IBFVS_TEST_DATA_DIR) + "/earth/etopo60.cdf";
+  if (!std::filesystem::exists(etopo)) GTEST_SKIP() << "fetched data missing: " << etopo;
+  const Result r = run("render --mesh relief:" + etopo +
+                       ":ROSE:-25,60,-40,45::64 --color-by ROSE "
+                       "--size 48x48 --frames 2 --out r.png");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("field gradient:down"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("8192 triangles"), std::string::npos) << r.out;
+}
+
 TEST_F(RenderCommand, NanVectorsAreZeroedWithAWarning) {
   TriMesh sq = make_square(1.0f, 2);
   sq.vectors.assign(sq.vertex_count(), glm::vec3(1, 0, 0));

@@ -14,6 +14,7 @@
 #include "ibfvs/core/mesh_io.h"
 #include "ibfvs/core/procedural.h"
 #include "ibfvs/core/subdivision.h"
+#include "ibfvs/core/vector_field.h"
 #include "ibfvs/data_paths.h"
 
 namespace ibfvs::app {
@@ -35,30 +36,6 @@ int parse_int(const std::string& text, const std::string& spec, int lo, int hi) 
   return v;
 }
 
-// `count` comma-separated finite numbers.
-std::vector<float> parse_floats(const std::string& text, std::size_t count,
-                                const std::string& what) {
-  std::vector<float> out;
-  std::size_t start = 0;
-  while (start <= text.size()) {
-    const std::size_t comma = std::min(text.find(',', start), text.size());
-    const std::string part = text.substr(start, comma - start);
-    std::size_t used = 0;
-    float v = 0.0f;
-    try {
-      v = std::stof(part, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used == 0 || used != part.size() || !std::isfinite(v)) break;
-    out.push_back(v);
-    start = comma + 1;
-  }
-  if (out.size() != count || start <= text.size())
-    throw InputError(what + ": expected " + std::to_string(count) + " numbers in '" + text + "'");
-  return out;
-}
-
 // relief:FILE:VAR:LON0,LON1,LAT0,LAT1[:SCALE[:RESOLUTION]]: a height field of
 // a gridded variable over a longitude/latitude box; x along longitude, -z
 // along latitude, the longer side spanning [-1, 1], height = SCALE * value
@@ -72,7 +49,7 @@ TriMesh make_relief(const std::string& spec) {
   if (parts.size() < 4 || parts.size() > 6)
     throw InputError("--mesh " + spec +
                      ": expected relief:FILE:VAR:LON0,LON1,LAT0,LAT1[:SCALE[:RESOLUTION]]");
-  const std::vector<float> box = parse_floats(parts[3], 4, "--mesh " + spec);
+  const std::vector<float> box = parse_numbers(parts[3], "--mesh " + spec, 4);
   const float lon0 = box[0], lon1 = box[1], lat0 = box[2], lat1 = box[3];
   if (!(lon1 > lon0) || !(lat1 > lat0) || lat0 < -90 || lat1 > 90 || lon1 - lon0 > 360)
     throw InputError("--mesh " + spec + ": the box needs LON0 < LON1 and -90 <= LAT0 < LAT1 <= 90");

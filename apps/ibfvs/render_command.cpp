@@ -182,22 +182,9 @@ glm::vec3 parse_colour(const std::string& text, const char* option) {
 
 // "LO,HI": two finite numbers with LO < HI.
 glm::vec2 parse_range(const std::string& text, const char* option) {
-  const std::size_t comma = text.find(',');
-  float v[2] = {0, 0};
-  bool ok = comma != std::string::npos && text.find(',', comma + 1) == std::string::npos;
-  for (int k = 0; ok && k < 2; ++k) {
-    const std::string part = k == 0 ? text.substr(0, comma) : text.substr(comma + 1);
-    std::size_t used = 0;
-    try {
-      v[k] = std::stof(part, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    ok = used > 0 && used == part.size() && std::isfinite(v[k]);
-  }
-  if (!ok || !(v[1] > v[0]))
-    throw InputError(std::string(option) + ": expected LO,HI, two numbers with LO < HI, got '" +
-                     text + "'");
+  const std::vector<float> v = parse_numbers(text, option, 2, "LO,HI");
+  if (!(v[1] > v[0]))
+    throw InputError(std::string(option) + ": expected LO,HI with LO < HI, got '" + text + "'");
   return {v[0], v[1]};
 }
 

@@ -8,29 +8,13 @@
 #include <glm/geometric.hpp>
 
 #include "ibfvs/core/error.h"
+#include "ibfvs/core/vector_field.h"
 
 namespace ibfvs {
 
 FlowElement FlowElement::parse(std::string_view text, std::string_view what) {
-  std::vector<float> v;
-  std::size_t start = 0;
   const std::string s(text);
-  while (start <= s.size()) {
-    const std::size_t comma = std::min(s.find(',', start), s.size());
-    const std::string part = s.substr(start, comma - start);
-    std::size_t used = 0;
-    float x = 0.0f;
-    try {
-      x = std::stof(part, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used == 0 || used != part.size() || !std::isfinite(x))
-      throw InputError(std::string(what) + ": '" + part + "' is not a finite number in '" + s +
-                       "'");
-    v.push_back(x);
-    start = comma + 1;
-  }
+  const std::vector<float> v = parse_numbers(text, what);
   if (v.size() != 9 && v.size() != 10)
     throw InputError(std::string(what) +
                      ": expected AX,AY,AZ,BX,BY,BZ,ROTATIONAL,RADIAL,TANGENTIAL[,CORE], got '" + s +

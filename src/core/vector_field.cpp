@@ -11,27 +11,37 @@
 
 namespace ibfvs {
 
-glm::vec3 parse_vec3(std::string_view text, std::string_view what) {
+std::vector<float> parse_numbers(std::string_view text, std::string_view what, std::size_t count,
+                                 std::string_view expected) {
   const std::string s(text);
-  float v[3];
-  std::size_t start = 0;
-  for (int k = 0; k < 3; ++k) {
-    const std::size_t comma = s.find(',', start);
-    if ((k < 2) != (comma != std::string::npos))
-      throw InputError(std::string(what) + ": expected three numbers X,Y,Z, got '" + s + "'");
-    const std::string part =
-        s.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+  std::vector<float> out;
+  for (std::size_t start = 0;;) {
+    const std::size_t comma = std::min(s.find(',', start), s.size());
+    const std::string part = s.substr(start, comma - start);
     std::size_t used = 0;
+    float v = 0.0f;
     try {
-      v[k] = std::stof(part, &used);
+      v = std::stof(part, &used);
     } catch (const std::exception&) {
       used = 0;
     }
-    if (used == 0 || used != part.size() || !std::isfinite(v[k]))
+    if (used == 0 || used != part.size() || !std::isfinite(v))
       throw InputError(std::string(what) + ": '" + part + "' is not a finite number in '" + s +
                        "'");
+    out.push_back(v);
+    if (comma == s.size()) break;
     start = comma + 1;
   }
+  if (count > 0 && out.size() != count)
+    throw InputError(
+        std::string(what) + ": expected " +
+        (expected.empty() ? std::to_string(count) + " numbers" : std::string(expected)) +
+        ", got '" + s + "'");
+  return out;
+}
+
+glm::vec3 parse_vec3(std::string_view text, std::string_view what) {
+  const std::vector<float> v = parse_numbers(text, what, 3, "three numbers X,Y,Z");
   return {v[0], v[1], v[2]};
 }
 

@@ -84,4 +84,10 @@ std::vector<glm::vec3> evaluate_field(const TriMesh& mesh, const FieldSpec& spec
 /// Parses "X,Y,Z" (three finite numbers). `what` names the option in errors.
 glm::vec3 parse_vec3(std::string_view text, std::string_view what);
 
+/// Parses comma-separated finite numbers. Throws InputError naming `what` for
+/// a part that is not a finite number, or when `count` > 0 and the number of
+/// parts differs (`expected` then describes the form, e.g. "X,Y,Z").
+std::vector<float> parse_numbers(std::string_view text, std::string_view what,
+                                 std::size_t count = 0, std::string_view expected = "");
+
 }  // namespace ibfvs

@@ -114,6 +114,10 @@ void add_render_options(CLI::App& cmd, RenderOptions& o) {
                  "--beta-by; e.g. relief=data/earth/etopo20.cdf:ROSE")
       ->expected(1)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  cmd.add_option("--surface-image", o.surface_image,
+                 "A PNG that stands in for the surface colour, e.g. a map: equirectangular, "
+                 "longitude -180..180 across, latitude -90..90 up, mapped by the direction from "
+                 "the bounding-box centre (+Y north, +Z longitude 0), as on --mesh globe");
   cmd.add_option("--displace", o.displace,
                  "NAME:FACTOR: move every vertex along its normal by FACTOR times the scalar NAME "
                  "(names as --color-by), e.g. relief:0.00002 on the globe for an exaggerated "
@@ -469,6 +473,8 @@ int run_render(const RenderOptions& o) {
   IbfvsRenderer renderer(settings);
   renderer.set_mesh(mesh, field);
   if (settings.use_color || settings.use_beta) renderer.set_scalars(color_scalar, beta_scalar);
+  if (!o.surface_image.empty())
+    renderer.set_surface_image(read_png(o.surface_image), mesh_bounds(mesh).centre());
   std::unique_ptr<VideoWriter> video;
   if (kind == OutputKind::Video)
     video = std::make_unique<VideoWriter>(out, size.width, size.height, o.fps);

@@ -41,6 +41,7 @@ struct RenderOptions {
   std::string beta_range;            ///< "LO,HI"; empty: 1st to 99th percentile
   std::vector<std::string> scalars;  ///< NAME=FILE:VAR, sampled from netCDF grids
   std::string displace;              ///< NAME:FACTOR, move vertices along their normals
+  std::string surface_image;         ///< PNG mapped by longitude/latitude as the surface colour
   std::string time = "0";            ///< time index of netCDF data, from 0, or a range A:B
   std::vector<std::string>
       field_steps;           ///< PLY files whose vx vy vz are the steps of an unsteady field

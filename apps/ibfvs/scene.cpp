@@ -62,6 +62,8 @@ const std::map<std::string, Kind>& keys() {
       {"advect_view", Kind::String},
       {"subdivide", Kind::Integer},
       {"fps", Kind::Number},
+      {"displace", Kind::String},
+      {"surface_image", Kind::String},
       {"quiet", Kind::Flag},
   };
   return k;

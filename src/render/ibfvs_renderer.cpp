@@ -72,6 +72,8 @@ IbfvsRenderer::IbfvsRenderer(const RenderSettings& settings) : settings_(setting
   u_.use_beta = program_.location("u_use_beta");
   u_.beta_range = program_.location("u_beta_range");
   u_.field_mix = program_.location("u_field_mix");
+  u_.use_image = program_.location("u_use_image");
+  u_.image_centre = program_.location("u_image_centre");
   color_map_ = gl::Texture2D(256, 1, gl::Format::RGBA32F, true);
   u_.phase_size = program_.location("u_phase_size");
   u_.inverse_size = program_.location("u_inverse_size");
@@ -182,6 +184,20 @@ void IbfvsRenderer::set_field_mix(float mix) {
   program_.set(u_.field_mix, std::clamp(mix, 0.0f, 1.0f));
 }
 
+void IbfvsRenderer::set_surface_image(const ImageU8& image, const glm::vec3& centre) {
+  if (image.pixels.empty()) {
+    program_.set(u_.use_image, 0);
+    return;
+  }
+  if (image.channels != 4) throw InputError("renderer: the surface image must be RGBA");
+  std::vector<float> rgba(image.pixels.size());
+  for (std::size_t i = 0; i < rgba.size(); ++i) rgba[i] = image.pixels[i] / 255.0f;
+  surface_image_ = gl::Texture2D(image.width, image.height, gl::Format::RGBA8, true);
+  surface_image_.upload_float(rgba, 4);
+  program_.set(u_.use_image, 1);
+  program_.set(u_.image_centre, centre);
+}
+
 void IbfvsRenderer::set_scalars(std::span<const float> color, std::span<const float> beta) {
   if ((!color.empty() && color.size() != vertex_count_) ||
       (!beta.empty() && beta.size() != vertex_count_))
@@ -226,6 +242,7 @@ void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
     texture_[current_].bind(0);
     phases_.bind(1);
     color_map_.bind(2);
+    if (surface_image_) surface_image_.bind(3);
     vao_.bind();
     gl::draw_triangles(index_count_, true);
   }

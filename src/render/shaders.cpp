@@ -27,6 +27,7 @@ out vec4 v_from;
 out vec2 v_scalars;
 out vec3 v_normal_eye;
 out vec3 v_position_eye;
+out vec3 v_position_object;  // for the spherical image map
 
 void main() {
   gl_Position = u_view_projection * vec4(a_position, 1.0);
@@ -35,6 +36,7 @@ void main() {
   v_scalars = a_scalars;
   v_normal_eye = mat3(u_view) * a_normal;
   v_position_eye = (u_view * vec4(a_position, 1.0)).xyz;
+  v_position_object = a_position;
 }
 )";
 
@@ -43,6 +45,7 @@ in vec4 v_from;
 in vec2 v_scalars;
 in vec3 v_normal_eye;
 in vec3 v_position_eye;
+in vec3 v_position_object;
 
 layout(location = 0) out vec4 o_texture;  // F_t of this frame
 layout(location = 1) out vec4 o_color;    // F
@@ -61,6 +64,9 @@ uniform ivec2 u_phase_size;
 uniform vec2 u_inverse_size;  // 1 / image size in pixels
 uniform vec3 u_surface_color;
 layout(binding = 2) uniform sampler2D u_color_map;  // 256 x 1
+layout(binding = 3) uniform sampler2D u_surface_image;  // equirectangular, lon -180..180
+uniform int u_use_image;     // the image stands in for the surface colour
+uniform vec3 u_image_centre; // centre of the spherical mapping
 uniform int u_use_color;     // colour the surface by v_scalars.x
 uniform vec2 u_color_range;  // scalar values at the ends of the map
 uniform int u_use_beta;      // modulate beta by v_scalars.y
@@ -107,6 +113,14 @@ void main() {
   float diffuse = max(dot(n, to_eye), 0.0);
   float specular = pow(max(dot(n, to_eye), 0.0), 40.0);  // half vector = view for a headlight
   vec3 albedo = u_surface_color;
+  if (u_use_image != 0) {
+    // Longitude and latitude of the direction from the centre, per pixel (no
+    // seam where a triangle crosses the date line): +Y north, +Z longitude 0.
+    vec3 d = normalize(v_position_object - u_image_centre);
+    float lon = atan(d.x, d.z), lat = asin(clamp(d.y, -1.0, 1.0));
+    vec2 uv = vec2(lon / 6.28318530718 + 0.5, lat / 3.14159265359 + 0.5);
+    albedo = textureGrad(u_surface_image, uv, vec2(0.0), vec2(0.0)).rgb;
+  }
   if (u_use_color != 0 && !isnan(v_scalars.x)) {  // missing data keeps the surface colour
     float t = clamp((v_scalars.x - u_color_range.x) / (u_color_range.y - u_color_range.x), 0.0, 1.0);
     albedo = texture(u_color_map, vec2((t * 255.0 + 0.5) / 256.0, 0.5)).rgb;

@@ -179,6 +179,9 @@ TEST_F(RenderCommand, ReliefAndDisplacement) {
   EXPECT_EQ(d.status, 0) << d.err;
   const std::string m = "render --mesh sq.off --field uniform:1,0,0 --frames 1 --out x.png ";
   expect_error(m + "--displace x", "--displace: expected NAME:FACTOR");
+  expect_error(m + "--surface-image none.png", "none.png");
+  file("bad.png", "not a png");
+  expect_error(m + "--surface-image bad.png", "bad.png: cannot read as PNG");
   expect_error(m + "--displace x:big", "--displace: expected NAME:FACTOR");
   expect_error(m + "--displace depth:1", "--displace: sq.off: no per-vertex scalar 'depth'");
   expect_error("render --mesh relief:none.cdf:ROSE:0,10,0,10 --out x.png",

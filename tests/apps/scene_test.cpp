@@ -33,7 +33,8 @@ TEST_F(SceneCommand, SettingsApplyAndTheCommandLineOverrides) {
   file("sq.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n");
   file("s.toml",
        "mesh = \"sq.off\"\nfield = \"uniform:1,0,0\"\nsize = [48, 32]\nframes = 4\n"
-       "background = [0.2, 0.3, 0.4]\northo = true\nout = \"a.png\"\n");
+       "background = [0.2, 0.3, 0.4]\northo = true\nout = \"a.png\"\n"
+       "displace = \"x:0.1\"\n");
   const test::Result a = run("render s.toml");
   ASSERT_EQ(a.status, 0) << a.err;
   EXPECT_NE(a.out.find("wrote a.png (4 frames, 48x32)"), std::string::npos) << a.out;

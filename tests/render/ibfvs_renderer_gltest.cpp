@@ -561,6 +561,41 @@ TEST_F(RendererGLTest, UnsteadyFieldHalfwayIsTheMeanField) {
   EXPECT_THROW(r.set_field_steps(s.field, std::vector<glm::vec3>(3)), InputError);
 }
 
+TEST_F(RendererGLTest, SurfaceImageIsMappedByLongitudeAndLatitude) {
+  // West red, east blue, the northern hemisphere's top rows green: seen from
+  // +Z (longitude 0), the left of the sphere is red, the right blue, the top green.
+  Scene s = sphere_scene("uniform:0,0,0", TangentMode::Project);
+  ImageU8 map(64, 32, 4);
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 64; ++x) {
+      std::uint8_t* p = &map.pixels[(static_cast<std::size_t>(y) * 64 + x) * 4];
+      p[0] = x < 32 ? 255 : 0;
+      p[2] = x < 32 ? 0 : 255;
+      p[1] = y >= 24 ? 255 : 0;  // north of 45 degrees
+      p[3] = 255;
+    }
+  RenderSettings settings;
+  settings.width = settings.height = 96;
+  settings.beta = 0.0f;
+  IbfvsRenderer r(settings);
+  r.set_mesh(s.mesh, s.field);
+  r.set_surface_image(map, glm::vec3(0));
+  r.render_frame({s.camera.view(), s.camera.projection()}, 0.0f);
+  const ImageU8 out = r.read_output();
+  const auto px = [&](int x, int y) {
+    return glm::ivec3(out.at(x, y, 0), out.at(x, y, 1), out.at(x, y, 2));
+  };
+  EXPECT_GT(px(30, 48).x, 3 * px(30, 48).z) << "west is red";
+  EXPECT_GT(px(66, 48).z, 3 * px(66, 48).x) << "east is blue";
+  const glm::ivec3 north = px(48, 88);
+  EXPECT_GT(north.y, north.x) << "the north is green";
+  EXPECT_GT(north.y, north.z) << "the north is green";
+  r.set_surface_image(ImageU8{}, glm::vec3(0));  // off again: the plain surface colour
+  r.render_frame({s.camera.view(), s.camera.projection()}, 0.0f);
+  const ImageU8 plain = r.read_output();
+  EXPECT_NEAR(plain.at(30, 48, 0), plain.at(30, 48, 2), 20);
+}
+
 TEST_F(RendererGLTest, RejectsMismatchedInput) {
   RenderSettings settings;
   settings.width = settings.height = 32;

@@ -85,6 +85,12 @@ class IbfvsRenderer {
   void set_field_steps(std::span<const glm::vec3> current, std::span<const glm::vec3> next);
   /// Position between the two steps, in [0, 1].
   void set_field_mix(float mix);
+  /// An image that stands in for the surface colour (paper 3.3 step 7: "a
+  /// geographical map"), mapped by longitude and latitude of the direction
+  /// from `centre` (equirectangular: x from -180 to 180 degrees east, y from
+  /// -90 to 90 north, rows bottom-up as ImageU8 stores them). An empty image
+  /// turns it off.
+  void set_surface_image(const ImageU8& image, const glm::vec3& centre);
   /// Per-vertex scalars for colouring (`color`) and for modulating beta
   /// (`beta`); either may be empty (zeros). Sizes must match the mesh.
   void set_scalars(std::span<const float> color, std::span<const float> beta);
@@ -124,6 +130,7 @@ class IbfvsRenderer {
   gl::Buffer field_next_;
   gl::Buffer scalars_;       // (colour, beta) per vertex
   gl::Texture2D color_map_;  // 256 x 1 RGBA float
+  gl::Texture2D surface_image_;
   gl::Buffer indices_;
   gl::VertexArray vao_;
   std::size_t index_count_ = 0;
@@ -136,7 +143,7 @@ class IbfvsRenderer {
   struct Uniforms {
     int view_projection, advect_view_projection, view, dt, alpha, beta, inject, noise_time,
         noise_scale, profile, spike_width, surface_color, phase_size, inverse_size, use_color,
-        color_range, use_beta, beta_range, field_mix;
+        color_range, use_beta, beta_range, field_mix, use_image, image_centre;
   } u_{};
   void apply_settings_uniforms();
 };

@@ -4,7 +4,9 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -105,6 +107,44 @@ TriMesh make_landscape(const std::string& spec) {
   parts.push_back(spec.substr(start));
   if (parts[0] != "landscape" || parts.size() > 4)
     throw InputError("--mesh " + spec + ": expected landscape[:SEED[:CONTROLS[:RESOLUTION]]]");
+  // landscape:FILE[:RESOLUTION]: the control heights given, one row per line.
+  std::error_code ec;
+  if (parts.size() > 1 && fs::is_regular_file(parts[1], ec)) {
+    if (parts.size() > 3)
+      throw InputError("--mesh " + spec + ": expected landscape:FILE[:RESOLUTION]");
+    std::ifstream in(parts[1]);
+    std::vector<float> controls;
+    int columns = -1, rows = 0;
+    for (std::string line; std::getline(in, line);) {
+      if (line.find_first_not_of(" \t\r") == std::string::npos || line[0] == '#') continue;
+      std::istringstream numbers(line);
+      int n = 0;
+      for (std::string word; numbers >> word; ++n) {
+        std::size_t used = 0;
+        float v = 0.0f;
+        try {
+          v = std::stof(word, &used);
+        } catch (const std::exception&) {
+          used = 0;
+        }
+        if (used == 0 || used != word.size() || !std::isfinite(v))
+          throw InputError(parts[1] + ": line " + std::to_string(rows + 1) + ": '" + word +
+                           "' is not a finite number");
+        controls.push_back(v);
+      }
+      if (columns >= 0 && n != columns)
+        throw InputError(parts[1] + ": every row of control heights needs " +
+                         std::to_string(columns) + " numbers, a row has " + std::to_string(n));
+      columns = n;
+      ++rows;
+    }
+    const int resolution = parts.size() > 2 ? parse_int(parts[2], spec, 1, 4096) : 256;
+    try {
+      return make_bspline_height_field(controls, std::max(columns, 0), rows, resolution);
+    } catch (const InputError& e) {
+      throw InputError(parts[1] + ": " + e.what());
+    }
+  }
   const int seed = parts.size() > 1 ? parse_int(parts[1], spec, 0, 1 << 30) : 1;
   const int controls = parts.size() > 2 ? parse_int(parts[2], spec, 4, 256) : 8;
   const int resolution = parts.size() > 3 ? parse_int(parts[3], spec, 1, 4096) : 256;

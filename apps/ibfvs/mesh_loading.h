@@ -21,7 +21,9 @@ struct LoadedMesh {
 /// demo: the fetched bunny, else the cow, else a procedural torus (saying so).
 /// `landscape[:SEED[:CONTROLS[:RESOLUTION]]]`, when no such file exists, is a
 /// B-spline height field over [-1, 1]^2 on a random CONTROLS x CONTROLS grid
-/// (default seed 1, 8 controls, 256 cells), heights within +-0.3.
+/// (default seed 1, 8 controls, 256 cells), heights within +-0.3;
+/// `landscape:FILE[:RESOLUTION]` takes the control heights from a text file,
+/// one row of numbers per line (at least 4 x 4).
 /// `globe[:LEVEL]` is a geodesic unit sphere (default level 6: 81,920
 /// triangles), north at +Y, longitude 0 at +Z, for wind: fields.
 /// `relief:FILE:VAR:LON0,LON1,LAT0,LAT1[:SCALE[:RESOLUTION]]` is a height field

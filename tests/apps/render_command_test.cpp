@@ -93,6 +93,17 @@ TEST_F(RenderCommand, FlowElementsAndLandscapes) {
   expect_error("render --mesh landscape:x --out x.png", "--mesh landscape:x");
   expect_error("render --mesh landscape:1:3 --out x.png", "--mesh landscape:1:3");
   expect_error("render --mesh landscape:1:8:9999 --out x.png", "4096");
+  file("grid.txt", "# control heights\n0 0 0 0 0\n0 .1 .2 .1 0\n0 .2 .5 .2 0\n0 0 0 0 0\n");
+  const Result g = run("render --mesh landscape:grid.txt:16 --size 32x32 --frames 2 --out g.png");
+  EXPECT_EQ(g.status, 0) << g.err;
+  EXPECT_NE(g.out.find("512 triangles"), std::string::npos) << g.out;
+  file("ragged.txt", "0 0 0 0\n0 0 0\n0 0 0 0\n0 0 0 0\n");
+  expect_error("render --mesh landscape:ragged.txt --out x.png", "ragged.txt: every row");
+  file("small.txt", "0 0 0\n0 0 0\n0 0 0\n");
+  expect_error("render --mesh landscape:small.txt --out x.png",
+               "small.txt: height field: the control grid must be at least 4 x 4");
+  file("word.txt", "0 0 0 0\n0 x 0 0\n");
+  expect_error("render --mesh landscape:word.txt --out x.png", "word.txt: line 2: 'x'");
 }
 
 TEST_F(RenderCommand, ColourAndBetaByScalars) {

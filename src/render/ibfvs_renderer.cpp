@@ -73,6 +73,7 @@ IbfvsRenderer::IbfvsRenderer(const RenderSettings& settings) : settings_(setting
   u_.beta_range = program_.location("u_beta_range");
   u_.field_mix = program_.location("u_field_mix");
   u_.use_image = program_.location("u_use_image");
+  u_.locked = program_.location("u_locked");
   u_.image_centre = program_.location("u_image_centre");
   color_map_ = gl::Texture2D(256, 1, gl::Format::RGBA32F, true);
   u_.phase_size = program_.location("u_phase_size");
@@ -235,9 +236,12 @@ void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
     gl::enable_depth_test(true);
     program_.use();
     program_.set(u_.view_projection, vp);
-    program_.set(u_.advect_view_projection, use_previous ? previous_view_projection_ : vp);
+    program_.set(u_.advect_view_projection, locked_        ? lock_view_projection_
+                                            : use_previous ? previous_view_projection_
+                                                           : vp);
     program_.set(u_.view, view.view);
-    program_.set(u_.dt, dt);
+    program_.set(u_.dt, locked_ ? 0.0f : dt);
+    program_.set(u_.locked, locked_ ? 1 : 0);
     program_.set(u_.noise_time, settings_.noise.rate * static_cast<float>(frame_));
     texture_[current_].bind(0);
     phases_.bind(1);
@@ -246,10 +250,39 @@ void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
     vao_.bind();
     gl::draw_triangles(index_count_, true);
   }
-  current_ = next;
-  previous_view_projection_ = vp;
+  if (!locked_) {  // a locked F_t stays where it is; the output is shared
+    current_ = next;
+    previous_view_projection_ = vp;
+  }
   has_previous_ = true;
   ++frame_;
+}
+
+void IbfvsRenderer::lock() {
+  if (locked_) return;
+  locked_ = true;
+  lock_view_projection_ = previous_view_projection_;  // the view that made F_t
+}
+
+void IbfvsRenderer::unlock() {
+  locked_ = false;  // previous_view_projection_ is still the view that made F_t
+}
+
+void IbfvsRenderer::fill_texture_with_cell_colors(std::uint32_t seed) {
+  const int w = settings_.width, h = settings_.height;
+  const float s = settings_.noise.scale;
+  const int columns = static_cast<int>(std::ceil(static_cast<float>(w) / s)) + 1;
+  std::vector<float> rgba(static_cast<std::size_t>(w) * h * 4);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const auto cell = static_cast<std::uint64_t>(static_cast<int>(static_cast<float>(y) / s)) *
+                            static_cast<std::uint64_t>(columns) +
+                        static_cast<std::uint64_t>(static_cast<float>(x) / s);
+      float* p = &rgba[(static_cast<std::size_t>(y) * w + x) * 4];
+      for (int c = 0; c < 3; ++c) p[c] = hash_uniform(seed, 3 * cell + static_cast<std::uint64_t>(c));
+      p[3] = 1.0f;
+    }
+  texture_[current_].upload_float(rgba, 4);
 }
 
 ImageU8 IbfvsRenderer::read_output() const {

@@ -66,6 +66,7 @@ uniform vec3 u_surface_color;
 layout(binding = 2) uniform sampler2D u_color_map;  // 256 x 1
 layout(binding = 3) uniform sampler2D u_surface_image;  // equirectangular, lon -180..180
 uniform int u_use_image;     // the image stands in for the surface colour
+uniform int u_locked;        // section 3.7: map F_t, do not update it
 uniform vec3 u_image_centre; // centre of the spherical mapping
 uniform int u_use_color;     // colour the surface by v_scalars.x
 uniform vec2 u_color_range;  // scalar values at the ends of the map
@@ -104,6 +105,7 @@ void main() {
   float g = noise(gl_FragCoord.xy);
   vec3 ft = u_inject == 0 ? mix(previous, vec3(g), u_alpha)
                           : min(previous * (1.0 - u_alpha) + vec3(g), vec3(1.0));
+  if (u_locked != 0) ft = previous;  // a locked texture is only mapped, never changed
   o_texture = vec4(ft, 1.0);
 
   // F_s: Blinn-Phong with a headlight, lit from both sides (open meshes).

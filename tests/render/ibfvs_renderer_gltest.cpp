@@ -596,6 +596,133 @@ TEST_F(RendererGLTest, SurfaceImageIsMappedByLongitudeAndLatitude) {
   EXPECT_NEAR(plain.at(30, 48, 0), plain.at(30, 48, 2), 20);
 }
 
+TEST_F(RendererGLTest, LockedTextureStaysOnTheSurface) {
+  constexpr int w = 160, h = 160;
+  Scene s = sphere_scene("rotate:0,1,0", TangentMode::Project);
+  RenderSettings settings;
+  settings.width = w;
+  settings.height = h;
+  settings.beta = 1.0f;  // F = F_t: the output shows the texture itself
+  IbfvsRenderer r(settings);
+  r.set_mesh(s.mesh, s.field);
+  for (int k = 0; k < 40; ++k) r.render_frame({s.camera.view(), s.camera.projection()}, 0.01f);
+  const ImageF locked = r.read_texture().select_channels(0, 1);
+  const glm::mat4 vp0 = s.camera.view_projection();
+  r.lock();
+  for (int k = 0; k < 10; ++k) {
+    s.camera.orbit(1.5f);
+    r.render_frame({s.camera.view(), s.camera.projection()}, 0.01f);
+  }
+  EXPECT_EQ(r.read_texture().select_channels(0, 1).pixels, locked.pixels) << "F_t unchanged";
+  const ImageU8 out = r.read_output();
+  const ImageF depth = r.read_depth();
+  const glm::mat4 inv = glm::inverse(s.camera.view_projection());
+  std::vector<float> seen, expected;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      if (std::hypot(x + 0.5f - w / 2.0f, y + 0.5f - h / 2.0f) > 0.3f * w) continue;
+      const float d = depth.at(x, y);
+      if (!(d < 1.0f)) continue;
+      const glm::vec4 p =
+          inv * glm::vec4(2.0f * (x + 0.5f) / w - 1, 2.0f * (y + 0.5f) / h - 1, 2 * d - 1, 1);
+      const glm::vec2 src = project_to_pixels(vp0, glm::vec3(p) / p.w, w, h);
+      seen.push_back(out.at(x, y, 0) / 255.0f);
+      expected.push_back(locked.at(static_cast<int>(src.x), static_cast<int>(src.y)));
+    }
+  const double c = test::correlation(seen, expected, std::vector<std::uint8_t>(seen.size(), 1));
+  std::printf("locked, 15 degree orbit: correlation with the texture carried on the surface %.3f\n",
+              c);
+  EXPECT_GT(c, 0.95);
+  r.unlock();
+  r.render_frame({s.camera.view(), s.camera.projection()}, 0.01f);
+  EXPECT_NE(r.read_texture().select_channels(0, 1).pixels, locked.pixels) << "unlocked: moving";
+}
+
+float two_hills(float x, float y) {
+  return std::exp(-6.0f * ((x + 0.4f) * (x + 0.4f) + y * y)) +
+         0.8f * std::exp(-6.0f * ((x - 0.45f) * (x - 0.45f) + (y - 0.1f) * (y - 0.1f)));
+}
+
+// Which hill steepest ascent from (x, y) reaches: 0 or 1, or -1 if it leaves
+// the square first.
+int basin(float x, float y) {
+  for (int i = 0; i < 4000; ++i) {
+    const float e = 1e-3f;
+    const float gx = (two_hills(x + e, y) - two_hills(x - e, y)) / (2 * e);
+    const float gy = (two_hills(x, y + e) - two_hills(x, y - e)) / (2 * e);
+    const float g = std::hypot(gx, gy);
+    if (g < 1e-4f) break;
+    x += 0.002f * gx / g;
+    y += 0.002f * gy / g;
+    if (std::abs(x) > 1.0f || std::abs(y) > 1.0f) return -1;
+  }
+  if (std::hypot(x + 0.4f, y) < 0.05f) return 0;
+  if (std::hypot(x - 0.45f, y - 0.1f) < 0.05f) return 1;
+  return -1;
+}
+
+TEST_F(RendererGLTest, TopologicalDecompositionMatchesTheAscentBasins) {
+  // Section 4.1, figure 7: alpha = 0, F_t starts as random colours per noise
+  // cell, the flow runs downhill (normalised). Each pixel ends with the colour
+  // of the summit that steepest ascent from it reaches.
+  constexpr int w = 192, h = 192;
+  const TriMesh hills = make_height_field(two_hills, 1.0f, 128);
+  const auto field = evaluate_field(hills, FieldSpec::parse("gradient:down:0,0,1:normalize"),
+                                    TangentMode::Project);
+  CameraParams top;
+  top.orthographic = true;
+  Camera cam(mesh_bounds(hills), top, 1.0f);
+  RenderSettings settings;
+  settings.width = w;
+  settings.height = h;
+  settings.alpha = 0.0f;
+  settings.noise.scale = 6.0f;
+  IbfvsRenderer r(settings);
+  r.set_mesh(hills, field);
+  r.fill_texture_with_cell_colors(3);
+  const float dt = dt_for_pixel_step(hills.positions, field, cam.view_projection(), w, h, 2.0f);
+  for (int k = 0; k < 120; ++k) r.render_frame({cam.view(), cam.projection()}, dt);
+  const ImageF tex = r.read_texture();
+  const auto colour_at = [&](const glm::vec3& p) {
+    const glm::vec2 px = project_to_pixels(cam.view_projection(), p, w, h);
+    const int x = static_cast<int>(px.x), y = static_cast<int>(px.y);
+    return glm::vec3(tex.at(x, y, 0), tex.at(x, y, 1), tex.at(x, y, 2));
+  };
+  const glm::vec3 summit[2] = {colour_at({-0.4f, 0.0f, two_hills(-0.4f, 0.0f)}),
+                               colour_at({0.45f, 0.1f, two_hills(0.45f, 0.1f)})};
+  ASSERT_GT(glm::length(summit[0] - summit[1]), 0.2f) << "pick a seed with distinct colours";
+  const glm::mat4 inv = glm::inverse(cam.view_projection());
+  const ImageF depth = r.read_depth();
+  const auto surface_point = [&](int x, int y) {
+    const glm::vec4 p = inv * glm::vec4(2.0f * (x + 0.5f) / w - 1, 2.0f * (y + 0.5f) / h - 1,
+                                        2 * depth.at(x, y) - 1, 1);
+    return glm::vec2(p.x / p.w, p.y / p.w);
+  };
+  std::size_t agree = 0, counted = 0;
+  for (int y = 6; y < h - 6; y += 2)
+    for (int x = 6; x < w - 6; x += 2) {
+      if (!(depth.at(x, y) < 1.0f)) continue;
+      const glm::vec2 q = surface_point(x, y);
+      const int b = basin(q.x, q.y);
+      if (b < 0) continue;
+      bool interior = true;  // away from basin borders (6 pixels)
+      for (const glm::ivec2 o :
+           {glm::ivec2(6, 0), glm::ivec2(-6, 0), glm::ivec2(0, 6), glm::ivec2(0, -6)}) {
+        const glm::vec2 n = surface_point(x + o.x, y + o.y);
+        interior = interior && basin(n.x, n.y) == b;
+      }
+      if (!interior) continue;
+      const glm::vec3 c(tex.at(x, y, 0), tex.at(x, y, 1), tex.at(x, y, 2));
+      ++counted;
+      agree += glm::length(c - summit[b]) < glm::length(c - summit[1 - b]);
+    }
+  const double agreement = static_cast<double>(agree) / counted;
+  std::printf("topology: %zu pixels away from basin borders, %.1f%% carry their summit's colour\n",
+              counted, 100.0 * agreement);
+  EXPECT_GT(counted, 1000u);
+  EXPECT_GE(agreement, 0.95);
+}
+
 TEST_F(RendererGLTest, RejectsMismatchedInput) {
   RenderSettings settings;
   settings.width = settings.height = 32;

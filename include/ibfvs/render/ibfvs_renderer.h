@@ -100,6 +100,17 @@ class IbfvsRenderer {
 
   /// F_t := B everywhere, frame counter 0 (algorithm steps 1-2).
   void reset();
+  /// F_t := a random colour per noise cell (s x s pixels), for the
+  /// topological decomposition of section 4.1 (figure 7, with alpha = 0).
+  void fill_texture_with_cell_colors(std::uint32_t seed);
+  /// Section 3.7: stop updating F_t and the texture coordinates; later frames
+  /// map the last texture onto the surface as it was seen when locking, so
+  /// the camera can move and the pattern stays on the surface (parts not
+  /// visible then show whatever the image held there: one view only).
+  void lock();
+  /// Resumes the animation from the locked texture.
+  void unlock();
+  [[nodiscard]] bool locked() const { return locked_; }
   /// One frame with displacement dt (world units per frame).
   void render_frame(const ViewState& view, float dt);
 
@@ -138,12 +149,14 @@ class IbfvsRenderer {
   int current_ = 0;  // texture_[current_] holds F_t of the last frame
   int frame_ = 0;
   bool has_previous_ = false;
+  bool locked_ = false;
+  glm::mat4 lock_view_projection_{1.0f};
   glm::mat4 previous_view_projection_{1.0f};
 
   struct Uniforms {
     int view_projection, advect_view_projection, view, dt, alpha, beta, inject, noise_time,
         noise_scale, profile, spike_width, surface_color, phase_size, inverse_size, use_color,
-        color_range, use_beta, beta_range, field_mix, use_image, image_centre;
+        color_range, use_beta, beta_range, field_mix, use_image, image_centre, locked;
   } u_{};
   void apply_settings_uniforms();
 };

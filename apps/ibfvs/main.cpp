@@ -15,6 +15,7 @@
 #include "ibfvs/geometry_command.h"
 #include "ibfvs/render_command.h"
 #include "ibfvs/scene.h"
+#include "ibfvs/styles.h"
 
 int main(int argc, char** argv) {
   // Mesa's llvmpipe allocates and frees large buffers every frame; glibc's
@@ -51,6 +52,23 @@ int main(int argc, char** argv) {
     } catch (const std::exception& e) {
       std::fprintf(stderr, "ibfvs: error: %s\n", e.what());
       return 1;
+    }
+  }
+  // `--style NAME` (given or from the scene): its defaults go before all else.
+  if (!args.empty() && args[0] == "render") {
+    std::string style;
+    for (std::size_t i = 1; i < args.size(); ++i) {
+      if (args[i] == "--style" && i + 1 < args.size()) style = args[i + 1];
+      if (args[i].rfind("--style=", 0) == 0) style = args[i].substr(8);
+    }
+    if (!style.empty()) {
+      try {
+        const std::vector<std::string> defaults = ibfvs::app::style_arguments(style);
+        args.insert(args.begin() + 1, defaults.begin(), defaults.end());
+      } catch (const std::exception& e) {
+        std::fprintf(stderr, "ibfvs: error: %s\n", e.what());
+        return 1;
+      }
     }
   }
   std::reverse(args.begin(), args.end());  // CLI11 takes them last-first

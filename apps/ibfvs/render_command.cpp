@@ -101,8 +101,8 @@ void add_render_options(CLI::App& cmd, RenderOptions& o) {
   cmd.add_option("--color-map", o.color_map, "Colour map: viridis, coolwarm (diverging), grey")
       ->capture_default_str();
   cmd.add_option("--color-range", o.color_range,
-                 "LO,HI: scalar values at the ends of the colour map. Default: the 1st and 99th "
-                 "percentile");
+                 "LO,HI: scalar values at the ends of the colour map, or percentiles pA,pB. "
+                 "Default: p1,p99");
   cmd.add_option("--beta-by", o.beta_by,
                  "Modulate the texture strength beta by a per-vertex scalar (names as "
                  "--color-by; paper 3.3 step 7, figures 6 and 9)");
@@ -118,6 +118,23 @@ void add_render_options(CLI::App& cmd, RenderOptions& o) {
                  "A PNG that stands in for the surface colour, e.g. a map: equirectangular, "
                  "longitude -180..180 across, latitude -90..90 up, mapped by the direction from "
                  "the bounding-box centre (+Y north, +Z longitude 0), as on --mesh globe");
+  cmd.add_option("--style", o.style,
+                 "Defaults for one of the paper's looks, on any mesh (explicit options override "
+                 "them): flow, particles, principal, bronze, eroded, topology (see README)");
+  cmd.add_option("--default-field", o.default_field,
+                 "The field when --field is not given and the mesh has no vectors (styles set "
+                 "it). Default: rotate:0,1,0; gradient:down on landscapes and reliefs");
+  cmd.add_option("--init", o.init,
+                 "F_t at the start: background, or random-cells (a random colour per noise "
+                 "cell; with --alpha 0 and a downhill field: topological decomposition, paper "
+                 "figure 7)")
+      ->capture_default_str();
+  cmd.add_option("--lock-at", o.lock_at,
+                 "Lock the texture after this many frames (paper 3.7): it stays on the surface "
+                 "as an ordinary texture map while the camera moves (-1: never)")
+      ->capture_default_str();
+  cmd.add_option("--lock-camera", o.lock_camera,
+                 "AZIMUTH,ELEVATION,DISTANCE: the camera for the frames after --lock-at");
   cmd.add_option("--displace", o.displace,
                  "NAME:FACTOR: move every vertex along its normal by FACTOR times the scalar NAME "
                  "(names as --color-by), e.g. relief:0.00002 on the globe for an exaggerated "
@@ -299,6 +316,15 @@ int run_render(const RenderOptions& o) {
   if (field_spec)
     for (const std::string& e : o.elements) field_spec->elements.push_back(FlowElement::parse(e));
   const auto [time_first, time_last] = parse_time_range(o.time);
+  if (o.init != "background" && o.init != "random-cells")
+    throw InputError("--init: expected background or random-cells, got '" + o.init + "'");
+  if (o.lock_at < -1) throw InputError("--lock-at: must be a frame number, or -1 for never");
+  std::optional<CameraParams> lock_cam;
+  if (!o.lock_camera.empty()) {
+    const glm::vec3 c = parse_vec3(o.lock_camera, "--lock-camera");
+    if (c.z < 0.0f) throw InputError("--lock-camera: the distance must not be negative");
+    lock_cam = CameraParams{c.x, c.y, c.z, o.ortho, o.fov};
+  }
   if (field_spec) field_spec->time = time_first;
   if (o.frames_per_step < 1 || o.frames_per_step > 100000)
     throw InputError("--frames-per-step: must be between 1 and 100000");
@@ -367,6 +393,7 @@ int run_render(const RenderOptions& o) {
   // ---- field
   if (!field_spec) {
     field_spec = mesh.vectors.size() == mesh.positions.size() ? FieldSpec::parse("file")
+                 : !o.default_field.empty()                   ? FieldSpec::parse(o.default_field)
                  : loaded.generated_landscape                 ? FieldSpec::parse("gradient:down")
                                                               : FieldSpec::parse("rotate:0,1,0");
   }
@@ -455,7 +482,22 @@ int run_render(const RenderOptions& o) {
     } catch (const InputError& e) {
       throw InputError(std::string(option) + ": " + mesh_name + ": " + e.what());
     }
-    return range_text.empty() ? quantile_range(values) : parse_range(range_text, range_option);
+    if (range_text.empty()) return quantile_range(values);
+    // "pA,pB": the A-th and B-th percentiles of the values.
+    if (range_text[0] == 'p') {
+      const std::size_t comma = range_text.find(",p");
+      const glm::vec2 q =
+          comma == std::string::npos
+              ? glm::vec2(-1.0f)
+              : parse_range(range_text.substr(1, comma - 1) + "," + range_text.substr(comma + 2),
+                            range_option);
+      if (!(q.x >= 0.0f && q.y <= 100.0f))
+        throw InputError(std::string(range_option) +
+                         ": expected percentiles pA,pB with 0 <= A < B <= 100, got '" + range_text +
+                         "'");
+      return quantile_range(values, q.x / 100.0f, q.y / 100.0f);
+    }
+    return parse_range(range_text, range_option);
   };
   settings.color_map = parse_color_map(o.color_map);
   if (!o.color_by.empty()) {
@@ -480,6 +522,11 @@ int run_render(const RenderOptions& o) {
     video = std::make_unique<VideoWriter>(out, size.width, size.height, o.fps);
   Progress progress(frames, !o.quiet);
   const auto start = std::chrono::steady_clock::now();
+  if (o.init == "random-cells") renderer.fill_texture_with_cell_colors(o.seed);
+  std::optional<Camera> camera_after_lock;
+  if (lock_cam)
+    camera_after_lock.emplace(bounds, *lock_cam,
+                              static_cast<float>(size.width) / static_cast<float>(size.height));
   // Unsteady: the current and next step live on the GPU, mixed per frame.
   std::size_t step = 0;
   std::vector<glm::vec3> next_field;
@@ -488,6 +535,10 @@ int run_render(const RenderOptions& o) {
     renderer.set_field_steps(field, next_field);
   }
   for (int k = 0; k < frames; ++k) {
+    if (k == o.lock_at) {
+      renderer.lock();
+      if (camera_after_lock) camera = *camera_after_lock;
+    }
     if (step_count > 1) {
       const double t = static_cast<double>(k) / o.frames_per_step;
       const auto s = static_cast<std::size_t>(t) % step_count;

@@ -42,6 +42,11 @@ struct RenderOptions {
   std::vector<std::string> scalars;  ///< NAME=FILE:VAR, sampled from netCDF grids
   std::string displace;              ///< NAME:FACTOR, move vertices along their normals
   std::string surface_image;         ///< PNG mapped by longitude/latitude as the surface colour
+  std::string init = "background";   ///< F_t at the start: background or random-cells
+  int lock_at = -1;                  ///< lock the texture after this frame (-1: never)
+  std::string lock_camera;           ///< AZ,EL,DIST: the camera once locked
+  std::string style;                 ///< applied in main as default options (styles.h)
+  std::string default_field;         ///< the field when none is given and the mesh has none
   std::string time = "0";            ///< time index of netCDF data, from 0, or a range A:B
   std::vector<std::string>
       field_steps;           ///< PLY files whose vx vy vz are the steps of an unsteady field

@@ -64,6 +64,11 @@ const std::map<std::string, Kind>& keys() {
       {"fps", Kind::Number},
       {"displace", Kind::String},
       {"surface_image", Kind::String},
+      {"style", Kind::String},
+      {"init", Kind::String},
+      {"lock_at", Kind::Integer},
+      {"lock_camera", Kind::Vector},
+      {"default_field", Kind::String},
       {"quiet", Kind::Flag},
   };
   return k;

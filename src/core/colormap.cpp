@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include "ibfvs/core/curvature.h"
@@ -19,7 +20,8 @@ ColorMap parse_color_map(std::string_view text) {
   if (text == "viridis") return ColorMap::Viridis;
   if (text == "coolwarm" || text == "diverging") return ColorMap::CoolWarm;
   if (text == "grey" || text == "gray") return ColorMap::Grey;
-  throw InputError("--color-map: expected viridis, coolwarm (diverging) or grey, got '" +
+  if (text == "bronze") return ColorMap::Bronze;
+  throw InputError("--color-map: expected viridis, coolwarm (diverging), grey or bronze, got '" +
                    std::string(text) + "'");
 }
 
@@ -31,6 +33,8 @@ std::string to_string(ColorMap map) {
       return "coolwarm";
     case ColorMap::Grey:
       return "grey";
+    case ColorMap::Bronze:
+      return "bronze";
   }
   return "?";
 }
@@ -38,6 +42,18 @@ std::string to_string(ColorMap map) {
 glm::vec3 color_map(ColorMap map, float t) {
   t = std::isfinite(t) ? std::clamp(t, 0.0f, 1.0f) : 0.0f;
   if (map == ColorMap::Grey) return glm::vec3(t);
+  if (map == ColorMap::Bronze) {
+    // Patina in the hollows, polished metal on the ridges: piecewise linear.
+    static constexpr float stops[4][4] = {{0.0f, 0.16f, 0.20f, 0.15f},
+                                          {0.4f, 0.42f, 0.31f, 0.17f},
+                                          {0.75f, 0.72f, 0.52f, 0.28f},
+                                          {1.0f, 0.95f, 0.80f, 0.55f}};
+    int k = 0;
+    while (k < 2 && t > stops[k + 1][0]) ++k;
+    const float f = (t - stops[k][0]) / (stops[k + 1][0] - stops[k][0]);
+    return glm::mix(glm::vec3(stops[k][1], stops[k][2], stops[k][3]),
+                    glm::vec3(stops[k + 1][1], stops[k + 1][2], stops[k + 1][3]), f);
+  }
   const float(*table)[3] = map == ColorMap::Viridis ? kViridis : kCoolWarm;
   const float x = t * 255.0f;
   const int i = std::min(static_cast<int>(x), 254);
@@ -49,6 +65,11 @@ glm::vec3 color_map(ColorMap map, float t) {
 
 std::vector<float> vertex_scalar(const TriMesh& mesh, const std::vector<glm::vec3>& field,
                                  std::string_view name) {
+  if (!name.empty() && name[0] == '-') {
+    std::vector<float> v = vertex_scalar(mesh, field, name.substr(1));
+    for (float& x : v) x = -x;
+    return v;
+  }
   const std::string key(name);
   if (const auto it = mesh.scalars.find(key); it != mesh.scalars.end()) return it->second;
   std::vector<float> out(mesh.vertex_count());

@@ -209,6 +209,31 @@ TEST_F(RenderCommand, ReliefAndDisplacement) {
   EXPECT_NE(r.out.find("8192 triangles"), std::string::npos) << r.out;
 }
 
+TEST_F(RenderCommand, StylesLockingAndTopology) {
+  for (const char* style : {"flow", "particles", "principal", "bronze", "eroded", "topology"}) {
+    const Result r = run(std::string("render --mesh landscape:2:6:24 --style ") + style +
+                         " --size 48x48 --frames 3 --out s.png");
+    EXPECT_EQ(r.status, 0) << style << "\n" << r.err;
+  }
+  // A style's defaults give way to explicit options and to the mesh's own field.
+  const Result t =
+      run("render --mesh landscape:2:6:24 --style topology --frames 2 --size 32x32 "
+          "--out t.png");
+  EXPECT_NE(t.out.find("(2 frames, 32x32)"), std::string::npos) << t.out;
+  EXPECT_NE(t.out.find("gradient:down:0,1,0:normalize"), std::string::npos) << t.out;
+  const Result l =
+      run("render --mesh landscape:2:6:24 --init random-cells --alpha 0 --lock-at 2 "
+          "--lock-camera 30,40,0 --size 32x32 --frames 4 --out l.png -q");
+  EXPECT_EQ(l.status, 0) << l.err;
+  const std::string m = "render --mesh landscape:2:6:24 --frames 1 --out x.png ";
+  expect_error(m + "--style cartoon", "--style: unknown style 'cartoon'");
+  expect_error(m + "--init noise", "--init");
+  expect_error(m + "--lock-at -5", "--lock-at");
+  expect_error(m + "--lock-camera 1,2", "--lock-camera");
+  expect_error(m + "--color-by height --color-range p50,p10", "--color-range");
+  expect_error(m + "--color-by height --color-range p5,p101", "--color-range");
+}
+
 TEST_F(RenderCommand, NanVectorsAreZeroedWithAWarning) {
   TriMesh sq = make_square(1.0f, 2);
   sq.vectors.assign(sq.vertex_count(), glm::vec3(1, 0, 0));

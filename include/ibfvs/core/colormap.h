@@ -19,10 +19,11 @@ enum class ColorMap {
   Viridis,   ///< sequential (Smith and van der Walt)
   CoolWarm,  ///< diverging, blue - grey - red (Moreland 2009)
   Grey,      ///< black to white
+  Bronze,    ///< dark patina to polished bronze (our palette, for the bronze style)
 };
 
-ColorMap parse_color_map(
-    std::string_view text);  ///< viridis, coolwarm (or diverging), grey; throws
+/// viridis, coolwarm (or diverging), grey, bronze; throws InputError.
+ColorMap parse_color_map(std::string_view text);
 std::string to_string(ColorMap map);
 
 /// The colour at t in [0, 1] (clamped), interpolated linearly in the table.
@@ -31,7 +32,8 @@ glm::vec3 color_map(ColorMap map, float t);
 /// A per-vertex scalar by name: a property of the mesh (PLY scalar, kmin and
 /// kmax after `ibfvs geometry`, a landscape's height), or one derived here:
 /// `speed` (|v| of `field`), `kmin`/`kmax` (computed when absent), `x`, `y`,
-/// `z` (coordinates). Throws InputError listing the names available.
+/// `z` (coordinates). A leading '-' negates (`-kmax`: concavity). Throws
+/// InputError listing the names available.
 std::vector<float> vertex_scalar(const TriMesh& mesh, const std::vector<glm::vec3>& field,
                                  std::string_view name);
 

@@ -133,6 +133,10 @@ void add_render_options(CLI::App& cmd, RenderOptions& o) {
                  "Lock the texture after this many frames (paper 3.7): it stays on the surface "
                  "as an ordinary texture map while the camera moves (-1: never)")
       ->capture_default_str();
+  cmd.add_option("--export", o.export_obj,
+                 "FILE.obj: after the last frame, write the texture F_t as FILE.png and the mesh "
+                 "with texture coordinates as FILE.obj + FILE.mtl, for Blender or ParaView "
+                 "(paper 3.7: one view, so parts hidden in it get wrong texture)");
   cmd.add_option("--lock-camera", o.lock_camera,
                  "AZIMUTH,ELEVATION,DISTANCE: the camera for the frames after --lock-at");
   cmd.add_option("--displace", o.displace,
@@ -199,6 +203,21 @@ glm::vec3 parse_colour(const std::string& text, const char* option) {
     if (c[i] < 0.0f || c[i] > 1.0f)
       throw InputError(std::string(option) + ": components must be in [0, 1], got '" + text + "'");
   return c;
+}
+
+// The default video name for a mesh: its file stem, or for a generated
+// surface (landscape:3, globe, relief:...) its name with ':' and ',' made
+// safe for file names and for ffmpeg (which reads "a:b" as a protocol).
+std::string default_output_stem(const std::string& mesh) {
+  std::string stem = fs::exists(mesh) ? fs::path(mesh).stem().string() : mesh;
+  if (!fs::exists(mesh)) {
+    const std::size_t slash = stem.find_last_of('/');
+    if (stem.rfind("relief:", 0) == 0 && slash != std::string::npos)
+      stem = "relief-" + stem.substr(slash + 1);
+  }
+  for (char& c : stem)
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_' && c != '.') c = '-';
+  return stem;
 }
 
 // "LO,HI": two finite numbers with LO < HI.
@@ -440,10 +459,18 @@ int run_render(const RenderOptions& o) {
   // ---- output paths (checked before the long part)
   const fs::path out = !o.out.empty() ? fs::path(o.out)
                        : demo         ? fs::path("ibfvs-demo.mp4")
-                                      : fs::path(fs::path(o.mesh).stem().string() + ".mp4");
+                                      : fs::path(default_output_stem(o.mesh) + ".mp4");
   const OutputKind kind = output_kind(out, "--out");
   if (kind == OutputKind::PngSequence) check_pattern(out.string());
   ensure_parent(out, "--out");
+  if (!o.export_obj.empty()) {
+    std::string ext = fs::path(o.export_obj).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return std::tolower(c); });
+    if (ext != ".obj")
+      throw InputError("--export: must be a .obj file, got '" + o.export_obj + "'");
+    ensure_parent(o.export_obj, "--export");
+  }
   if (!o.texture_out.empty()) {
     if (output_kind(o.texture_out, "--texture-out") != OutputKind::Png)
       throw InputError("--texture-out: must be a .png file, got '" + o.texture_out + "'");
@@ -566,6 +593,38 @@ int run_render(const RenderOptions& o) {
   if (video) video->close();
   if (!o.texture_out.empty()) {
     write_png16(renderer.read_texture().select_channels(0, 3), o.texture_out);
+  }
+  if (!o.export_obj.empty()) {
+    // F_t as an 8-bit RGB image and each vertex's position in it (section 3.7).
+    const fs::path obj(o.export_obj);
+    fs::path png = obj;
+    png.replace_extension(".png");
+    const ImageF tex = renderer.read_texture();
+    ImageU8 rgb(tex.width, tex.height, 3);
+    for (std::size_t i = 0; i < rgb.pixels.size() / 3; ++i)
+      for (int c = 0; c < 3; ++c)
+        rgb.pixels[i * 3 + c] = static_cast<std::uint8_t>(
+            std::lround(std::clamp(tex.pixels[i * 4 + c], 0.0f, 1.0f) * 255.0f));
+    write_png(rgb, png);
+    std::vector<glm::vec2> uv(mesh.vertex_count());
+    std::size_t outside = 0;
+    for (std::size_t i = 0; i < uv.size(); ++i) {
+      const glm::vec2 px = project_to_pixels(renderer.texture_view_projection(), mesh.positions[i],
+                                             size.width, size.height);
+      const glm::vec2 t(px.x / static_cast<float>(size.width),
+                        px.y / static_cast<float>(size.height));
+      uv[i] = glm::clamp(t, glm::vec2(0.0f), glm::vec2(1.0f));
+      outside += uv[i] != t;
+    }
+    write_obj_textured(mesh, uv, obj, png.filename().string());
+    if (outside > 0)
+      std::fprintf(stderr,
+                   "ibfvs: warning: %zu vertices lie outside the view that made the texture; "
+                   "their texture coordinates are clamped to the image border\n",
+                   outside);
+    if (!o.quiet)
+      std::printf("ibfvs: exported %s, %s and %s\n", obj.c_str(),
+                  fs::path(obj).replace_extension(".mtl").c_str(), png.c_str());
   }
   if (!o.quiet) {
     std::printf(

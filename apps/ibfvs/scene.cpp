@@ -69,6 +69,7 @@ const std::map<std::string, Kind>& keys() {
       {"lock_at", Kind::Integer},
       {"lock_camera", Kind::Vector},
       {"default_field", Kind::String},
+      {"export", Kind::String},
       {"quiet", Kind::Flag},
   };
   return k;

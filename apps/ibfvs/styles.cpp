@@ -25,15 +25,19 @@ std::vector<std::string> style_arguments(const std::string& name) {
   // texture (the dirt) strongest where the surface is concave (-kappa_max
   // high), bounds from the 1st and 99th percentile.
   if (name == "bronze") {
-    return {"--default-field", "principal:min", "--color-by", "kmax", "--color-map", "bronze",
-            "--color-range", "p5,p95", "--beta-by", "-kmax", "--beta-range", "p5,p95", "--beta",
-            "0.6"};
+    return {"--default-field", "principal:min", "--color-by", "kmax",      "--color-map",
+            "bronze",          "--color-range", "p5,p95",     "--beta-by", "-kmax",
+            "--beta-range",    "p5,p95",        "--beta",     "0.6"};
   }
   // eroded stone (section 4.2): the same, parametrised by kappa_min.
   if (name == "eroded") {
-    return {"--default-field", "principal:max", "--color-by", "kmin", "--color-map", "grey",
-            "--color-range", "p5,p95", "--beta-by", "-kmin", "--beta-range", "p5,p95", "--beta",
-            "0.6"};
+    return {"--default-field", "principal:max",
+            "--color-by",      "kmin",
+            "--color-map",     "grey",
+            "--color-range",   "p5,p95",
+            "--beta-by",       "-kmin",
+            "--beta-range",    "p5,p95",
+            "--beta",          "0.6"};
   }
   // topology (figure 7): alpha 0, random colours per noise cell, flow
   // downhill; after 40 frames each pixel holds its summit's colour; then the

@@ -60,7 +60,7 @@ VideoWriter::VideoWriter(const std::filesystem::path& path, int width, int heigh
   std::ostringstream cmd;
   cmd << "ffmpeg -nostdin -y -loglevel error -f rawvideo -pix_fmt rgba -s " << width << "x"
       << height << " -r " << fps << " -i - -vf " << shell_quote(filters) << " " << codec << " "
-      << shell_quote(path.string());
+      << shell_quote("file:" + path.string());  // "a:b.mp4" is a file, not a protocol
   const std::string command = cmd.str();
   pipe_ = popen(command.c_str(), "w");
   if (!pipe_) throw InputError(path.string() + ": cannot start ffmpeg");

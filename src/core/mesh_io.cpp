@@ -390,6 +390,40 @@ TriMesh read_mesh(const fs::path& path, MeshReadReport* report_out) {
   return mesh;
 }
 
+void write_obj_textured(const TriMesh& mesh, const std::vector<glm::vec2>& uv, const fs::path& path,
+                        const std::string& texture_file) {
+  if (uv.size() != mesh.vertex_count())
+    throw InputError(path.string() + ": one texture coordinate per vertex is needed");
+  fs::path mtl = path;
+  mtl.replace_extension(".mtl");
+  {
+    std::ofstream m(mtl);
+    if (!m) throw InputError(mtl.string() + ": cannot open for writing");
+    m << "# written by ibfvs\nnewmtl ibfvs_texture\nKa 1 1 1\nKd 1 1 1\nKs 0 0 0\nillum 1\n"
+      << "map_Kd " << texture_file << "\n";
+    if (!m) throw InputError(mtl.string() + ": write failed");
+  }
+  std::ofstream out(path);
+  if (!out) throw InputError(path.string() + ": cannot open for writing");
+  const bool has_n = mesh.normals.size() == mesh.vertex_count();
+  out << "# written by ibfvs: the locked IBFVS texture as an ordinary texture map\n"
+      << "mtllib " << mtl.filename().string() << "\nusemtl ibfvs_texture\n";
+  for (const glm::vec3& p : mesh.positions) out << "v " << p.x << " " << p.y << " " << p.z << "\n";
+  for (const glm::vec2& t : uv) out << "vt " << t.x << " " << t.y << "\n";
+  if (has_n)
+    for (const glm::vec3& n : mesh.normals) out << "vn " << n.x << " " << n.y << " " << n.z << "\n";
+  for (const Triangle& t : mesh.triangles) {
+    out << "f";
+    for (const std::uint32_t i : t) {
+      const std::uint32_t k = i + 1;
+      out << " " << k << "/" << k;
+      if (has_n) out << "/" << k;
+    }
+    out << "\n";
+  }
+  if (!out) throw InputError(path.string() + ": write failed");
+}
+
 void write_ply(const TriMesh& mesh, const fs::path& path, bool binary) {
   std::ofstream out(path, std::ios::binary);
   if (!out) throw InputError(path.string() + ": cannot open for writing");

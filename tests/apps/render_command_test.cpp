@@ -1,5 +1,6 @@
 // `ibfvs render` run as a user runs it: real process, exit status, stderr.
 
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
@@ -226,6 +227,31 @@ TEST_F(RenderCommand, StylesLockingAndTopology) {
           "--lock-camera 30,40,0 --size 32x32 --frames 4 --out l.png -q");
   EXPECT_EQ(l.status, 0) << l.err;
   const std::string m = "render --mesh landscape:2:6:24 --frames 1 --out x.png ";
+  // A generated surface's default video name is a plain file name.
+  const Result v = run("render --mesh landscape:2:6:24 --size 32x32 --frames 3");
+  EXPECT_EQ(v.status, 0) << v.err;
+  EXPECT_TRUE(std::filesystem::exists(dir_ / "landscape-2-6-24.mp4")) << v.out;
+  // Export (section 3.7): the texture, and the mesh with texture coordinates.
+  const Result x =
+      run("render --mesh landscape:2:6:24 --style topology --size 48x48 --frames 6 "
+          "--lock-at 4 --export topo.obj");
+  ASSERT_EQ(x.status, 0) << x.err;
+  const TriMesh back = read_mesh(dir_ / "topo.obj");
+  EXPECT_EQ(back.vertex_count(), 25u * 25u);
+  const std::string obj = test::read_file(dir_ / "topo.obj");
+  std::size_t vt = 0, bad = 0;
+  for (std::size_t at = obj.find("\nvt "); at != std::string::npos;
+       at = obj.find("\nvt ", at + 1)) {
+    float u = -1, w = -1;
+    std::sscanf(obj.c_str() + at + 4, "%f %f", &u, &w);
+    ++vt;
+    bad += !(u >= 0 && u <= 1 && w >= 0 && w <= 1);
+  }
+  EXPECT_EQ(vt, back.vertex_count());
+  EXPECT_EQ(bad, 0u);
+  EXPECT_NE(test::read_file(dir_ / "topo.mtl").find("map_Kd topo.png"), std::string::npos);
+  EXPECT_EQ(read_png(dir_ / "topo.png").width, 48);
+  expect_error(m + "--export topo.ply", "--export: must be a .obj file");
   expect_error(m + "--style cartoon", "--style: unknown style 'cartoon'");
   expect_error(m + "--init noise", "--init");
   expect_error(m + "--lock-at -5", "--lock-at");

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include <glm/vec2.hpp>
+
 #include "ibfvs/core/mesh.h"
 
 namespace ibfvs {
@@ -28,6 +30,13 @@ struct MeshReadReport {
 /// Throws InputError naming the file for a missing, unreadable, truncated or
 /// malformed file (bad counts, indices out of range, non-finite coordinates).
 TriMesh read_mesh(const std::filesystem::path& path, MeshReadReport* report = nullptr);
+
+/// Writes a Wavefront OBJ with per-vertex texture coordinates `uv` (one per
+/// vertex), normals, and a material file `<stem>.mtl` whose diffuse map is
+/// `texture_file` (a path relative to the OBJ). Throws InputError when a
+/// file cannot be written.
+void write_obj_textured(const TriMesh& mesh, const std::vector<glm::vec2>& uv,
+                        const std::filesystem::path& path, const std::string& texture_file);
 
 /// Writes an ASCII or binary little-endian PLY with positions, normals, the
 /// vector field (vx vy vz) and all scalars. Throws InputError when the file

@@ -111,6 +111,11 @@ class IbfvsRenderer {
   /// Resumes the animation from the locked texture.
   void unlock();
   [[nodiscard]] bool locked() const { return locked_; }
+  /// The view-projection that maps the surface onto the current F_t (the lock
+  /// view when locked): texture coordinates for exporting F_t.
+  [[nodiscard]] const glm::mat4& texture_view_projection() const {
+    return locked_ ? lock_view_projection_ : previous_view_projection_;
+  }
   /// One frame with displacement dt (world units per frame).
   void render_frame(const ViewState& view, float dt);
 

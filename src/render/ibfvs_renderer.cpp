@@ -279,7 +279,8 @@ void IbfvsRenderer::fill_texture_with_cell_colors(std::uint32_t seed) {
                             static_cast<std::uint64_t>(columns) +
                         static_cast<std::uint64_t>(static_cast<float>(x) / s);
       float* p = &rgba[(static_cast<std::size_t>(y) * w + x) * 4];
-      for (int c = 0; c < 3; ++c) p[c] = hash_uniform(seed, 3 * cell + static_cast<std::uint64_t>(c));
+      for (int c = 0; c < 3; ++c)
+        p[c] = hash_uniform(seed, 3 * cell + static_cast<std::uint64_t>(c));
       p[3] = 1.0f;
     }
   texture_[current_].upload_float(rgba, 4);

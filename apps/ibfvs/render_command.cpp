@@ -10,6 +10,7 @@
 #include <utility>
 
 #include <CLI/CLI.hpp>
+#include <glm/trigonometric.hpp>
 
 #include "ibfvs/core/camera.h"
 #include "ibfvs/core/colormap.h"
@@ -79,6 +80,11 @@ void add_render_options(CLI::App& cmd, RenderOptions& o) {
       ->capture_default_str();
   cmd.add_option("--spike-width", o.spike_width,
                  "Fraction of the period a spike is on (profile spike)")
+      ->capture_default_str();
+  cmd.add_option("--noise-space", o.noise_space,
+                 "image: noise fixed on the screen, constant density there (the paper); object: "
+                 "noise on a 3D lattice at the surface point, s pixels apart at the mesh centre, "
+                 "constant density on the surface (paper 3.6, figure 3 right)")
       ->capture_default_str();
   cmd.add_option("--seed", o.seed, "Seed of the noise phases")->capture_default_str();
   cmd.add_option("--step", o.step,
@@ -335,6 +341,9 @@ int run_render(const RenderOptions& o) {
   if (field_spec)
     for (const std::string& e : o.elements) field_spec->elements.push_back(FlowElement::parse(e));
   const auto [time_first, time_last] = parse_time_range(o.time);
+  if (o.noise_space != "image" && o.noise_space != "object")
+    throw InputError("--noise-space: expected image or object, got '" + o.noise_space + "'");
+  settings.object_noise = o.noise_space == "object";
   if (o.init != "background" && o.init != "random-cells")
     throw InputError("--init: expected background or random-cells, got '" + o.init + "'");
   if (o.lock_at < -1) throw InputError("--lock-at: must be a frame number, or -1 for never");
@@ -539,6 +548,13 @@ int run_render(const RenderOptions& o) {
   }
   settings.validate();
 
+  if (settings.object_noise) {
+    // s pixels at the distance of the mesh centre, in world units.
+    const float world_per_pixel = 2.0f * camera.distance_world() *
+                                  std::tan(glm::radians(cam.fov_deg) * 0.5f) /
+                                  static_cast<float>(size.height);
+    settings.object_cell = settings.noise.scale * world_per_pixel;
+  }
   IbfvsRenderer renderer(settings);
   renderer.set_mesh(mesh, field);
   if (settings.use_color || settings.use_beta) renderer.set_scalars(color_scalar, beta_scalar);

@@ -70,6 +70,7 @@ const std::map<std::string, Kind>& keys() {
       {"lock_camera", Kind::Vector},
       {"default_field", Kind::String},
       {"export", Kind::String},
+      {"noise_space", Kind::String},
       {"quiet", Kind::Flag},
   };
   return k;

@@ -84,4 +84,34 @@ float NoiseGrid::sample(float x, float y, int frame) const {
          (1 - a) * b * grid_value(i, j + 1, frame) + a * b * grid_value(i + 1, j + 1, frame);
 }
 
+float solid_phase(int i, int j, int k, std::uint32_t seed) {
+  std::uint32_t h = static_cast<std::uint32_t>(i) * 73856093u ^
+                    static_cast<std::uint32_t>(j) * 19349663u ^
+                    static_cast<std::uint32_t>(k) * 83492791u ^ seed * 2654435761u;
+  const std::uint32_t state = h * 747796405u + 2891336453u;
+  h = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+  h = (h >> 22u) ^ h;
+  return static_cast<float>(h >> 8) / 16777216.0f;
+}
+
+float solid_noise(const NoiseParams& params, float cell, float x, float y, float z, int frame) {
+  const float u[3] = {x / cell, y / cell, z / cell};
+  int i[3];
+  float a[3];
+  for (int c = 0; c < 3; ++c) {
+    const float f = std::floor(u[c]);
+    i[c] = static_cast<int>(f);
+    a[c] = u[c] - f;
+  }
+  float g = 0.0f;
+  for (int corner = 0; corner < 8; ++corner) {
+    const int dx = corner & 1, dy = (corner >> 1) & 1, dz = (corner >> 2) & 1;
+    const float w = (dx ? a[0] : 1 - a[0]) * (dy ? a[1] : 1 - a[1]) * (dz ? a[2] : 1 - a[2]);
+    const float phi = solid_phase(i[0] + dx, i[1] + dy, i[2] + dz, params.seed);
+    g += w * noise_profile_value(params.profile, params.rate * static_cast<float>(frame) + phi,
+                                 params.spike_width);
+  }
+  return g;
+}
+
 }  // namespace ibfvs

@@ -260,6 +260,9 @@ void Program::set(int loc, float v) const {
 void Program::set(int loc, int v) const {
   glProgramUniform1i(id(), loc, v);
 }
+void Program::set(int loc, std::uint32_t v) const {
+  glProgramUniform1ui(id(), loc, v);
+}
 void Program::set(int loc, const glm::vec2& v) const {
   glProgramUniform2fv(id(), loc, 1, glm::value_ptr(v));
 }

@@ -34,6 +34,8 @@ void RenderSettings::validate() const {
     throw InputError("--size: width and height must be between 1 and 16384 pixels");
   if (!in_unit(alpha)) throw InputError("--alpha: must be between 0 and 1");
   if (!in_unit(beta)) throw InputError("--beta: must be between 0 and 1");
+  if (object_noise && (!(object_cell > 0.0f) || !std::isfinite(object_cell)))
+    throw InputError("--noise-space object: the cell size must be positive");
   if (!(noise.scale >= 1.0f) || !std::isfinite(noise.scale))
     throw InputError("--scale: the noise scale must be at least 1 pixel");
   if (!std::isfinite(noise.rate)) throw InputError("--vg: must be a finite number");
@@ -74,6 +76,9 @@ IbfvsRenderer::IbfvsRenderer(const RenderSettings& settings) : settings_(setting
   u_.field_mix = program_.location("u_field_mix");
   u_.use_image = program_.location("u_use_image");
   u_.locked = program_.location("u_locked");
+  u_.noise_space = program_.location("u_noise_space");
+  u_.object_cell = program_.location("u_object_cell");
+  u_.seed = program_.location("u_seed");
   u_.image_centre = program_.location("u_image_centre");
   color_map_ = gl::Texture2D(256, 1, gl::Format::RGBA32F, true);
   u_.phase_size = program_.location("u_phase_size");
@@ -111,6 +116,9 @@ void IbfvsRenderer::apply_settings_uniforms() {
   program_.set(u_.profile, static_cast<int>(settings_.noise.profile));
   program_.set(u_.spike_width, settings_.noise.spike_width);
   program_.set(u_.surface_color, settings_.surface_color);
+  program_.set(u_.noise_space, settings_.object_noise ? 1 : 0);
+  program_.set(u_.object_cell, settings_.object_cell);
+  program_.set(u_.seed, settings_.noise.seed);
   program_.set(u_.use_color, settings_.use_color ? 1 : 0);
   program_.set(u_.color_range, settings_.color_range);
   program_.set(u_.use_beta, settings_.use_beta ? 1 : 0);

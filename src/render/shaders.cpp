@@ -97,12 +97,39 @@ float noise(vec2 x) {
              mix(grid_value(i + ivec2(0, 1)), grid_value(i + ivec2(1, 1)), a.x), a.y);
 }
 
+// Section 3.6 beyond the paper: G on a 3D lattice at the surface point. The
+// hash is solid_phase() of noise.cpp, bit for bit.
+uniform int u_noise_space;    // 0 image, 1 object
+uniform float u_object_cell;  // lattice spacing in world units
+uniform uint u_seed;
+float solid_phase(ivec3 i) {
+  uint h = uint(i.x) * 73856093u ^ uint(i.y) * 19349663u ^ uint(i.z) * 83492791u ^
+           u_seed * 2654435761u;
+  uint state = h * 747796405u + 2891336453u;
+  h = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+  h = (h >> 22u) ^ h;
+  return float(h >> 8) / 16777216.0;
+}
+float solid_noise(vec3 p) {
+  vec3 u = p / u_object_cell;
+  vec3 fl = floor(u);
+  ivec3 i = ivec3(fl);
+  vec3 a = u - fl;
+  float g = 0.0;
+  for (int c = 0; c < 8; ++c) {
+    ivec3 d = ivec3(c & 1, (c >> 1) & 1, (c >> 2) & 1);
+    vec3 w3 = mix(1.0 - a, a, vec3(d));
+    g += w3.x * w3.y * w3.z * profile(u_noise_time + solid_phase(i + d));
+  }
+  return g;
+}
+
 void main() {
   // A point that was behind the eye has no image position: no advection there.
   vec2 texcoord = v_from.w > 1e-6 ? v_from.xy / v_from.w * 0.5 + 0.5
                                   : gl_FragCoord.xy * u_inverse_size;
   vec3 previous = texture(u_previous, texcoord).rgb;
-  float g = noise(gl_FragCoord.xy);
+  float g = u_noise_space == 0 ? noise(gl_FragCoord.xy) : solid_noise(v_position_object);
   vec3 ft = u_inject == 0 ? mix(previous, vec3(g), u_alpha)
                           : min(previous * (1.0 - u_alpha) + vec3(g), vec3(1.0));
   if (u_locked != 0) ft = previous;  // a locked texture is only mapped, never changed

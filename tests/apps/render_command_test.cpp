@@ -252,6 +252,11 @@ TEST_F(RenderCommand, StylesLockingAndTopology) {
   EXPECT_NE(test::read_file(dir_ / "topo.mtl").find("map_Kd topo.png"), std::string::npos);
   EXPECT_EQ(read_png(dir_ / "topo.png").width, 48);
   expect_error(m + "--export topo.ply", "--export: must be a .obj file");
+  expect_error(m + "--noise-space world", "--noise-space");
+  const Result o =
+      run("render --mesh landscape:2:6:24 --noise-space object --orbit 2 --size 32x32 "
+          "--frames 3 --out o.png -q");
+  EXPECT_EQ(o.status, 0) << o.err;
   expect_error(m + "--style cartoon", "--style: unknown style 'cartoon'");
   expect_error(m + "--init noise", "--init");
   expect_error(m + "--lock-at -5", "--lock-at");

@@ -73,6 +73,21 @@ TEST(Noise, SeedAndRateControlTheValues) {
   EXPECT_NEAR(static_cast<double>(on) / (big.rows() * big.columns()), 0.5, 0.02);
 }
 
+TEST(Noise, SolidNoiseIsALatticeOfPhases) {
+  NoiseParams p;
+  p.profile = NoiseProfile::Sawtooth;
+  p.rate = 0.0f;
+  // At lattice points the noise is the profile of the point's phase.
+  EXPECT_NEAR(solid_noise(p, 0.5f, 1.0f, -0.5f, 1.5f, 0), solid_phase(2, -1, 3, p.seed), 1e-5f);
+  EXPECT_NE(solid_phase(2, -1, 3, 1), solid_phase(2, -1, 3, 2));
+  double sum = 0;
+  for (int i = 0; i < 20000; ++i) sum += solid_phase(i % 31, i / 31, i % 7, 5);
+  EXPECT_NEAR(sum / 20000, 0.5, 0.01);
+  // Continuous: halfway between two points, the mean of their values.
+  const float a = solid_phase(0, 0, 0, p.seed), b = solid_phase(1, 0, 0, p.seed);
+  EXPECT_NEAR(solid_noise(p, 1.0f, 0.5f, 0.0f, 0.0f, 0), 0.5f * (a + b), 1e-5f);
+}
+
 TEST(Noise, RejectsBadScale) {
   NoiseParams p;
   p.scale = 0.0f;

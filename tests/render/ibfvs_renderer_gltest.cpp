@@ -370,6 +370,37 @@ TEST_F(RendererGLTest, EqualsTheCpuReferenceOnLargeTrianglesInPerspective) {
   EXPECT_LT(sum_diff / gpu.pixels.size(), 0.003);
 }
 
+TEST_F(RendererGLTest, ObjectSpaceNoiseEqualsTheCpuSolidNoise) {
+  // Section 3.6: G from a 3D lattice at the surface point. A still, zero field
+  // settles on it; the flat square at z = 0 under the unit ortho view puts
+  // pixel (x, y) at the point (2(x + 0.5)/w - 1, 2(y + 0.5)/h - 1, 0).
+  constexpr int w = 96, h = 64;
+  TriMesh square = make_square(2.0f, 4);
+  const std::vector<glm::vec3> zero(square.vertex_count(), glm::vec3(0));
+  RenderSettings settings;
+  settings.width = w;
+  settings.height = h;
+  settings.alpha = 0.3f;
+  settings.noise.rate = 0.0f;
+  settings.noise.profile = NoiseProfile::Sine;
+  settings.noise.seed = 7;
+  settings.object_noise = true;
+  settings.object_cell = 0.11f;
+  IbfvsRenderer r(settings);
+  r.set_mesh(square, zero);
+  for (int k = 0; k < 60; ++k) r.render_frame(flat_view(), 1.0f);
+  const ImageF tex = r.read_texture().select_channels(0, 1);
+  double worst = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const float px = 2.0f * (x + 0.5f) / w - 1.0f, py = 2.0f * (y + 0.5f) / h - 1.0f;
+      worst = std::max(worst, std::abs(double(tex.at(x, y)) -
+                                       solid_noise(settings.noise, 0.11f, px, py, 0.0f, 0)));
+    }
+  std::printf("object-space noise, GPU vs CPU: worst %.4f\n", worst);
+  EXPECT_LT(worst, 3e-3);
+}
+
 TEST_F(RendererGLTest, SameSeedSameImage) {
   const auto render = [](std::uint32_t seed) {
     Scene s = sphere_scene("rotate:0,1,0", TangentMode::Project);

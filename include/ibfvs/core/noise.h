@@ -59,6 +59,16 @@ class NoiseGrid {
   std::vector<float> phases_;
 };
 
+/// The phase of lattice point (i, j, k) of the solid noise: an integer hash
+/// (a PCG step) that the fragment shader computes identically.
+float solid_phase(int i, int j, int k, std::uint32_t seed);
+
+/// G in object space (section 3.6, beyond the paper): the same time profile
+/// on a 3D lattice of spacing `cell` world units, interpolated trilinearly at
+/// the surface point, so the density is constant on the surface (figure 3,
+/// right) and the noise stays on the surface when the camera moves.
+float solid_noise(const NoiseParams& params, float cell, float x, float y, float z, int frame);
+
 /// Deterministic uniform numbers in [0, 1) from (seed, index): the same on
 /// every platform, unlike std::uniform_real_distribution.
 float hash_uniform(std::uint32_t seed, std::uint64_t index);

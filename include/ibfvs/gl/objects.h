@@ -150,6 +150,7 @@ class Program : public Object<delete_program> {
   [[nodiscard]] int location(const char* name) const;
   void set(int location, float v) const;
   void set(int location, int v) const;
+  void set(int location, std::uint32_t v) const;
   void set(int location, const glm::vec2& v) const;
   void set(int location, const glm::ivec2& v) const;
   void set(int location, const glm::vec3& v) const;

@@ -54,10 +54,12 @@ struct RenderSettings {
   glm::vec3 background{0.5f};                     ///< B, grey by default (section 3.5)
   glm::vec3 surface_color{0.82f, 0.80f, 0.76f};   ///< diffuse colour of the shaded surface F_s
   AdvectView advect_view = AdvectView::Previous;  ///< see AdvectView
-  ColorMap color_map = ColorMap::Viridis;         ///< map for the colour scalar
-  bool use_color = false;                         ///< colour F_s by the colour scalar (set_scalars)
-  glm::vec2 color_range{0.0f, 1.0f};              ///< scalar values at the two ends of the map
-  bool use_beta = false;             ///< modulate beta by the beta scalar (paper 3.3, step 7)
+  bool object_noise = false;               ///< G on a 3D lattice at the surface point (section 3.6)
+  float object_cell = 0.05f;               ///< its spacing in world units
+  ColorMap color_map = ColorMap::Viridis;  ///< map for the colour scalar
+  bool use_color = false;                  ///< colour F_s by the colour scalar (set_scalars)
+  glm::vec2 color_range{0.0f, 1.0f};       ///< scalar values at the two ends of the map
+  bool use_beta = false;                   ///< modulate beta by the beta scalar (paper 3.3, step 7)
   glm::vec2 beta_range{0.0f, 1.0f};  ///< beta scalar at which the texture strength is 0 and beta
 
   /// Throws InputError naming the first impossible value.
@@ -161,7 +163,8 @@ class IbfvsRenderer {
   struct Uniforms {
     int view_projection, advect_view_projection, view, dt, alpha, beta, inject, noise_time,
         noise_scale, profile, spike_width, surface_color, phase_size, inverse_size, use_color,
-        color_range, use_beta, beta_range, field_mix, use_image, image_centre, locked;
+        color_range, use_beta, beta_range, field_mix, use_image, image_centre, locked, noise_space,
+        object_cell, seed;
   } u_{};
   void apply_settings_uniforms();
 };

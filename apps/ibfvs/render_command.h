@@ -36,20 +36,20 @@ struct RenderOptions {
   std::string surface_color = "0.82,0.80,0.76";
   std::string color_by;  ///< per-vertex scalar that colours the surface
   std::string color_map = "viridis";
-  std::string color_range;           ///< "LO,HI"; empty: 1st to 99th percentile
-  std::string beta_by;               ///< per-vertex scalar that modulates beta
-  std::string beta_range;            ///< "LO,HI"; empty: 1st to 99th percentile
-  std::vector<std::string> scalars;  ///< NAME=FILE:VAR, sampled from netCDF grids
-  std::string displace;              ///< NAME:FACTOR, move vertices along their normals
-  std::string surface_image;         ///< PNG mapped by longitude/latitude as the surface colour
-  std::string init = "background";   ///< F_t at the start: background or random-cells
-  int lock_at = -1;                  ///< lock the texture after this frame (-1: never)
-  std::string lock_camera;           ///< AZ,EL,DIST: the camera once locked
-  std::string style;                 ///< applied in main as default options (styles.h)
-  std::string default_field;         ///< the field when none is given and the mesh has none
-  std::string export_obj;            ///< OBJ + MTL + PNG of the final texture (section 3.7)
-  std::string noise_space = "image"; ///< image (the paper) or object (3D lattice on the surface)
-  std::string time = "0";            ///< time index of netCDF data, from 0, or a range A:B
+  std::string color_range;            ///< "LO,HI"; empty: 1st to 99th percentile
+  std::string beta_by;                ///< per-vertex scalar that modulates beta
+  std::string beta_range;             ///< "LO,HI"; empty: 1st to 99th percentile
+  std::vector<std::string> scalars;   ///< NAME=FILE:VAR, sampled from netCDF grids
+  std::string displace;               ///< NAME:FACTOR, move vertices along their normals
+  std::string surface_image;          ///< PNG mapped by longitude/latitude as the surface colour
+  std::string init = "background";    ///< F_t at the start: background or random-cells
+  int lock_at = -1;                   ///< lock the texture after this frame (-1: never)
+  std::string lock_camera;            ///< AZ,EL,DIST: the camera once locked
+  std::string style;                  ///< applied in main as default options (styles.h)
+  std::string default_field;          ///< the field when none is given and the mesh has none
+  std::string export_obj;             ///< OBJ + MTL + PNG of the final texture (section 3.7)
+  std::string noise_space = "image";  ///< image (the paper) or object (3D lattice on the surface)
+  std::string time = "0";             ///< time index of netCDF data, from 0, or a range A:B
   std::vector<std::string>
       field_steps;           ///< PLY files whose vx vy vz are the steps of an unsteady field
   int frames_per_step = 30;  ///< frames from one time step to the next

@@ -2,6 +2,7 @@
 // Shared test helpers: temporary folders, small files written on the fly, and
 // statistics on images. Procedural meshes live in ibfvs/core/procedural.h.
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -72,6 +73,21 @@ inline double correlation(const std::vector<float>& a, const std::vector<float>&
   const double va = saa / n - (sa / n) * (sa / n);
   const double vb = sbb / n - (sb / n) * (sb / n);
   return cov / std::sqrt(va * vb);
+}
+
+/// Largest and mean absolute difference of two equally long sequences.
+struct Difference {
+  double max = 0.0, mean = 0.0;
+};
+inline Difference difference(const std::vector<float>& a, const std::vector<float>& b) {
+  Difference d;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const double e = std::abs(static_cast<double>(a[i]) - b[i]);
+    d.max = std::max(d.max, e);
+    d.mean += e;
+  }
+  if (!a.empty()) d.mean /= static_cast<double>(a.size());
+  return d;
 }
 
 }  // namespace ibfvs::test

@@ -43,11 +43,7 @@ int parse_int(const std::string& text, const std::string& spec, int lo, int hi) 
 // along latitude, the longer side spanning [-1, 1], height = SCALE * value
 // (default: the largest |value| lifts 0.1).
 TriMesh make_relief(const std::string& spec) {
-  std::vector<std::string> parts;
-  std::size_t start = 0;
-  for (std::size_t c; (c = spec.find(':', start)) != std::string::npos; start = c + 1)
-    parts.push_back(spec.substr(start, c - start));
-  parts.push_back(spec.substr(start));
+  const std::vector<std::string> parts = split_colons(spec);
   if (parts.size() < 4 || parts.size() > 6)
     throw InputError("--mesh " + spec +
                      ": expected relief:FILE:VAR:LON0,LON1,LAT0,LAT1[:SCALE[:RESOLUTION]]");
@@ -100,11 +96,7 @@ TriMesh make_relief(const std::string& spec) {
 }
 
 TriMesh make_landscape(const std::string& spec) {
-  std::vector<std::string> parts;
-  std::size_t start = 0;
-  for (std::size_t c; (c = spec.find(':', start)) != std::string::npos; start = c + 1)
-    parts.push_back(spec.substr(start, c - start));
-  parts.push_back(spec.substr(start));
+  const std::vector<std::string> parts = split_colons(spec);
   if (parts[0] != "landscape" || parts.size() > 4)
     throw InputError("--mesh " + spec + ": expected landscape[:SEED[:CONTROLS[:RESOLUTION]]]");
   // landscape:FILE[:RESOLUTION]: the control heights given, one row per line.

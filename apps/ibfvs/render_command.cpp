@@ -14,6 +14,7 @@
 
 #include "ibfvs/core/camera.h"
 #include "ibfvs/core/colormap.h"
+#include "ibfvs/core/curvature.h"
 #include "ibfvs/core/displacement.h"
 #include "ibfvs/core/error.h"
 #include "ibfvs/core/gpu_prep.h"
@@ -390,6 +391,20 @@ int run_render(const RenderOptions& o) {
     LonLatGrid grid = read_lonlat_grid(path, var, 0);
     if (grid.time_steps > 1) grid = read_lonlat_grid(path, var, time_first);
     mesh.scalars[name] = lonlat_scalars(mesh, grid);
+  }
+
+  // ---- curvature, once, when the field or a scalar needs it
+  {
+    const auto wants = [](const std::string& name) {
+      const std::string n = !name.empty() && name[0] == '-' ? name.substr(1) : name;
+      return n == "kmin" || n == "kmax";
+    };
+    const bool principal = (field_spec && field_spec->kind == FieldKind::Principal) ||
+                           (!field_spec && o.default_field.rfind("principal", 0) == 0);
+    if ((principal || wants(o.color_by) || wants(o.beta_by) ||
+         wants(o.displace.substr(0, o.displace.rfind(':')))) &&
+        !mesh.scalars.count("kmax"))
+      store_curvature(mesh, compute_curvature(mesh), false);
   }
 
   // ---- displacement along the normals (the vertical scale of a relief)

@@ -79,7 +79,7 @@ std::vector<float> vertex_scalar(const TriMesh& mesh, const std::vector<glm::vec
     return out;
   }
   if (key == "kmin" || key == "kmax") {
-    const Curvature c = compute_curvature(mesh);
+    const Curvature c = mesh_curvature(mesh);
     return key == "kmin" ? c.kmin : c.kmax;
   }
   if (key == "x" || key == "y" || key == "z") {

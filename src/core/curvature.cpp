@@ -232,8 +232,8 @@ Curvature compute_curvature(const TriMesh& mesh, const CurvatureOptions& options
   return c;
 }
 
-void store_curvature(TriMesh& mesh, const Curvature& c) {
-  mesh.normals = c.normal;
+void store_curvature(TriMesh& mesh, const Curvature& c, bool refined_normals) {
+  if (refined_normals) mesh.normals = c.normal;
   mesh.scalars["kmin"] = c.kmin;
   mesh.scalars["kmax"] = c.kmax;
   const char* axes = "xyz";
@@ -247,6 +247,29 @@ void store_curvature(TriMesh& mesh, const Curvature& c) {
       mx[i] = c.dmax[i][k];
     }
   }
+}
+
+Curvature mesh_curvature(const TriMesh& mesh) {
+  const std::size_t n = mesh.vertex_count();
+  const auto stored = [&](const char* name) -> const std::vector<float>* {
+    const auto it = mesh.scalars.find(name);
+    return it != mesh.scalars.end() && it->second.size() == n ? &it->second : nullptr;
+  };
+  const char* names[8] = {"kmin", "kmax", "dminx", "dminy", "dminz", "dmaxx", "dmaxy", "dmaxz"};
+  const std::vector<float>* s[8];
+  for (int k = 0; k < 8; ++k)
+    if (!(s[k] = stored(names[k])) || mesh.normals.size() != n) return compute_curvature(mesh);
+  Curvature c;
+  c.kmin = *s[0];
+  c.kmax = *s[1];
+  c.dmin.resize(n);
+  c.dmax.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    c.dmin[i] = {(*s[2])[i], (*s[3])[i], (*s[4])[i]};
+    c.dmax[i] = {(*s[5])[i], (*s[6])[i], (*s[7])[i]};
+  }
+  c.normal = mesh.normals;
+  return c;
 }
 
 }  // namespace ibfvs

@@ -11,6 +11,16 @@
 
 namespace ibfvs {
 
+std::vector<std::string> split_colons(std::string_view text) {
+  const std::string s(text);
+  std::vector<std::string> parts;
+  std::size_t start = 0;
+  for (std::size_t colon; (colon = s.find(':', start)) != std::string::npos; start = colon + 1)
+    parts.push_back(s.substr(start, colon - start));
+  parts.push_back(s.substr(start));
+  return parts;
+}
+
 std::vector<float> parse_numbers(std::string_view text, std::string_view what, std::size_t count,
                                  std::string_view expected) {
   const std::string s(text);
@@ -46,16 +56,6 @@ glm::vec3 parse_vec3(std::string_view text, std::string_view what) {
 }
 
 namespace {
-
-// Splits "a:b:c" at colons.
-std::vector<std::string> split_colons(const std::string& s) {
-  std::vector<std::string> parts;
-  std::size_t start = 0;
-  for (std::size_t colon; (colon = s.find(':', start)) != std::string::npos; start = colon + 1)
-    parts.push_back(s.substr(start, colon - start));
-  parts.push_back(s.substr(start));
-  return parts;
-}
 
 // The optional parts of principal: and gradient: (a vector and one flag word).
 void parse_options(const std::string& s, const std::vector<std::string>& parts, const char* flag,
@@ -199,7 +199,7 @@ std::vector<glm::vec3> evaluate_field(const TriMesh& mesh, const FieldSpec& spec
       break;
     }
     case FieldKind::Principal: {
-      const Curvature c = compute_curvature(mesh);
+      const Curvature c = mesh_curvature(mesh);
       for (std::size_t i = 0; i < n; ++i) {
         glm::vec3 d = spec.use_max ? c.dmax[i] : c.dmin[i];
         // The sign rule of section 4.2: along the user vector, where the

@@ -184,14 +184,9 @@ TEST_F(RendererGLTest, EqualsTheCpuReferenceOnAFlatSquare) {
       r.render_frame(flat_view(), dt);
       ref.step(map, k, settings.alpha);
     }
-    const ImageF gpu = r.read_texture().select_channels(0, 1);
-    double max_diff = 0, sum_diff = 0;
-    for (std::size_t i = 0; i < gpu.pixels.size(); ++i) {
-      const double d = std::abs(gpu.pixels[i] - ref.texture().pixels[i]);
-      max_diff = std::max(max_diff, d);
-      sum_diff += d;
-    }
-    const double mean_diff = sum_diff / gpu.pixels.size();
+    const test::Difference d =
+        test::difference(r.read_texture().select_channels(0, 1).pixels, ref.texture().pixels);
+    const double max_diff = d.max, mean_diff = d.mean;
     std::printf("GPU vs CPU reference (%s, 50 frames): max %.4f mean %.5f\n",
                 to_string(profile).c_str(), max_diff, mean_diff);
     // Sawtooth jumps from 1 to 0: a grid value at the jump may fall on either
@@ -260,6 +255,22 @@ TEST_F(RendererGLTest, ZeroFieldSettlesOnTheNoise) {
       ASSERT_NEAR(tex.at(x, y), g.sample(x + 0.5f, y + 0.5f, 0), 2e-3f) << x << "," << y;
 }
 
+// Two big triangles tilted 65 degrees away, seen in strong perspective from
+// (0, 0, 1.6): large depth variation, and clipped at the image edges.
+glm::mat4 square_tilt() {
+  return glm::rotate(glm::mat4(1.0f), glm::radians(-65.0f), glm::vec3(1, 0, 0));
+}
+TriMesh tilted_square() {
+  TriMesh square = make_square(1.0f, 1);
+  for (glm::vec3& p : square.positions) p = glm::vec3(square_tilt() * glm::vec4(p, 1.0f));
+  for (glm::vec3& n : square.normals) n = glm::vec3(square_tilt() * glm::vec4(n, 0.0f));
+  return square;
+}
+ViewState tilted_square_view() {
+  return {glm::lookAt(glm::vec3(0, 0, 1.6f), glm::vec3(0), glm::vec3(0, 1, 0)),
+          glm::perspective(glm::radians(60.0f), 1.0f, 0.05f, 10.0f)};
+}
+
 TEST_F(RendererGLTest, LargeTrianglesInPerspectiveDoNotDrift) {
   // Section 3.9: texture coordinates are screen positions, so they must be
   // interpolated linearly in screen space. Two big triangles, strongly tilted
@@ -267,10 +278,7 @@ TEST_F(RendererGLTest, LargeTrianglesInPerspectiveDoNotDrift) {
   // texture must settle on the noise. Perspective-correct interpolation would
   // bend t inside each triangle and make the texture crawl.
   constexpr int w = 160, h = 160;
-  TriMesh square = make_square(1.0f, 1);
-  const glm::mat4 tilt = glm::rotate(glm::mat4(1.0f), glm::radians(-65.0f), glm::vec3(1, 0, 0));
-  for (glm::vec3& p : square.positions) p = glm::vec3(tilt * glm::vec4(p, 1.0f));
-  for (glm::vec3& n : square.normals) n = glm::vec3(tilt * glm::vec4(n, 0.0f));
+  const TriMesh square = tilted_square();
   const std::vector<glm::vec3> zero(square.vertex_count(), glm::vec3(0));
   RenderSettings settings;
   settings.width = w;
@@ -280,8 +288,7 @@ TEST_F(RendererGLTest, LargeTrianglesInPerspectiveDoNotDrift) {
   settings.noise.profile = NoiseProfile::Sine;
   IbfvsRenderer r(settings);
   r.set_mesh(square, zero);
-  const ViewState view{glm::lookAt(glm::vec3(0, 0, 1.6f), glm::vec3(0), glm::vec3(0, 1, 0)),
-                       glm::perspective(glm::radians(60.0f), 1.0f, 0.05f, 10.0f)};
+  const ViewState view = tilted_square_view();
   for (int k = 0; k < 60; ++k) r.render_frame(view, 1.0f);
   const ImageF tex = r.read_texture().select_channels(0, 1);
   const auto covered = r.read_coverage();
@@ -310,10 +317,8 @@ TEST_F(RendererGLTest, EqualsTheCpuReferenceOnLargeTrianglesInPerspective) {
   // evaluated exactly per pixel. Coverage is taken from the GPU (the test is
   // about the warp, not about rasterisation rules).
   constexpr int w = 160, h = 160;
-  TriMesh square = make_square(1.0f, 1);
-  const glm::mat4 tilt = glm::rotate(glm::mat4(1.0f), glm::radians(-65.0f), glm::vec3(1, 0, 0));
-  for (glm::vec3& p : square.positions) p = glm::vec3(tilt * glm::vec4(p, 1.0f));
-  for (glm::vec3& n : square.normals) n = glm::vec3(tilt * glm::vec4(n, 0.0f));
+  const glm::mat4 tilt = square_tilt();
+  const TriMesh square = tilted_square();
   const glm::vec3 normal = square.normals[0];
   const glm::vec3 v = glm::vec3(tilt * glm::vec4(0.3f, 0.8f, 0.0f, 0.0f));  // in the plane
   const std::vector<glm::vec3> field(square.vertex_count(), v);
@@ -327,8 +332,7 @@ TEST_F(RendererGLTest, EqualsTheCpuReferenceOnLargeTrianglesInPerspective) {
   IbfvsRenderer r(settings);
   r.set_mesh(square, field);
   const glm::vec3 eye(0, 0, 1.6f);
-  const ViewState view{glm::lookAt(eye, glm::vec3(0), glm::vec3(0, 1, 0)),
-                       glm::perspective(glm::radians(60.0f), 1.0f, 0.05f, 10.0f)};
+  const ViewState view = tilted_square_view();
   const glm::mat4 vp = view.projection * view.view, inv = glm::inverse(vp);
   r.render_frame(view, dt);
   BackwardMap map;
@@ -354,20 +358,16 @@ TEST_F(RendererGLTest, EqualsTheCpuReferenceOnLargeTrianglesInPerspective) {
     r.render_frame(view, dt);
     ref.step(map, k, settings.alpha);
   }
-  const ImageF gpu = r.read_texture().select_channels(0, 1);
-  double max_diff = 0, sum_diff = 0;
-  for (std::size_t i = 0; i < gpu.pixels.size(); ++i) {
-    const double d = std::abs(gpu.pixels[i] - ref.texture().pixels[i]);
-    max_diff = std::max(max_diff, d);
-    sum_diff += d;
-  }
+  const test::Difference d =
+      test::difference(r.read_texture().select_channels(0, 1).pixels, ref.texture().pixels);
+  const double max_diff = d.max, mean_diff = d.mean;
   std::printf(
       "perspective, 2 large triangles, up to %.1f px per frame: GPU vs CPU max %.4f mean "
       "%.5f\n",
-      largest, max_diff, sum_diff / gpu.pixels.size());
+      largest, max_diff, mean_diff);
   EXPECT_GT(largest, 1.0f);
   EXPECT_LT(max_diff, 0.01);
-  EXPECT_LT(sum_diff / gpu.pixels.size(), 0.003);
+  EXPECT_LT(mean_diff, 0.003);
 }
 
 TEST_F(RendererGLTest, ObjectSpaceNoiseEqualsTheCpuSolidNoise) {
@@ -576,9 +576,7 @@ TEST_F(RendererGLTest, UnsteadyFieldHalfwayIsTheMeanField) {
     return r.read_texture().select_channels(0, 1).pixels;
   };
   const auto a = render(true), b = render(false);
-  double worst = 0;
-  for (std::size_t i = 0; i < a.size(); ++i) worst = std::max(worst, double(std::abs(a[i] - b[i])));
-  EXPECT_LT(worst, 2e-3);
+  EXPECT_LT(test::difference(a, b).max, 2e-3);
   // And mix 0 is the first step: different from the mean.
   IbfvsRenderer r(settings);
   r.set_mesh(s.mesh, s.field);
@@ -586,9 +584,7 @@ TEST_F(RendererGLTest, UnsteadyFieldHalfwayIsTheMeanField) {
   r.set_field_mix(0.0f);
   for (int k = 0; k < 30; ++k) r.render_frame({s.camera.view(), s.camera.projection()}, 0.01f);
   const auto c = r.read_texture().select_channels(0, 1).pixels;
-  double diff = 0;
-  for (std::size_t i = 0; i < c.size(); ++i) diff = std::max(diff, double(std::abs(c[i] - b[i])));
-  EXPECT_GT(diff, 0.1);
+  EXPECT_GT(test::difference(c, b).max, 0.1);
   EXPECT_THROW(r.set_field_steps(s.field, std::vector<glm::vec3>(3)), InputError);
 }
 

@@ -49,9 +49,15 @@ struct Curvature {
 /// mesh has no normals.
 Curvature compute_curvature(const TriMesh& mesh, const CurvatureOptions& options = {});
 
-/// Copies `c` into the mesh: refined normals into `normals`, and scalars
-/// kmin kmax dminx dminy dminz dmaxx dmaxy dmaxz (the names `ibfvs geometry`
-/// writes to PLY).
-void store_curvature(TriMesh& mesh, const Curvature& c);
+/// Copies `c` into the mesh as scalars kmin kmax dminx dminy dminz dmaxx
+/// dmaxy dmaxz (the names `ibfvs geometry` writes to PLY) and, when
+/// `refined_normals`, its normals into `normals`.
+void store_curvature(TriMesh& mesh, const Curvature& c, bool refined_normals = true);
+
+/// The curvature stored in the mesh's scalars (from store_curvature or a PLY
+/// written by `ibfvs geometry`, normals from `mesh.normals`), or computed
+/// when they are missing: every user reads it through here, so it is
+/// computed at most once per mesh.
+Curvature mesh_curvature(const TriMesh& mesh);
 
 }  // namespace ibfvs

@@ -84,6 +84,9 @@ std::vector<glm::vec3> evaluate_field(const TriMesh& mesh, const FieldSpec& spec
 /// Parses "X,Y,Z" (three finite numbers). `what` names the option in errors.
 glm::vec3 parse_vec3(std::string_view text, std::string_view what);
 
+/// Splits "a:b:c" at its colons (the form of --field and generated --mesh specs).
+std::vector<std::string> split_colons(std::string_view text);
+
 /// Parses comma-separated finite numbers. Throws InputError naming `what` for
 /// a part that is not a finite number, or when `count` > 0 and the number of
 /// parts differs (`expected` then describes the form, e.g. "X,Y,Z").

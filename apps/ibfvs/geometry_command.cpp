@@ -9,6 +9,7 @@
 
 #include "ibfvs/core/curvature.h"
 #include "ibfvs/core/error.h"
+#include "ibfvs/core/file_names.h"
 #include "ibfvs/core/mesh_io.h"
 #include "ibfvs/mesh_loading.h"
 
@@ -43,10 +44,8 @@ int run_geometry(const GeometryOptions& o) {
   if (o.subdivide < 0 || o.subdivide > 8)
     throw InputError("--subdivide: levels must be between 0 and 8");
   if (!o.out.empty()) {
-    std::string ext = fs::path(o.out).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return std::tolower(c); });
-    if (ext != ".ply") throw InputError("--out: must be a .ply file, got '" + o.out + "'");
+    if (lower_extension(o.out) != ".ply")
+      throw InputError("--out: must be a .ply file, got '" + o.out + "'");
     const fs::path parent = fs::path(o.out).parent_path();
     std::error_code ec;
     if (!parent.empty() && !fs::is_directory(parent, ec))

@@ -17,6 +17,7 @@
 #include "ibfvs/core/curvature.h"
 #include "ibfvs/core/displacement.h"
 #include "ibfvs/core/error.h"
+#include "ibfvs/core/file_names.h"
 #include "ibfvs/core/gpu_prep.h"
 #include "ibfvs/core/image.h"
 #include "ibfvs/core/lonlat_grid.h"
@@ -140,10 +141,11 @@ void add_render_options(CLI::App& cmd, RenderOptions& o) {
                  "Lock the texture after this many frames (paper 3.7): it stays on the surface "
                  "as an ordinary texture map while the camera moves (-1: never)")
       ->capture_default_str();
-  cmd.add_option("--export", o.export_obj,
-                 "FILE.obj: after the last frame, write the texture F_t as FILE.png and the mesh "
-                 "with texture coordinates as FILE.obj + FILE.mtl, for Blender or ParaView "
-                 "(paper 3.7: one view, so parts hidden in it get wrong texture)");
+  cmd.add_option("--export", o.export_model,
+                 "FILE.obj|FILE.gltf|FILE.glb: after the last frame, write the texture F_t as "
+                 "FILE.png and the mesh with texture coordinates (OBJ + MTL, glTF + bin, or one "
+                 "binary glTF with the image inside) for Blender or ParaView (paper 3.7: one "
+                 "view, so parts hidden in it get wrong texture)");
   cmd.add_option("--lock-camera", o.lock_camera,
                  "AZIMUTH,ELEVATION,DISTANCE: the camera for the frames after --lock-at");
   cmd.add_option("--displace", o.displace,
@@ -266,10 +268,7 @@ enum class OutputKind { Video, Png, PngSequence };
 
 OutputKind output_kind(const fs::path& out, const char* option) {
   if (is_video_path(out)) return OutputKind::Video;
-  std::string ext = out.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return std::tolower(c); });
-  if (ext != ".png")
+  if (lower_extension(out) != ".png")
     throw InputError(std::string(option) + ": unknown output type '" + out.string() +
                      "' (expected .mp4, .mkv, .webm, .mov, .avi, .gif or .png)");
   return out.string().find('%') != std::string::npos ? OutputKind::PngSequence : OutputKind::Png;
@@ -487,13 +486,12 @@ int run_render(const RenderOptions& o) {
   const OutputKind kind = output_kind(out, "--out");
   if (kind == OutputKind::PngSequence) check_pattern(out.string());
   ensure_parent(out, "--out");
-  if (!o.export_obj.empty()) {
-    std::string ext = fs::path(o.export_obj).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return std::tolower(c); });
-    if (ext != ".obj")
-      throw InputError("--export: must be a .obj file, got '" + o.export_obj + "'");
-    ensure_parent(o.export_obj, "--export");
+  const std::string export_ext = lower_extension(o.export_model);
+  if (!o.export_model.empty()) {
+    if (export_ext != ".obj" && export_ext != ".gltf" && export_ext != ".glb")
+      throw InputError("--export: must be a .obj, .gltf or .glb file, got '" + o.export_model +
+                       "'");
+    ensure_parent(o.export_model, "--export");
   }
   if (!o.texture_out.empty()) {
     if (output_kind(o.texture_out, "--texture-out") != OutputKind::Png)
@@ -625,10 +623,10 @@ int run_render(const RenderOptions& o) {
   if (!o.texture_out.empty()) {
     write_png16(renderer.read_texture().select_channels(0, 3), o.texture_out);
   }
-  if (!o.export_obj.empty()) {
+  if (!o.export_model.empty()) {
     // F_t as an 8-bit RGB image and each vertex's position in it (section 3.7).
-    const fs::path obj(o.export_obj);
-    fs::path png = obj;
+    const fs::path model(o.export_model);
+    fs::path png = model;
     png.replace_extension(".png");
     const ImageF tex = renderer.read_texture();
     ImageU8 rgb(tex.width, tex.height, 3);
@@ -647,15 +645,21 @@ int run_render(const RenderOptions& o) {
       uv[i] = glm::clamp(t, glm::vec2(0.0f), glm::vec2(1.0f));
       outside += uv[i] != t;
     }
-    write_obj_textured(mesh, uv, obj, png.filename().string());
+    std::string written = model.string();
+    if (export_ext == ".obj") {
+      write_obj_textured(mesh, uv, model, png.filename().string());
+      written += ", " + fs::path(model).replace_extension(".mtl").string();
+    } else {
+      write_gltf_textured(mesh, uv, model, png);
+      if (export_ext == ".gltf")
+        written += ", " + fs::path(model).replace_extension(".bin").string();
+    }
     if (outside > 0)
       std::fprintf(stderr,
                    "ibfvs: warning: %zu vertices lie outside the view that made the texture; "
                    "their texture coordinates are clamped to the image border\n",
                    outside);
-    if (!o.quiet)
-      std::printf("ibfvs: exported %s, %s and %s\n", obj.c_str(),
-                  fs::path(obj).replace_extension(".mtl").c_str(), png.c_str());
+    if (!o.quiet) std::printf("ibfvs: exported %s and %s\n", written.c_str(), png.c_str());
   }
   if (!o.quiet) {
     std::printf(

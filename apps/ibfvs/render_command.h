@@ -47,7 +47,7 @@ struct RenderOptions {
   std::string lock_camera;            ///< AZ,EL,DIST: the camera once locked
   std::string style;                  ///< applied in main as default options (styles.h)
   std::string default_field;          ///< the field when none is given and the mesh has none
-  std::string export_obj;             ///< OBJ + MTL + PNG of the final texture (section 3.7)
+  std::string export_model;           ///< OBJ + MTL, glTF or GLB, + PNG of the final texture (3.7)
   std::string noise_space = "image";  ///< image (the paper) or object (3D lattice on the surface)
   std::string time = "0";             ///< time index of netCDF data, from 0, or a range A:B
   std::vector<std::string>

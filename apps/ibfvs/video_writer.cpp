@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "ibfvs/core/error.h"
+#include "ibfvs/core/file_names.h"
 
 namespace ibfvs::app {
 namespace {
@@ -32,9 +33,7 @@ std::string shell_quote(const std::string& s) {
 }  // namespace
 
 bool is_video_path(const std::filesystem::path& path) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return std::tolower(c); });
+  const std::string ext = lower_extension(path);
   return ext == ".mp4" || ext == ".mkv" || ext == ".webm" || ext == ".mov" || ext == ".avi" ||
          ext == ".gif";
 }

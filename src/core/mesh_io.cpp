@@ -17,6 +17,7 @@
 #include <glm/geometric.hpp>
 
 #include "ibfvs/core/error.h"
+#include "ibfvs/core/file_names.h"
 #include "openmesh_errors.h"
 
 namespace ibfvs {
@@ -232,7 +233,7 @@ TriMesh read_mesh(const fs::path& path, MeshReadReport* report_out) {
     std::ifstream probe(path, std::ios::binary);
     if (!probe) fail(path, "cannot open the file for reading");
   }
-  const std::string ext = lower(path.extension().string());
+  const std::string ext = lower_extension(path);
   DeclaredCounts declared;
   {
     std::ifstream in(path, std::ios::binary);

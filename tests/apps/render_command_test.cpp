@@ -1,11 +1,14 @@
 // `ibfvs render` run as a user runs it: real process, exit status, stderr.
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <string>
 
 #include <gtest/gtest.h>
+#include <tiny_gltf.h>
 
 #include "command_runner.h"
 #include "helpers.h"
@@ -251,7 +254,34 @@ TEST_F(RenderCommand, StylesLockingAndTopology) {
   EXPECT_EQ(bad, 0u);
   EXPECT_NE(test::read_file(dir_ / "topo.mtl").find("map_Kd topo.png"), std::string::npos);
   EXPECT_EQ(read_png(dir_ / "topo.png").width, 48);
-  expect_error(m + "--export topo.ply", "--export: must be a .obj file");
+  // The same as glTF (JSON + bin + PNG) and GLB (one file), read by tinygltf.
+  for (const std::string name : {"topo.gltf", "topo.glb"}) {
+    const Result g =
+        run("render --mesh landscape:2:6:24 --style topology --size 48x48 "
+            "--frames 6 --lock-at 4 -q --export " +
+            name);
+    ASSERT_EQ(g.status, 0) << g.err;
+    tinygltf::TinyGLTF loader;
+    tinygltf::Model model;
+    std::string err, warn;
+    const std::string file = (dir_ / name).string();
+    ASSERT_TRUE(name.ends_with(".glb") ? loader.LoadBinaryFromFile(&model, &err, &warn, file)
+                                       : loader.LoadASCIIFromFile(&model, &err, &warn, file))
+        << err;
+    const tinygltf::Primitive& prim = model.meshes.at(0).primitives.at(0);
+    const tinygltf::Accessor& tex =
+        model.accessors.at(static_cast<std::size_t>(prim.attributes.at("TEXCOORD_0")));
+    EXPECT_EQ(tex.count, back.vertex_count()) << name;
+    const tinygltf::BufferView& view =
+        model.bufferViews.at(static_cast<std::size_t>(tex.bufferView));
+    std::vector<float> uv(tex.count * 2);
+    std::memcpy(uv.data(), model.buffers.at(0).data.data() + view.byteOffset + tex.byteOffset,
+                uv.size() * sizeof(float));
+    EXPECT_EQ(std::count_if(uv.begin(), uv.end(), [](float c) { return !(c >= 0 && c <= 1); }), 0)
+        << name;
+    EXPECT_EQ(model.images.at(0).width, 48) << name;
+  }
+  expect_error(m + "--export topo.ply", "--export: must be a .obj, .gltf or .glb file");
   expect_error(m + "--noise-space world", "--noise-space");
   const Result o =
       run("render --mesh landscape:2:6:24 --noise-space object --orbit 2 --size 32x32 "

@@ -2,10 +2,12 @@
 #include <cstring>
 
 #include <gtest/gtest.h>
+#include <tiny_gltf.h>
 #include <glm/geometric.hpp>
 
 #include "helpers.h"
 #include "ibfvs/core/error.h"
+#include "ibfvs/core/image.h"
 #include "ibfvs/core/mesh_io.h"
 #include "ibfvs/core/procedural.h"
 
@@ -198,6 +200,96 @@ TEST(MeshIo, NonFiniteVectorsAreReadAsIs) {
   const TriMesh m = read_mesh(dir / "v.ply");
   ASSERT_EQ(m.vectors.size(), sq.vertex_count());
   EXPECT_TRUE(std::isnan(m.vectors[4].x));
+}
+
+// A square with texture coordinates u = x, v = y (mapped to [0,1]) and a
+// 4x2 texture whose bottom row is red and top row blue.
+struct TexturedSquare {
+  TriMesh mesh = make_square(1.0f, 3);
+  std::vector<glm::vec2> uv;
+  std::filesystem::path png;
+  explicit TexturedSquare(const std::filesystem::path& dir) : png(dir / "tex.png") {
+    for (const glm::vec3& p : mesh.positions) uv.emplace_back((p.x + 1) / 2, (p.y + 1) / 2);
+    ImageU8 image(4, 2, 3);
+    for (int x = 0; x < 4; ++x) {
+      image.pixels[static_cast<std::size_t>(x) * 3] = 255;          // row 0 (bottom): red
+      image.pixels[static_cast<std::size_t>(4 + x) * 3 + 2] = 255;  // row 1 (top): blue
+    }
+    write_png(image, png);
+  }
+};
+
+TEST(MeshIo, TexturedObjReadsBackWithItsCoordinates) {
+  TempDir dir;
+  const TexturedSquare sq(dir.path());
+  write_obj_textured(sq.mesh, sq.uv, dir / "sq.obj", "tex.png");
+  const TriMesh back = read_mesh(dir / "sq.obj");
+  EXPECT_EQ(back.vertex_count(), sq.mesh.vertex_count());
+  EXPECT_EQ(back.triangle_count(), sq.mesh.triangle_count());
+  EXPECT_NE(test::read_file(dir / "sq.mtl").find("map_Kd tex.png"), std::string::npos);
+  EXPECT_THROW(write_obj_textured(sq.mesh, {}, dir / "x.obj", "tex.png"), InputError);
+}
+
+// Reads a glTF or GLB back through tinygltf and checks it against the square.
+void expect_gltf_round_trip(const std::filesystem::path& file, const TexturedSquare& sq) {
+  tinygltf::TinyGLTF loader;
+  tinygltf::Model model;
+  std::string err, warn;
+  const bool ok = file.extension() == ".glb"
+                      ? loader.LoadBinaryFromFile(&model, &err, &warn, file.string())
+                      : loader.LoadASCIIFromFile(&model, &err, &warn, file.string());
+  ASSERT_TRUE(ok) << err;
+  EXPECT_TRUE(err.empty()) << err;
+  EXPECT_TRUE(warn.empty()) << warn;
+  ASSERT_EQ(model.meshes.size(), 1u);
+  const tinygltf::Primitive& prim = model.meshes[0].primitives.at(0);
+  auto data = [&](int accessor) {
+    const tinygltf::Accessor& a = model.accessors.at(static_cast<std::size_t>(accessor));
+    const tinygltf::BufferView& v = model.bufferViews.at(static_cast<std::size_t>(a.bufferView));
+    return model.buffers.at(static_cast<std::size_t>(v.buffer)).data.data() + v.byteOffset +
+           a.byteOffset;
+  };
+  const tinygltf::Accessor& pos =
+      model.accessors.at(static_cast<std::size_t>(prim.attributes.at("POSITION")));
+  const tinygltf::Accessor& tex =
+      model.accessors.at(static_cast<std::size_t>(prim.attributes.at("TEXCOORD_0")));
+  ASSERT_EQ(pos.count, sq.mesh.vertex_count());
+  ASSERT_EQ(tex.count, sq.mesh.vertex_count());
+  EXPECT_EQ(model.accessors.at(static_cast<std::size_t>(prim.indices)).count,
+            sq.mesh.triangle_count() * 3);
+  EXPECT_TRUE(prim.attributes.count("NORMAL"));
+  std::vector<glm::vec3> p(pos.count);
+  std::vector<glm::vec2> t(tex.count);
+  std::memcpy(p.data(), data(prim.attributes.at("POSITION")), p.size() * sizeof(glm::vec3));
+  std::memcpy(t.data(), data(prim.attributes.at("TEXCOORD_0")), t.size() * sizeof(glm::vec2));
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    EXPECT_EQ(p[i], sq.mesh.positions[i]);
+    // glTF puts v = 0 at the top of the image: the flip keeps the picture upright.
+    EXPECT_FLOAT_EQ(t[i].x, sq.uv[i].x);
+    EXPECT_FLOAT_EQ(t[i].y, 1.0f - sq.uv[i].y);
+  }
+  // The texture: tinygltf decodes it (a file beside the .gltf, or inside the .glb).
+  ASSERT_EQ(model.images.size(), 1u);
+  const tinygltf::Image& image = model.images[0];
+  ASSERT_EQ(image.width, 4);
+  ASSERT_EQ(image.height, 2);
+  // glTF rows are top-down: the first row is the blue one.
+  EXPECT_EQ(image.image.at(2), 255);
+  EXPECT_EQ(image.image.at(0), 0);
+  EXPECT_EQ(model.materials.at(0).pbrMetallicRoughness.baseColorTexture.index, 0);
+}
+
+TEST(MeshIo, TexturedGltfAndGlbReadBackThroughTinygltf) {
+  TempDir dir;
+  const TexturedSquare sq(dir.path());
+  write_gltf_textured(sq.mesh, sq.uv, dir / "sq.gltf", sq.png);
+  EXPECT_TRUE(std::filesystem::exists(dir / "sq.bin"));
+  expect_gltf_round_trip(dir / "sq.gltf", sq);
+  write_gltf_textured(sq.mesh, sq.uv, dir / "sq.glb", sq.png);
+  expect_gltf_round_trip(dir / "sq.glb", sq);
+  EXPECT_THROW(write_gltf_textured(sq.mesh, sq.uv, dir / "sq.fbx", sq.png), InputError);
+  EXPECT_THROW(write_gltf_textured(sq.mesh, sq.uv, dir / "sq.glb", dir / "none.png"), InputError);
+  EXPECT_THROW(write_gltf_textured(sq.mesh, {}, dir / "sq.glb", sq.png), InputError);
 }
 
 }  // namespace

@@ -38,6 +38,18 @@ TriMesh read_mesh(const std::filesystem::path& path, MeshReadReport* report = nu
 void write_obj_textured(const TriMesh& mesh, const std::vector<glm::vec2>& uv,
                         const std::filesystem::path& path, const std::string& texture_file);
 
+/// Writes a glTF 2.0 model of the mesh with per-vertex texture coordinates
+/// `uv` (one per vertex, OpenGL convention: v = 0 at the image's bottom row;
+/// flipped to glTF's top-left origin on writing), normals, and an unlit
+/// material (KHR_materials_unlit) whose base colour texture is the PNG file
+/// `texture_png`. A `.gltf` path writes JSON plus `<stem>.bin` and refers to
+/// the PNG by its file name (it must lie beside the model); a `.glb` path
+/// writes one binary file with the PNG embedded. Throws InputError when the
+/// PNG cannot be read or a file cannot be written.
+void write_gltf_textured(const TriMesh& mesh, const std::vector<glm::vec2>& uv,
+                         const std::filesystem::path& path,
+                         const std::filesystem::path& texture_png);
+
 /// Writes an ASCII or binary little-endian PLY with positions, normals, the
 /// vector field (vx vy vz) and all scalars. Throws InputError when the file
 /// cannot be written.

@@ -145,6 +145,57 @@ TriMesh make_landscape(const std::string& spec) {
       controls, resolution);
 }
 
+// torus[:R,r]: the torus around the Y axis (lying flat, +Y up), centre-line
+// radius R and tube radius r (default 1, 0.4), 160 x 64 cells.
+TriMesh make_torus_spec(const std::string& spec) {
+  const std::vector<std::string> parts = split_colons(spec);
+  if (parts[0] != "torus" || parts.size() > 2)
+    throw InputError("--mesh " + spec + ": expected torus[:R,r]");
+  const std::vector<float> radii = parts.size() > 1
+                                       ? parse_numbers(parts[1], "--mesh " + spec, 2, "R,r")
+                                       : std::vector<float>{1.0f, 0.4f};
+  if (!(radii[1] > 0) || !(radii[0] > radii[1]))
+    throw InputError("--mesh " + spec + ": the radii need R > r > 0");
+  return make_torus(radii[0], radii[1], 160, 64);
+}
+
+// cylinder[:RADIUS,LENGTH[,COUNT]]: COUNT open cylinders (default one, radius
+// 0.3, length 3) with their axes along X, stacked along Y three radii apart.
+TriMesh make_cylinders_spec(const std::string& spec) {
+  const std::vector<std::string> parts = split_colons(spec);
+  if (parts[0] != "cylinder" || parts.size() > 2)
+    throw InputError("--mesh " + spec + ": expected cylinder[:RADIUS,LENGTH[,COUNT]]");
+  std::vector<float> p = {0.3f, 3.0f, 1.0f};
+  if (parts.size() > 1) {
+    const std::vector<float> given = parse_numbers(parts[1], "--mesh " + spec);
+    if (given.size() < 2 || given.size() > 3)
+      throw InputError("--mesh " + spec + ": expected cylinder[:RADIUS,LENGTH[,COUNT]]");
+    std::copy(given.begin(), given.end(), p.begin());
+  }
+  const float r = p[0], length = p[1];
+  if (!(r > 0) || !(length > 0) || p[2] < 1 || p[2] > 16 || p[2] != std::floor(p[2]))
+    throw InputError("--mesh " + spec + ": needs RADIUS > 0, LENGTH > 0 and COUNT in 1..16");
+  const int count = static_cast<int>(p[2]);
+  constexpr int kSegments = 128;
+  const int rings = std::clamp(
+      static_cast<int>(std::ceil(length / (2.0f * 3.14159265f * r / kSegments))), 1, 4096);
+  const TriMesh one = make_cylinder(r, length, kSegments, rings);
+  TriMesh m;
+  for (int c = 0; c < count; ++c) {
+    const float y = 3.0f * r * (static_cast<float>(c) - 0.5f * static_cast<float>(count - 1));
+    const auto base = static_cast<std::uint32_t>(m.positions.size());
+    for (std::size_t i = 0; i < one.positions.size(); ++i) {
+      // Y axis -> X axis: (x, y, z) -> (y, -x, z) is a rotation about Z.
+      const glm::vec3 q = one.positions[i], n = one.normals[i];
+      m.positions.emplace_back(q.y, -q.x + y, q.z);
+      m.normals.emplace_back(n.y, -n.x, n.z);
+    }
+    for (const Triangle& t : one.triangles)
+      m.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+  }
+  return m;
+}
+
 }  // namespace
 
 LoadedMesh load_mesh(const std::string& path, int subdivide) {
@@ -176,6 +227,12 @@ LoadedMesh load_mesh(const std::string& path, int subdivide) {
     out.mesh = make_relief(path);
     out.name = path;
     out.generated_landscape = true;
+  } else if (path.rfind("torus", 0) == 0 && !fs::exists(path)) {
+    out.mesh = make_torus_spec(path);
+    out.name = path;
+  } else if (path.rfind("cylinder", 0) == 0 && !fs::exists(path)) {
+    out.mesh = make_cylinders_spec(path);
+    out.name = path;
   } else if (path.rfind("landscape", 0) == 0 && !fs::exists(path)) {
     out.mesh = make_landscape(path);
     out.name = path;

@@ -30,6 +30,10 @@ struct LoadedMesh {
 /// of a netCDF lon/lat variable over a box (x east, -z north, the longer side
 /// spanning [-1, 1], height SCALE * value, by default 0.1 at the largest
 /// |value|), with the variable kept as a scalar of the same name.
+/// `torus[:R,r]` is a torus lying flat around +Y (default R = 1, r = 0.4);
+/// `cylinder[:RADIUS,LENGTH[,COUNT]]` is COUNT open cylinders along X stacked
+/// along Y (default one, radius 0.3, length 3). Both are for the paper's
+/// figures 3 and 4 and carry exact normals.
 /// Then subdivides `subdivide` times and orders the mesh for the GPU's vertex
 /// cache (optimize_for_gpu). Throws InputError naming the file.
 LoadedMesh load_mesh(const std::string& path, int subdivide);

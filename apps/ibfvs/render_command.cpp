@@ -40,8 +40,10 @@ void add_render_options(CLI::App& cmd, RenderOptions& o) {
   cmd.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
   cmd.add_option("--mesh", o.mesh,
                  "Triangle mesh: .off .obj .ply .stl (PLY vertex properties vx vy vz are a "
-                 "vector field). Default: the demo, data/meshes/bunny00.off, else cow.off, else "
-                 "a procedural torus");
+                 "vector field); or generated: landscape[:SEED[:CONTROLS[:RESOLUTION]]], "
+                 "relief:FILE:VAR:BOX[:SCALE[:RES]], globe[:LEVEL], torus[:R,r], "
+                 "cylinder[:RADIUS,LENGTH[,COUNT]]. Default: the demo, data/meshes/bunny00.off, "
+                 "else cow.off, else a procedural torus");
   cmd.add_option(
       "--field", o.field,
       "Vector field: file (PLY vx vy vz); uniform:X,Y,Z; rotate:X,Y,Z (rotation about axis "

@@ -14,24 +14,34 @@ std::vector<std::string> style_arguments(const std::string& name) {
   // particles (figure 8a): short spikes so that few grid values are bright,
   // added rather than blended, along kappa_min where the mesh has no field.
   if (name == "particles")
-    return {"--profile",       "spike",        "--spike-width", "0.04",           "--inject", "add",
-            "--alpha",         "0.08",         "--background",  "0.05,0.05,0.08", "--beta",   "0.7",
-            "--default-field", "principal:min"};
+    return {"--profile",       "spike",
+            "--spike-width",   "0.04",
+            "--inject",        "add",
+            "--alpha",         "0.08",
+            "--background",    "0.05,0.05,0.08",
+            "--beta",          "0.7",
+            "--default-field", "principal:min:smooth=10"};
   // principal (figure 8b): dense texture along the principal directions,
-  // signed along +Y (section 4.2's sign rule).
-  if (name == "principal") return {"--default-field", "principal:min:0,1,0", "--beta", "0.6"};
+  // signed along +Y (section 4.2's sign rule), smoothed over about three
+  // edges so that scanned meshes give coherent strokes.
+  if (name == "principal")
+    return {"--default-field", "principal:min:0,1,0:smooth=10", "--beta", "0.6"};
   // bronze (figure 9): "a dirty surface has superficially been cleaned":
   // colour by kappa_max (patina in the hollows, metal on the ridges) and the
   // texture (the dirt) strongest where the surface is concave (-kappa_max
   // high), bounds from the 1st and 99th percentile.
   if (name == "bronze") {
-    return {"--default-field", "principal:min", "--color-by", "kmax",      "--color-map",
-            "bronze",          "--color-range", "p5,p95",     "--beta-by", "-kmax",
-            "--beta-range",    "p5,p95",        "--beta",     "0.6"};
+    return {"--default-field", "principal:min:smooth=10",
+            "--color-by",      "kmax",
+            "--color-map",     "bronze",
+            "--color-range",   "p5,p95",
+            "--beta-by",       "-kmax",
+            "--beta-range",    "p5,p95",
+            "--beta",          "0.6"};
   }
   // eroded stone (section 4.2): the same, parametrised by kappa_min.
   if (name == "eroded") {
-    return {"--default-field", "principal:max",
+    return {"--default-field", "principal:max:smooth=10",
             "--color-by",      "kmin",
             "--color-map",     "grey",
             "--color-range",   "p5,p95",

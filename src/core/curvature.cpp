@@ -272,4 +272,38 @@ Curvature mesh_curvature(const TriMesh& mesh) {
   return c;
 }
 
+std::vector<glm::vec3> smooth_line_field(const TriMesh& mesh, const std::vector<glm::vec3>& normals,
+                                         std::vector<glm::vec3> directions, int iterations) {
+  const std::size_t n = mesh.vertex_count();
+  if (directions.size() != n || normals.size() != n || iterations <= 0) return directions;
+  // Each undirected edge once (as the smaller index first), so every vertex
+  // sees each neighbour once however many triangles share the edge.
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
+  edges.reserve(mesh.triangles.size() * 3);
+  for (const Triangle& t : mesh.triangles)
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t a = t[k], b = t[(k + 1) % 3];
+      edges.emplace_back(std::min(a, b), std::max(a, b));
+    }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  std::vector<glm::vec3> sum(n);
+  for (int it = 0; it < iterations; ++it) {
+    sum = directions;
+    for (const auto& [a, b] : edges) {
+      const glm::vec3 da = directions[a], db = directions[b];
+      const float s = glm::dot(da, db) < 0.0f ? -1.0f : 1.0f;
+      sum[a] += s * db;
+      sum[b] += s * da;
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      const glm::vec3& nrm = normals[i];
+      const glm::vec3 t = sum[i] - glm::dot(sum[i], nrm) * nrm;
+      const float len = glm::length(t);
+      if (len > 1e-6f) directions[i] = t / len;
+    }
+  }
+  return directions;
+}
+
 }  // namespace ibfvs

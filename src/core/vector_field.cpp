@@ -96,7 +96,26 @@ FieldSpec FieldSpec::parse(std::string_view text) {
       throw InputError("--field: expected principal:min or principal:max, got '" + s + "'");
     spec.use_max = parts[1] == "max";
     spec.value = glm::vec3(0, 1, 0);
-    parse_options(s, parts, "rot90", spec.rotate90, spec.value);
+    std::vector<std::string> rest;
+    for (const std::string& part : parts) {
+      if (part.rfind("smooth=", 0) != 0) {
+        rest.push_back(part);
+        continue;
+      }
+      const std::string count = part.substr(7);
+      std::size_t used = 0;
+      int k = -1;
+      try {
+        k = std::stoi(count, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used == 0 || used != count.size() || k < 0 || k > 1000)
+        throw InputError("--field: '" + part + "' in '" + s +
+                         "' needs a whole number of rounds in 0..1000");
+      spec.smooth = k;
+    }
+    parse_options(s, rest, "rot90", spec.rotate90, spec.value);
     return spec;
   }
   if (parts[0] == "wind") {
@@ -154,6 +173,7 @@ std::string FieldSpec::to_string() const {
       out << "principal:" << (use_max ? "max" : "min") << ":";
       vec();
       if (rotate90) out << ":rot90";
+      if (smooth > 0) out << ":smooth=" << smooth;
       break;
     case FieldKind::Gradient:
       out << "gradient:" << (downhill ? "down" : "up") << ":";
@@ -200,8 +220,10 @@ std::vector<glm::vec3> evaluate_field(const TriMesh& mesh, const FieldSpec& spec
     }
     case FieldKind::Principal: {
       const Curvature c = mesh_curvature(mesh);
+      const std::vector<glm::vec3> dirs =
+          smooth_line_field(mesh, c.normal, spec.use_max ? c.dmax : c.dmin, spec.smooth);
       for (std::size_t i = 0; i < n; ++i) {
-        glm::vec3 d = spec.use_max ? c.dmax[i] : c.dmin[i];
+        glm::vec3 d = dirs[i];
         // The sign rule of section 4.2: along the user vector, where the
         // direction is not (nearly) perpendicular to it.
         if (glm::dot(d, spec.value) < 0.0f) d = -d;

@@ -60,4 +60,14 @@ void store_curvature(TriMesh& mesh, const Curvature& c, bool refined_normals = t
 /// computed at most once per mesh.
 Curvature mesh_curvature(const TriMesh& mesh);
 
+/// Smooths a tangent line field (unit directions whose sign means nothing,
+/// such as Curvature::dmin) over the mesh: each of `iterations` rounds
+/// replaces a vertex's direction by the sum of its own and its edge
+/// neighbours' directions, each flipped to agree with it, projected on the
+/// tangent plane of `normals` and normalised. Restless principal directions of
+/// scanned meshes become coherent over about sqrt(iterations) edges; a
+/// direction that the neighbours cancel keeps its old value.
+std::vector<glm::vec3> smooth_line_field(const TriMesh& mesh, const std::vector<glm::vec3>& normals,
+                                         std::vector<glm::vec3> directions, int iterations);
+
 }  // namespace ibfvs

@@ -32,9 +32,12 @@ enum class FieldKind {
 ///   uniform:X,Y,Z                          a constant vector
 ///   rotate:X,Y,Z                           rotation about the axis through the box centre
 ///   elements[:X,Y,Z]                       uniform flow X,Y,Z (default 0) plus `elements`
-///   principal:min|max[:X,Y,Z][:rot90]      kappa_min or kappa_max directions, each
-///                                          flipped to point along X,Y,Z (default +Y),
-///                                          then optionally turned 90 degrees about n
+///   principal:min|max[:X,Y,Z][:rot90][:smooth=K]
+///                                          kappa_min or kappa_max directions, first
+///                                          smoothed by K rounds of smooth_line_field
+///                                          (default 0), each flipped to point along
+///                                          X,Y,Z (default +Y), then optionally turned
+///                                          90 degrees about n
 ///   gradient:down|up[:X,Y,Z][:normalize]   steepest descent or ascent of the height
 ///                                          along X,Y,Z (default +Y, up) on the surface
 ///   wind:FILE[:UVAR:VVAR]                  eastward and northward components (default
@@ -46,6 +49,7 @@ struct FieldSpec {
                                       ///< alignment vector or height axis
   bool use_max = false;               ///< principal: kappa_max instead of kappa_min
   bool rotate90 = false;              ///< principal: turn 90 degrees about the normal
+  int smooth = 0;                     ///< principal: rounds of line-field smoothing
   bool downhill = true;               ///< gradient: descent (true) or ascent
   bool normalize = false;             ///< gradient: unit vectors where the slope is not zero
   std::vector<FlowElement> elements;  ///< elements: the flow elements (from --element)

@@ -97,6 +97,9 @@ void add_render_options(CLI::App& cmd, RenderOptions& o) {
       ->capture_default_str();
   cmd.add_option("--dt", o.dt, "Time step in world units per frame; overrides --step when > 0")
       ->capture_default_str();
+  cmd.add_flag("--image-normalize", o.image_normalize,
+               "Normalise the flow in image space: every moving point moves --step pixels per "
+               "frame, whatever its speed or its angle to the view (paper figure 2)");
   cmd.add_option("--inject", o.inject,
                  "How noise enters the texture: blend (eq. 10) or add (bright particles with "
                  "--profile spike)")
@@ -313,6 +316,8 @@ int run_render(const RenderOptions& o) {
     throw InputError("--step: must be a positive number of pixels");
   if (!(o.dt >= 0.0f) || !std::isfinite(o.dt))
     throw InputError("--dt: must be a non-negative number");
+  if (o.image_normalize && o.dt > 0.0f)
+    throw InputError("--image-normalize: moves every point --step pixels; it takes no --dt");
   if (!std::isfinite(o.orbit) || std::abs(o.orbit) > 360.0f)
     throw InputError("--orbit: must be within -360..360 degrees per frame");
   if (!(o.fps > 0.0) || o.fps > 1000.0) throw InputError("--fps: must be in (0, 1000]");
@@ -324,6 +329,7 @@ int run_render(const RenderOptions& o) {
   settings.height = size.height;
   settings.alpha = o.alpha;
   settings.beta = o.beta;
+  settings.image_step = o.image_normalize ? o.step : 0.0f;
   settings.noise.scale = o.scale;
   settings.noise.profile = parse_noise_profile(o.profile);
   settings.noise.rate = o.vg;
@@ -509,7 +515,7 @@ int run_render(const RenderOptions& o) {
   const float speed =
       max_pixel_speed(mesh.positions, field, camera.view_projection(), size.width, size.height);
   const float dt = o.dt > 0.0f ? o.dt : (speed > 0.0f ? o.step / speed : 0.0f);
-  const float max_px = speed * dt;
+  const float max_px = o.image_normalize && speed > 0.0f ? o.step : speed * dt;
   if (speed == 0.0f)
     std::fprintf(stderr,
                  "ibfvs: warning: the field does not move any vertex in the image (zero after "
@@ -666,9 +672,10 @@ int run_render(const RenderOptions& o) {
   if (!o.quiet) {
     std::printf(
         "ibfvs: wrote %s (%d frames, %dx%d) from %s: %zu vertices, %zu triangles, field %s, "
-        "dt %.4g (max %.2f px/frame), %.1f fps on %s\n",
+        "dt %.4g (%s %.2f px/frame), %.1f fps on %s\n",
         out.c_str(), frames, size.width, size.height, mesh_name.c_str(), mesh.vertex_count(),
-        mesh.triangle_count(), field_spec->to_string().c_str(), dt, max_px, frames / seconds,
+        mesh.triangle_count(), field_spec->to_string().c_str(), dt,
+        o.image_normalize ? "image-normalised, every point" : "max", max_px, frames / seconds,
         context.renderer().c_str());
     if (!o.texture_out.empty())
       std::printf("ibfvs: wrote texture image %s\n", o.texture_out.c_str());

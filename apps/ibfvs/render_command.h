@@ -29,8 +29,9 @@ struct RenderOptions {
   float vg = 0.02f;
   float spike_width = 0.1f;
   std::uint32_t seed = 1;
-  float step = 3.0f;  ///< pixels per frame (ignored when dt > 0)
-  float dt = 0.0f;    ///< world units per frame; 0: from --step
+  float step = 3.0f;             ///< pixels per frame (ignored when dt > 0)
+  float dt = 0.0f;               ///< world units per frame; 0: from --step
+  bool image_normalize = false;  ///< every vector moves `step` pixels (paper figure 2)
   std::string inject = "blend";
   std::string background = "0.5,0.5,0.5";
   std::string surface_color = "0.82,0.80,0.76";

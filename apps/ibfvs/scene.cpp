@@ -43,6 +43,7 @@ const std::map<std::string, Kind>& keys() {
       {"seed", Kind::Integer},
       {"step", Kind::Number},
       {"dt", Kind::Number},
+      {"image_normalize", Kind::Flag},
       {"inject", Kind::String},
       {"background", Kind::Vector},
       {"surface_color", Kind::Vector},
@@ -76,10 +77,15 @@ const std::map<std::string, Kind>& keys() {
   return k;
 }
 
-std::string expand(std::string s) {
-  const std::string token = "${data}";
-  for (std::size_t p; (p = s.find(token)) != std::string::npos;)
-    s.replace(p, token.size(), data_dir().string());
+// ${data}: the fetched-data folder; ${scene}: the scene file's folder.
+std::string expand(std::string s, const std::filesystem::path& scene) {
+  const auto replace = [&s](const std::string& token, const std::string& by) {
+    for (std::size_t p = s.find(token); p != std::string::npos; p = s.find(token, p + by.size()))
+      s.replace(p, token.size(), by);
+  };
+  replace("${data}", data_dir().string());
+  std::filesystem::path folder = scene.parent_path();
+  replace("${scene}", folder.empty() ? std::string(".") : folder.string());
   return s;
 }
 
@@ -136,7 +142,7 @@ std::vector<std::string> scene_arguments(const std::filesystem::path& path) {
     switch (it->second) {
       case Kind::String:
         if (!value.is_string()) wrong("a string");
-        add(expand(*value.value<std::string>()));
+        add(expand(*value.value<std::string>(), path));
         break;
       case Kind::Integer:
         if (!value.is_integer()) wrong("an integer");
@@ -176,14 +182,14 @@ std::vector<std::string> scene_arguments(const std::filesystem::path& path) {
       }
       case Kind::StringList: {
         if (value.is_string()) {
-          add(expand(*value.value<std::string>()));
+          add(expand(*value.value<std::string>(), path));
           break;
         }
         const toml::array* a = value.as_array();
         if (!a) wrong("a string or an array of strings");
         for (const toml::node& n : *a) {
           if (!n.is_string()) wrong("a string or an array of strings");
-          add(expand(*n.value<std::string>()));
+          add(expand(*n.value<std::string>(), path));
         }
         break;
       }

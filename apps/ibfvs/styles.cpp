@@ -28,16 +28,16 @@ std::vector<std::string> style_arguments(const std::string& name) {
     return {"--default-field", "principal:min:0,1,0:smooth=10", "--beta", "0.6"};
   // bronze (figure 9): "a dirty surface has superficially been cleaned":
   // colour by kappa_max (patina in the hollows, metal on the ridges) and the
-  // texture (the dirt) strongest where the surface is concave (-kappa_max
-  // high), bounds from the 1st and 99th percentile.
+  // texture (the dirt) only in the more concave half (-kappa_max from its
+  // median to its 98th percentile), so the rest shows clean metal.
   if (name == "bronze") {
     return {"--default-field", "principal:min:smooth=10",
             "--color-by",      "kmax",
             "--color-map",     "bronze",
             "--color-range",   "p5,p95",
             "--beta-by",       "-kmax",
-            "--beta-range",    "p5,p95",
-            "--beta",          "0.6"};
+            "--beta-range",    "p50,p98",
+            "--beta",          "0.7"};
   }
   // eroded stone (section 4.2): the same, parametrised by kappa_min.
   if (name == "eroded") {
@@ -46,8 +46,8 @@ std::vector<std::string> style_arguments(const std::string& name) {
             "--color-map",     "grey",
             "--color-range",   "p5,p95",
             "--beta-by",       "-kmin",
-            "--beta-range",    "p5,p95",
-            "--beta",          "0.6"};
+            "--beta-range",    "p50,p98",
+            "--beta",          "0.7"};
   }
   // topology (figure 7): alpha 0, random colours per noise cell, flow
   // downhill; after 40 frames each pixel holds its summit's colour; then the

@@ -72,4 +72,21 @@ glm::vec2 project_to_pixels(const glm::mat4& vp, const glm::vec3& p, int width, 
           (c.y / w * 0.5f + 0.5f) * static_cast<float>(height)};
 }
 
+glm::vec3 image_normalized_step(const glm::mat4& vp, const glm::vec3& r, const glm::vec3& v,
+                                float pixels, int width, int height, float probe) {
+  const float speed = glm::length(v);
+  if (!(speed > 0.0f) || !(probe > 0.0f)) return glm::vec3(0.0f);
+  const glm::vec3 u = v / speed;
+  const glm::vec4 a = vp * glm::vec4(r, 1.0f);
+  const glm::vec4 b = vp * glm::vec4(r - u * probe, 1.0f);
+  if (a.w <= 1e-6f || b.w <= 1e-6f) return glm::vec3(0.0f);
+  const glm::vec2 moved = (glm::vec2(a) / a.w - glm::vec2(b) / b.w) * 0.5f *
+                          glm::vec2(static_cast<float>(width), static_cast<float>(height));
+  const float length = glm::length(moved);
+  if (!(length > 0.0f)) return glm::vec3(0.0f);
+  // Nearly along the line of sight the world step would grow without bound:
+  // at most kImageStepLimit probes.
+  return u * (probe * std::min(pixels / length, kImageStepLimit));
+}
+
 }  // namespace ibfvs

@@ -44,10 +44,11 @@ glm::vec3 color_map(ColorMap map, float t) {
   if (map == ColorMap::Grey) return glm::vec3(t);
   if (map == ColorMap::Bronze) {
     // Patina in the hollows, polished metal on the ridges: piecewise linear.
-    static constexpr float stops[4][4] = {{0.0f, 0.16f, 0.20f, 0.15f},
-                                          {0.4f, 0.42f, 0.31f, 0.17f},
-                                          {0.75f, 0.72f, 0.52f, 0.28f},
-                                          {1.0f, 0.95f, 0.80f, 0.55f}};
+    // Most of a surface lies mid-range: keep that a warm bronze, not patina.
+    static constexpr float stops[4][4] = {{0.0f, 0.22f, 0.26f, 0.19f},
+                                          {0.3f, 0.52f, 0.38f, 0.20f},
+                                          {0.65f, 0.78f, 0.57f, 0.30f},
+                                          {1.0f, 0.98f, 0.86f, 0.60f}};
     int k = 0;
     while (k < 2 && t > stops[k + 1][0]) ++k;
     const float f = (t - stops[k][0]) / (stops[k + 1][0] - stops[k][0]);

@@ -34,6 +34,8 @@ void RenderSettings::validate() const {
     throw InputError("--size: width and height must be between 1 and 16384 pixels");
   if (!in_unit(alpha)) throw InputError("--alpha: must be between 0 and 1");
   if (!in_unit(beta)) throw InputError("--beta: must be between 0 and 1");
+  if (!(image_step >= 0.0f) || !std::isfinite(image_step))
+    throw InputError("--step: the image-space step must be a finite number of pixels >= 0");
   if (object_noise && (!(object_cell > 0.0f) || !std::isfinite(object_cell)))
     throw InputError("--noise-space object: the cell size must be positive");
   if (!(noise.scale >= 1.0f) || !std::isfinite(noise.scale))
@@ -79,6 +81,9 @@ IbfvsRenderer::IbfvsRenderer(const RenderSettings& settings) : settings_(setting
   u_.noise_space = program_.location("u_noise_space");
   u_.object_cell = program_.location("u_object_cell");
   u_.seed = program_.location("u_seed");
+  u_.image_step = program_.location("u_image_step");
+  u_.probe = program_.location("u_probe");
+  u_.size = program_.location("u_size");
   u_.image_centre = program_.location("u_image_centre");
   color_map_ = gl::Texture2D(256, 1, gl::Format::RGBA32F, true);
   u_.phase_size = program_.location("u_phase_size");
@@ -119,6 +124,9 @@ void IbfvsRenderer::apply_settings_uniforms() {
   program_.set(u_.noise_space, settings_.object_noise ? 1 : 0);
   program_.set(u_.object_cell, settings_.object_cell);
   program_.set(u_.seed, settings_.noise.seed);
+  program_.set(u_.image_step, settings_.image_step);
+  program_.set(u_.size, glm::vec2(static_cast<float>(settings_.width),
+                                  static_cast<float>(settings_.height)));
   program_.set(u_.use_color, settings_.use_color ? 1 : 0);
   program_.set(u_.color_range, settings_.color_range);
   program_.set(u_.use_beta, settings_.use_beta ? 1 : 0);
@@ -170,6 +178,8 @@ void IbfvsRenderer::set_mesh(const TriMesh& mesh, std::span<const glm::vec3> fie
   vao_.index_buffer(indices_);
   index_count_ = mesh.triangles.size() * 3;
   vertex_count_ = mesh.positions.size();
+  const float diagonal = mesh_bounds(mesh).diagonal();
+  probe_ = diagonal > 0.0f ? 1e-3f * diagonal : 1e-3f;
   reset();
 }
 
@@ -249,6 +259,7 @@ void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
                                                            : vp);
     program_.set(u_.view, view.view);
     program_.set(u_.dt, locked_ ? 0.0f : dt);
+    program_.set(u_.probe, probe_);
     program_.set(u_.locked, locked_ ? 1 : 0);
     program_.set(u_.noise_time, settings_.noise.rate * static_cast<float>(frame_));
     texture_[current_].bind(0);

@@ -14,6 +14,9 @@ uniform mat4 u_advect_view_projection;   // T_k or T_{k-1}: where its texture co
 uniform mat4 u_view;
 uniform float u_dt;
 uniform float u_field_mix;  // 0: a_vector, 1: a_vector_next
+uniform float u_image_step;  // > 0: every vector moves this many pixels (image-space normalisation)
+uniform float u_probe;       // world length of the probe step for it
+uniform vec2 u_size;         // image size in pixels
 
 // Equation 13, t = T(r - v dt), evaluated per fragment: the homogeneous
 // clip-space point T(r_i - v_i dt) of each vertex is interpolated
@@ -32,7 +35,18 @@ out vec3 v_position_object;  // for the spherical image map
 void main() {
   gl_Position = u_view_projection * vec4(a_position, 1.0);
   vec3 v = mix(a_vector, a_vector_next, u_field_mix);
-  v_from = u_advect_view_projection * vec4(a_position - v * u_dt, 1.0);
+  vec3 step = v * u_dt;
+  if (u_image_step > 0.0) {  // as image_normalized_step() in core/camera.cpp
+    step = vec3(0.0);
+    float speed = length(v);
+    vec4 a = u_advect_view_projection * vec4(a_position, 1.0);
+    vec4 b = u_advect_view_projection * vec4(a_position - v / max(speed, 1e-30) * u_probe, 1.0);
+    if (speed > 0.0 && u_dt > 0.0 && a.w > 1e-6 && b.w > 1e-6) {
+      float moved = length((a.xy / a.w - b.xy / b.w) * 0.5 * u_size);
+      if (moved > 0.0) step = v / speed * (u_probe * min(u_image_step / moved, 50.0));
+    }
+  }
+  v_from = u_advect_view_projection * vec4(a_position - step, 1.0);
   v_scalars = a_scalars;
   v_normal_eye = mat3(u_view) * a_normal;
   v_position_eye = (u_view * vec4(a_position, 1.0)).xyz;

@@ -1,3 +1,6 @@
+#include <algorithm>
+#include <cmath>
+
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
 
@@ -64,6 +67,37 @@ TEST(Camera, AzimuthElevationDistance) {
   const glm::mat4 v = top.view();
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 4; ++j) EXPECT_TRUE(std::isfinite(v[i][j]));
+}
+
+// Paper figure 2: every vector moves the image by the same number of pixels,
+// whatever its length and its angle to the view; none along the line of sight.
+TEST(Camera, ImageNormalizedStepMovesTheGivenPixels) {
+  const TriMesh m = make_torus(1.0f, 0.4f, 16, 8);
+  CameraParams p;
+  p.azimuth_deg = 30.0f;
+  p.elevation_deg = 20.0f;
+  const Camera camera(mesh_bounds(m), p, 1.5f);
+  const glm::mat4 vp = camera.view_projection();
+  const int w = 300, h = 200;
+  const float probe = 1e-3f * mesh_bounds(m).diagonal();
+  double worst = 0.0;
+  for (std::size_t i = 0; i < m.vertex_count(); i += 7) {
+    const glm::vec3 r = m.positions[i];
+    for (const glm::vec3 v : {glm::vec3(0.01f, 0, 0), glm::vec3(0, 5.0f, 0), glm::vec3(3, -1, 2)}) {
+      const glm::vec3 d = image_normalized_step(vp, r, v, 3.0f, w, h, probe);
+      EXPECT_GT(glm::dot(d, v), 0.0f);  // along v
+      const float moved =
+          glm::length(project_to_pixels(vp, r, w, h) - project_to_pixels(vp, r - d, w, h));
+      worst = std::max(worst, std::abs(static_cast<double>(moved) - 3.0));
+    }
+  }
+  EXPECT_LT(worst, 0.05) << "first-order step off by " << worst << " px";
+  EXPECT_EQ(image_normalized_step(vp, m.positions[0], glm::vec3(0), 3.0f, w, h, probe),
+            glm::vec3(0));
+  // Along the line of sight the image does not move: the step is capped.
+  const glm::vec3 eye = camera.eye(), r = m.positions[0];
+  const glm::vec3 d = image_normalized_step(vp, r, r - eye, 3.0f, w, h, probe);
+  EXPECT_LE(glm::length(d), kImageStepLimit * probe * 1.0001f);
 }
 
 TEST(Camera, RejectsImpossibleValues) {

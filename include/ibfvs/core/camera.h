@@ -48,4 +48,16 @@ class Camera {
 glm::vec2 project_to_pixels(const glm::mat4& view_projection, const glm::vec3& p, int width,
                             int height);
 
+/// Image-space normalisation (paper figure 2, "the flow is normalized in image
+/// space"): the displacement along v, in world units, whose projection moves
+/// the image of r by `pixels` pixels, to first order. The image motion of a
+/// probe step of `probe` world units along v sets the scale. At most
+/// kImageStepLimit probes long (v almost along the line of sight); zero where
+/// v is zero, has no image motion, or r is behind the eye. The GPU's vertex
+/// shader computes the same per vertex.
+inline constexpr float kImageStepLimit = 50.0f;
+glm::vec3 image_normalized_step(const glm::mat4& view_projection, const glm::vec3& r,
+                                const glm::vec3& v, float pixels, int width, int height,
+                                float probe);
+
 }  // namespace ibfvs

@@ -61,6 +61,10 @@ struct RenderSettings {
   glm::vec2 color_range{0.0f, 1.0f};       ///< scalar values at the two ends of the map
   bool use_beta = false;                   ///< modulate beta by the beta scalar (paper 3.3, step 7)
   glm::vec2 beta_range{0.0f, 1.0f};  ///< beta scalar at which the texture strength is 0 and beta
+  /// > 0: normalise the flow in image space, every vector moving this many
+  /// pixels per frame (paper figure 2; image_normalized_step); dt then only
+  /// says whether to move (0 stops, as when locked).
+  float image_step = 0.0f;
 
   /// Throws InputError naming the first impossible value.
   void validate() const;
@@ -153,7 +157,8 @@ class IbfvsRenderer {
   gl::VertexArray vao_;
   std::size_t index_count_ = 0;
   std::size_t vertex_count_ = 0;
-  int current_ = 0;  // texture_[current_] holds F_t of the last frame
+  float probe_ = 1e-3f;  // 1/1000 of the mesh's bounding-box diagonal
+  int current_ = 0;      // texture_[current_] holds F_t of the last frame
   int frame_ = 0;
   bool has_previous_ = false;
   bool locked_ = false;
@@ -164,7 +169,7 @@ class IbfvsRenderer {
     int view_projection, advect_view_projection, view, dt, alpha, beta, inject, noise_time,
         noise_scale, profile, spike_width, surface_color, phase_size, inverse_size, use_color,
         color_range, use_beta, beta_range, field_mix, use_image, image_centre, locked, noise_space,
-        object_cell, seed;
+        object_cell, seed, image_step, probe, size;
   } u_{};
   void apply_settings_uniforms();
 };

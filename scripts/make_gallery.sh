@@ -118,7 +118,7 @@ render figure7-locked still scenes/figure7-topology.toml
 render figure7-relief-top still scenes/figure7-relief-topology.toml --frames 40
 render figure7-relief-locked still scenes/figure7-relief-topology.toml
 render figure7-topology video scenes/figure7-topology.toml
-flush "A B-spline landscape from the top after 40 steps, then locked and oblique; the same for the ETOPO20 relief of the Alps (5-16 E, 43-48.5 N). The video shows the colours spreading downhill, the lock, and the camera moving with the texture fixed on the surface."
+flush "A B-spline landscape from the top after 40 steps, then locked and oblique; the same for the ETOPO20 relief of the Alps (5-16 E, 43-48.5 N). The video shows the colours spreading downhill, the lock, and the camera moving with the texture fixed on the surface. Faint rings inside some basins are the history of the summit's own colour, which the bilinear lookups mix during the first steps and the flow then carries outward."
 
 section "Figure 8: moving particles and a dense texture along principal directions (section 4.2)" \
   "The twice Loop-subdivided elephant. Particles: a spike time profile, so that few noise values are bright at a time, added rather than blended, along kappa_min. Dense: the standard noise along kappa_min, signed along +Y (the sign rule leaves a seam where the direction turns horizontal, as the paper shows on the breast)."

@@ -352,6 +352,20 @@ TEST_F(RenderCommand, ImpossibleOptionsFailCleanly) {
   expect_error(m + "--field swirl:1 --out x.png", "--field");
   expect_error(m + "--field rotate:0,0,0 --out x.png", "--field rotate");
   expect_error(m + "--tangent flat --out x.png", "--tangent");
+  expect_error(m + "--image-normalize --dt 0.1 --out x.png", "--image-normalize");
+  expect_error(m + "--field principal:min:smooth=many --out x.png", "smooth=many");
+  // Generated shapes: bad parameters name the spec.
+  const std::string g = "render --frames 1 --size 16x16 --out x.png --mesh ";
+  expect_error(g + "torus:0.3,1", "--mesh torus:0.3,1: the radii need R > r > 0");
+  expect_error(g + "torus:1", "--mesh torus:1");
+  expect_error(g + "torus:1,0.5:2", "expected torus[:R,r]");
+  expect_error(g + "cylinder:0,1", "needs RADIUS > 0, LENGTH > 0 and COUNT in 1..16");
+  expect_error(g + "cylinder:0.3,1,40", "COUNT in 1..16");
+  expect_error(g + "cylinder:1", "expected cylinder[:RADIUS,LENGTH[,COUNT]]");
+  const Result t = run(g + "torus:1,0.3 --image-normalize --camera 0,30,0 -q");
+  EXPECT_EQ(t.status, 0) << t.err;
+  const Result c = run(g + "cylinder:0.2,2,3 --field uniform:1,0,0 -q");
+  EXPECT_EQ(c.status, 0) << c.err;
   expect_error(m + "--background 2,0,0 --out x.png", "--background");
   expect_error(m + "--background 0.5,0.5 --out x.png", "--background");
   expect_error(m + "--camera 10,20 --out x.png", "--camera");

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -25,17 +26,7 @@ namespace fs = std::filesystem;
 namespace {
 
 int parse_int(const std::string& text, const std::string& spec, int lo, int hi) {
-  std::size_t used = 0;
-  int v = 0;
-  try {
-    v = std::stoi(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != text.size() || v < lo || v > hi)
-    throw InputError("--mesh " + spec + ": '" + text + "' must be a whole number in " +
-                     std::to_string(lo) + ".." + std::to_string(hi));
-  return v;
+  return ibfvs::parse_int(text, "--mesh " + spec, lo, hi);
 }
 
 // relief:FILE:VAR:LON0,LON1,LAT0,LAT1[:SCALE[:RESOLUTION]]: a height field of
@@ -178,7 +169,8 @@ TriMesh make_cylinders_spec(const std::string& spec) {
   const int count = static_cast<int>(p[2]);
   constexpr int kSegments = 128;
   const int rings = std::clamp(
-      static_cast<int>(std::ceil(length / (2.0f * 3.14159265f * r / kSegments))), 1, 4096);
+      static_cast<int>(std::ceil(length / (2.0f * std::numbers::pi_v<float> * r / kSegments))), 1,
+      4096);
   const TriMesh one = make_cylinder(r, length, kSegments, rings);
   TriMesh m;
   for (int c = 0; c < count; ++c) {

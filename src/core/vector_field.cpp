@@ -50,6 +50,21 @@ std::vector<float> parse_numbers(std::string_view text, std::string_view what, s
   return out;
 }
 
+int parse_int(std::string_view text, std::string_view what, int lo, int hi) {
+  const std::string s(text);
+  std::size_t used = 0;
+  int v = 0;
+  try {
+    v = std::stoi(s, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != s.size() || v < lo || v > hi)
+    throw InputError(std::string(what) + ": '" + s + "' must be a whole number in " +
+                     std::to_string(lo) + ".." + std::to_string(hi));
+  return v;
+}
+
 glm::vec3 parse_vec3(std::string_view text, std::string_view what) {
   const std::vector<float> v = parse_numbers(text, what, 3, "three numbers X,Y,Z");
   return {v[0], v[1], v[2]};
@@ -102,18 +117,7 @@ FieldSpec FieldSpec::parse(std::string_view text) {
         rest.push_back(part);
         continue;
       }
-      const std::string count = part.substr(7);
-      std::size_t used = 0;
-      int k = -1;
-      try {
-        k = std::stoi(count, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (used == 0 || used != count.size() || k < 0 || k > 1000)
-        throw InputError("--field: '" + part + "' in '" + s +
-                         "' needs a whole number of rounds in 0..1000");
-      spec.smooth = k;
+      spec.smooth = parse_int(std::string_view(part).substr(7), "--field " + s, 0, 1000);
     }
     parse_options(s, rest, "rot90", spec.rotate90, spec.value);
     return spec;

@@ -97,4 +97,7 @@ std::vector<std::string> split_colons(std::string_view text);
 std::vector<float> parse_numbers(std::string_view text, std::string_view what,
                                  std::size_t count = 0, std::string_view expected = "");
 
+/// Parses a whole number in [lo, hi]. Throws InputError naming `what` otherwise.
+int parse_int(std::string_view text, std::string_view what, int lo, int hi);
+
 }  // namespace ibfvs

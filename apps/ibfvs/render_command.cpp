@@ -306,12 +306,15 @@ void ensure_parent(const fs::path& out, const char* option) {
 
 }  // namespace
 
-int run_render(const RenderOptions& o) {
+PreparedScene prepare_scene(const RenderOptions& o) {
   // ---- options that need no file
+  PreparedScene scene;
   const Size size = parse_size(o.size);
+  scene.width = size.width;
+  scene.height = size.height;
   if (o.frames < 1 || o.frames > 1000000)
     throw InputError("--frames: must be between 1 and 1000000");
-  const int frames = static_cast<int>(o.frames);
+  scene.frames = static_cast<int>(o.frames);
   if (!(o.step > 0.0f) || !std::isfinite(o.step))
     throw InputError("--step: must be a positive number of pixels");
   if (!(o.dt >= 0.0f) || !std::isfinite(o.dt))
@@ -324,7 +327,7 @@ int run_render(const RenderOptions& o) {
   if (o.subdivide < 0 || o.subdivide > 8)
     throw InputError("--subdivide: levels must be between 0 and 8");
 
-  RenderSettings settings;
+  RenderSettings& settings = scene.settings;
   settings.width = size.width;
   settings.height = size.height;
   settings.alpha = o.alpha;
@@ -355,7 +358,7 @@ int run_render(const RenderOptions& o) {
   if (o.init != "background" && o.init != "random-cells")
     throw InputError("--init: expected background or random-cells, got '" + o.init + "'");
   if (o.lock_at < -1) throw InputError("--lock-at: must be a frame number, or -1 for never");
-  std::optional<CameraParams> lock_cam;
+  std::optional<CameraParams>& lock_cam = scene.lock_camera;
   if (!o.lock_camera.empty()) {
     const glm::vec3 c = parse_vec3(o.lock_camera, "--lock-camera");
     if (c.z < 0.0f) throw InputError("--lock-camera: the distance must not be negative");
@@ -370,7 +373,7 @@ int run_render(const RenderOptions& o) {
     throw InputError("--field-step: needs --field file (or no --field), got --field " + o.field);
   if (time_last > time_first && (!field_spec || field_spec->kind != FieldKind::Wind))
     throw InputError("--time: a range A:B needs --field wind:...");
-  CameraParams cam;
+  CameraParams& cam = scene.camera;
   if (!o.camera.empty()) {
     const glm::vec3 c = parse_vec3(o.camera, "--camera");
     cam.azimuth_deg = c.x;
@@ -383,7 +386,8 @@ int run_render(const RenderOptions& o) {
 
   // ---- mesh
   LoadedMesh loaded = load_mesh(o.mesh, o.subdivide);
-  TriMesh& mesh = loaded.mesh;
+  auto mesh_ptr = std::make_shared<TriMesh>(std::move(loaded.mesh));
+  TriMesh& mesh = *mesh_ptr;
   const std::string mesh_name = loaded.demo ? loaded.name : fs::path(o.mesh).filename().string();
   const bool demo = loaded.demo;
 
@@ -448,35 +452,36 @@ int run_render(const RenderOptions& o) {
                                                               : FieldSpec::parse("rotate:0,1,0");
   }
   // An unsteady field: its steps, evaluated when the animation reaches them.
-  std::size_t step_count = 1;
-  std::function<std::vector<glm::vec3>(std::size_t)> step_field;
+  std::size_t& step_count = scene.step_count;
+  auto& step_field = scene.step_field;
   if (!o.field_steps.empty()) {
     step_count = o.field_steps.size();
-    step_field = [&](std::size_t s) {
-      const std::string& file = o.field_steps[s];
+    step_field = [files = o.field_steps, expected = loaded.file_vertices,
+                  order = loaded.vertex_order, mesh_ptr, tangent](std::size_t s) {
+      const std::string& file = files[s];
       const TriMesh step = read_mesh(file);
-      if (step.vertex_count() != loaded.file_vertices)
+      if (step.vertex_count() != expected)
         throw InputError("--field-step: " + file + ": " + std::to_string(step.vertex_count()) +
-                         " vertices, the mesh has " + std::to_string(loaded.file_vertices));
+                         " vertices, the mesh has " + std::to_string(expected));
       if (step.vectors.empty()) throw InputError("--field-step: " + file + ": has no vx vy vz");
       TriMesh on_mesh;
-      on_mesh.positions = mesh.positions;
-      on_mesh.normals = mesh.normals;
-      on_mesh.triangles = mesh.triangles;
-      on_mesh.vectors = remap_vertex_data(step.vectors, loaded.vertex_order);
+      on_mesh.positions = mesh_ptr->positions;
+      on_mesh.normals = mesh_ptr->normals;
+      on_mesh.triangles = mesh_ptr->triangles;
+      on_mesh.vectors = remap_vertex_data(step.vectors, order);
       return evaluate_field(on_mesh, FieldSpec::parse("file"), tangent);
     };
   } else if (time_last > time_first) {
     step_count = time_last - time_first + 1;
     read_lonlat_grid(field_spec->path, field_spec->east, time_last);  // the range exists
-    step_field = [&](std::size_t s) {
-      FieldSpec at = *field_spec;
-      at.time = time_first + s;
-      return evaluate_field(mesh, at, tangent);
+    step_field = [spec = *field_spec, first = time_first, mesh_ptr, tangent](std::size_t s) {
+      FieldSpec at = spec;
+      at.time = first + s;
+      return evaluate_field(*mesh_ptr, at, tangent);
     };
   }
   FieldReport field_report;
-  std::vector<glm::vec3> field;
+  std::vector<glm::vec3>& field = scene.field;
   try {
     field = step_field ? step_field(0) : evaluate_field(mesh, *field_spec, tangent, &field_report);
   } catch (const InputError& e) {
@@ -487,26 +492,6 @@ int run_render(const RenderOptions& o) {
                  "ibfvs: warning: %s: %zu vectors were NaN or infinite and are set to zero\n",
                  (demo ? mesh_name : o.mesh).c_str(), field_report.non_finite_zeroed);
 
-  // ---- output paths (checked before the long part)
-  const fs::path out = !o.out.empty() ? fs::path(o.out)
-                       : demo         ? fs::path("ibfvs-demo.mp4")
-                                      : fs::path(default_output_stem(o.mesh) + ".mp4");
-  const OutputKind kind = output_kind(out, "--out");
-  if (kind == OutputKind::PngSequence) check_pattern(out.string());
-  ensure_parent(out, "--out");
-  const std::string export_ext = lower_extension(o.export_model);
-  if (!o.export_model.empty()) {
-    if (export_ext != ".obj" && export_ext != ".gltf" && export_ext != ".glb")
-      throw InputError("--export: must be a .obj, .gltf or .glb file, got '" + o.export_model +
-                       "'");
-    ensure_parent(o.export_model, "--export");
-  }
-  if (!o.texture_out.empty()) {
-    if (output_kind(o.texture_out, "--texture-out") != OutputKind::Png)
-      throw InputError("--texture-out: must be a .png file, got '" + o.texture_out + "'");
-    ensure_parent(o.texture_out, "--texture-out");
-  }
-
   // ---- camera and displacement
   const Bounds bounds = mesh_bounds(mesh);
   Camera camera(bounds, cam, static_cast<float>(size.width) / static_cast<float>(size.height));
@@ -514,8 +499,8 @@ int run_render(const RenderOptions& o) {
   // says how far the fastest vertex moves with a given --dt.
   const float speed =
       max_pixel_speed(mesh.positions, field, camera.view_projection(), size.width, size.height);
-  const float dt = o.dt > 0.0f ? o.dt : (speed > 0.0f ? o.step / speed : 0.0f);
-  const float max_px = o.image_normalize && speed > 0.0f ? o.step : speed * dt;
+  const float dt = scene.dt = o.dt > 0.0f ? o.dt : (speed > 0.0f ? o.step / speed : 0.0f);
+  const float max_px = scene.max_px = o.image_normalize && speed > 0.0f ? o.step : speed * dt;
   if (speed == 0.0f)
     std::fprintf(stderr,
                  "ibfvs: warning: the field does not move any vertex in the image (zero after "
@@ -526,10 +511,8 @@ int run_render(const RenderOptions& o) {
                  "the noise scale %.1f: expect broken streaks (lower --step or --dt)\n",
                  max_px, settings.noise.scale);
 
-  // ---- render
-  gl::HeadlessContext context;
   // ---- scalars for colour and beta
-  std::vector<float> color_scalar, beta_scalar;
+  std::vector<float>&color_scalar = scene.color_scalar, &beta_scalar = scene.beta_scalar;
   // The named scalar, and its range: given as LO,HI or the 1st to 99th percentile.
   const auto scalar_range = [&](const std::string& name, const char* option,
                                 const std::string& range_text, const char* range_option,
@@ -576,44 +559,98 @@ int run_render(const RenderOptions& o) {
                                   static_cast<float>(size.height);
     settings.object_cell = settings.noise.scale * world_per_pixel;
   }
-  IbfvsRenderer renderer(settings);
-  renderer.set_mesh(mesh, field);
-  if (settings.use_color || settings.use_beta) renderer.set_scalars(color_scalar, beta_scalar);
+  scene.mesh = std::move(mesh_ptr);
+  scene.mesh_name = mesh_name;
+  scene.demo = demo;
+  scene.field_spec = *field_spec;
+  return scene;
+}
+
+void load_scene(IbfvsRenderer& renderer, const PreparedScene& scene, const RenderOptions& o) {
+  renderer.set_mesh(*scene.mesh, scene.field);
+  if (scene.settings.use_color || scene.settings.use_beta)
+    renderer.set_scalars(scene.color_scalar, scene.beta_scalar);
   if (!o.surface_image.empty())
-    renderer.set_surface_image(read_png(o.surface_image), mesh_bounds(mesh).centre());
+    renderer.set_surface_image(read_png(o.surface_image), mesh_bounds(*scene.mesh).centre());
+  if (o.init == "random-cells") renderer.fill_texture_with_cell_colors(o.seed);
+}
+
+FieldPlayer::FieldPlayer(const PreparedScene& scene, IbfvsRenderer& renderer) : scene_(scene) {
+  if (scene.step_count < 2) return;
+  field_ = scene.field;
+  next_ = scene.step_field(1 % scene.step_count);
+  renderer.set_field_steps(field_, next_);
+}
+
+void FieldPlayer::seek(double t, IbfvsRenderer& renderer) {
+  const std::size_t n = scene_.step_count;
+  if (n < 2) return;
+  t = std::fmod(std::max(t, 0.0), static_cast<double>(n));
+  const auto s = static_cast<std::size_t>(t) % n;
+  if (s != step_) {
+    // Playing on, the next step is already at hand; a jump evaluates both.
+    field_ = s == (step_ + 1) % n ? std::move(next_) : scene_.step_field(s);
+    next_ = scene_.step_field((s + 1) % n);
+    step_ = s;
+    renderer.set_field_steps(field_, next_);
+  }
+  renderer.set_field_mix(static_cast<float>(t - std::floor(t)));
+}
+
+int run_render(const RenderOptions& o) {
+  // ---- output paths (checked before anything is loaded)
+  const bool demo = o.mesh.empty();
+  const fs::path out = !o.out.empty() ? fs::path(o.out)
+                       : demo         ? fs::path("ibfvs-demo.mp4")
+                                      : fs::path(default_output_stem(o.mesh) + ".mp4");
+  const OutputKind kind = output_kind(out, "--out");
+  if (kind == OutputKind::PngSequence) check_pattern(out.string());
+  ensure_parent(out, "--out");
+  const std::string export_ext = lower_extension(o.export_model);
+  if (!o.export_model.empty()) {
+    if (export_ext != ".obj" && export_ext != ".gltf" && export_ext != ".glb")
+      throw InputError("--export: must be a .obj, .gltf or .glb file, got '" + o.export_model +
+                       "'");
+    ensure_parent(o.export_model, "--export");
+  }
+  if (!o.texture_out.empty()) {
+    if (output_kind(o.texture_out, "--texture-out") != OutputKind::Png)
+      throw InputError("--texture-out: must be a .png file, got '" + o.texture_out + "'");
+    ensure_parent(o.texture_out, "--texture-out");
+  }
+
+  PreparedScene scene = prepare_scene(o);
+  const Size size{scene.width, scene.height};
+  const int frames = scene.frames;
+  const TriMesh& mesh = *scene.mesh;
+  const std::string& mesh_name = scene.mesh_name;
+  const float dt = scene.dt, max_px = scene.max_px;
+  const FieldSpec* field_spec = &scene.field_spec;
+  const Bounds bounds = mesh_bounds(mesh);
+  Camera camera(bounds, scene.camera,
+                static_cast<float>(size.width) / static_cast<float>(size.height));
+
+  // ---- render
+  gl::HeadlessContext context;
+  IbfvsRenderer renderer(scene.settings);
+  load_scene(renderer, scene, o);
   std::unique_ptr<VideoWriter> video;
   if (kind == OutputKind::Video)
     video = std::make_unique<VideoWriter>(out, size.width, size.height, o.fps);
   Progress progress(frames, !o.quiet);
   const auto start = std::chrono::steady_clock::now();
-  if (o.init == "random-cells") renderer.fill_texture_with_cell_colors(o.seed);
   std::optional<Camera> camera_after_lock;
-  if (lock_cam)
-    camera_after_lock.emplace(bounds, *lock_cam,
+  if (scene.lock_camera)
+    camera_after_lock.emplace(bounds, *scene.lock_camera,
                               static_cast<float>(size.width) / static_cast<float>(size.height));
   // Unsteady: the current and next step live on the GPU, mixed per frame.
-  std::size_t step = 0;
-  std::vector<glm::vec3> next_field;
-  if (step_count > 1) {
-    next_field = step_field(1 % step_count);
-    renderer.set_field_steps(field, next_field);
-  }
+  FieldPlayer player(scene, renderer);
   for (int k = 0; k < frames; ++k) {
     if (k == o.lock_at) {
       renderer.lock();
       if (camera_after_lock) camera = *camera_after_lock;
     }
-    if (step_count > 1) {
-      const double t = static_cast<double>(k) / o.frames_per_step;
-      const auto s = static_cast<std::size_t>(t) % step_count;
-      if (s != step) {  // one step on: t grows by at most 1 per frame
-        step = s;
-        field = std::move(next_field);
-        next_field = step_field((s + 1) % step_count);
-        renderer.set_field_steps(field, next_field);
-      }
-      renderer.set_field_mix(static_cast<float>(t - std::floor(t)));
-    }
+    player.seek(static_cast<double>(k) / o.frames_per_step, renderer);
     if (k > 0 && o.orbit != 0.0f) camera.orbit(o.orbit);
     renderer.render_frame({camera.view(), camera.projection()}, dt);
     if (kind == OutputKind::Video) video->write(renderer.read_output());

@@ -2,8 +2,18 @@
 // `ibfvs render`: headless IBFVS rendering to PNG or video.
 
 #include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
 #include <string>
 #include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "ibfvs/core/camera.h"
+#include "ibfvs/core/mesh.h"
+#include "ibfvs/core/vector_field.h"
+#include "ibfvs/render/ibfvs_renderer.h"
 
 namespace CLI {
 class App;
@@ -66,6 +76,50 @@ struct RenderOptions {
 
 /// Registers the render subcommand's options on `command`, bound to `options`.
 void add_render_options(CLI::App& command, RenderOptions& options);
+
+/// What a run needs before a GL context exists: the checked settings, the
+/// prepared mesh (subdivided, scalars, curvature, displacement), the field,
+/// the colour and beta scalars with their ranges, the camera and dt. Shared by
+/// `ibfvs render` and `ibfvs view`.
+struct PreparedScene {
+  int width = 512, height = 512;  ///< image size in pixels
+  int frames = 150;
+  RenderSettings settings;
+  std::shared_ptr<TriMesh> mesh;
+  std::string mesh_name;  ///< what messages call it
+  bool demo = false;      ///< no --mesh: the built-in demo
+  FieldSpec field_spec;
+  std::vector<glm::vec3> field;  ///< the field (at the first time step)
+  std::size_t step_count = 1;    ///< > 1: an unsteady field with this many steps
+  std::function<std::vector<glm::vec3>(std::size_t)> step_field;  ///< the field at a step
+  std::vector<float> color_scalar, beta_scalar;
+  CameraParams camera;
+  std::optional<CameraParams> lock_camera;
+  float dt = 0.0f;      ///< world units per frame
+  float max_px = 0.0f;  ///< pixels per frame of the fastest vertex
+};
+
+/// Checks the options and prepares the scene (no GL). Prints warnings to
+/// stderr. Throws InputError naming the option or file.
+PreparedScene prepare_scene(const RenderOptions& options);
+
+/// Uploads the prepared mesh, field, scalars and surface image to `renderer`
+/// and initialises F_t (--init).
+void load_scene(IbfvsRenderer& renderer, const PreparedScene& scene, const RenderOptions& options);
+
+/// Plays an unsteady field: the current and next steps on the GPU and the mix
+/// between them. Does nothing for a steady field.
+class FieldPlayer {
+ public:
+  FieldPlayer(const PreparedScene& scene, IbfvsRenderer& renderer);
+  /// Time t in steps (looping); evaluates a step only when t leaves the current one.
+  void seek(double t, IbfvsRenderer& renderer);
+
+ private:
+  const PreparedScene& scene_;
+  std::size_t step_ = 0;
+  std::vector<glm::vec3> field_, next_;
+};
 
 /// Renders; returns the exit status. Throws InputError / GraphicsError with a
 /// message naming the file or option.

@@ -6,6 +6,7 @@ packages=(
   build-essential cmake pkg-config git
   libopenmesh-dev libglm-dev libepoxy-dev libpng-dev libcli11-dev libeigen3-dev
   libmeshoptimizer-dev libnetcdf-dev libtomlplusplus-dev libtinygltf-dev
+  libglfw3-dev libimgui-dev libstb-dev xvfb xauth
   libegl-dev libegl-mesa0 libgl1-mesa-dri libgbm1
   libgtest-dev googletest libbenchmark-dev
   ffmpeg

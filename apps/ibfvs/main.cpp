@@ -16,6 +16,7 @@
 #include "ibfvs/render_command.h"
 #include "ibfvs/scene.h"
 #include "ibfvs/styles.h"
+#include "ibfvs/view_command.h"
 
 int main(int argc, char** argv) {
   // Mesa's llvmpipe allocates and frees large buffers every frame; glibc's
@@ -31,6 +32,12 @@ int main(int argc, char** argv) {
   CLI::App* render = app.add_subcommand(
       "render", "Render IBFVS texture on a mesh headless (EGL) to a video or PNG");
   ibfvs::app::add_render_options(*render, *render_options);
+  auto view_options = std::make_unique<ibfvs::app::ViewOptions>();
+  CLI::App* view = app.add_subcommand(
+      "view",
+      "Open an interactive window (GLFW, OpenGL 4.5): the same options as render, plus mouse, "
+      "keyboard (h: help) and a parameter panel");
+  ibfvs::app::add_view_options(*view, *view_options);
   auto geometry_options = std::make_unique<ibfvs::app::GeometryOptions>();
   CLI::App* geometry = app.add_subcommand(
       "geometry",
@@ -44,7 +51,8 @@ int main(int argc, char** argv) {
   // `ibfvs render SCENE.toml [options]`: the scene's settings go first, so the
   // command line's own options override them.
   std::vector<std::string> args(argv + 1, argv + argc);
-  if (args.size() >= 2 && args[0] == "render" && ibfvs::app::is_scene_path(args[1])) {
+  const bool renders = !args.empty() && (args[0] == "render" || args[0] == "view");
+  if (args.size() >= 2 && renders && ibfvs::app::is_scene_path(args[1])) {
     try {
       std::vector<std::string> scene = ibfvs::app::scene_arguments(args[1]);
       args.erase(args.begin() + 1);
@@ -55,7 +63,7 @@ int main(int argc, char** argv) {
     }
   }
   // `--style NAME` (given or from the scene): its defaults go before all else.
-  if (!args.empty() && args[0] == "render") {
+  if (renders) {
     std::string style;
     for (std::size_t i = 1; i < args.size(); ++i) {
       if (args[i] == "--style" && i + 1 < args.size()) style = args[i + 1];
@@ -71,25 +79,31 @@ int main(int argc, char** argv) {
       }
     }
   }
+  if (!args.empty() && args[0] == "view")  // to save the state as a scene later
+    view_options->arguments.assign(args.begin() + 1, args.end());
   std::reverse(args.begin(), args.end());  // CLI11 takes them last-first
   try {
     app.parse(args);
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help
     // One line in the same form as every other error.
-    if (*render || *geometry)
+    if (*render || *geometry || *view)
       std::fprintf(stderr, "ibfvs: error: %s (see ibfvs %s --help)\n", e.what(),
-                   *render ? "render" : "geometry");
+                   *render ? "render"
+                   : *view ? "view"
+                           : "geometry");
     else
-      std::fprintf(stderr,
-                   "ibfvs: error: unknown command '%s' (expected render or geometry; see ibfvs "
-                   "--help)\n",
-                   argv[1]);
+      std::fprintf(
+          stderr,
+          "ibfvs: error: unknown command '%s' (expected render, view or geometry; see ibfvs "
+          "--help)\n",
+          argv[1]);
     return 1;
   }
   try {
     if (*render) return ibfvs::app::run_render(*render_options);
     if (*geometry) return ibfvs::app::run_geometry(*geometry_options);
+    if (*view) return ibfvs::app::run_view(*view_options);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "ibfvs: error: %s\n", e.what());
     return 1;

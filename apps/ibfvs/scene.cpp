@@ -1,7 +1,9 @@
 #include "ibfvs/scene.h"
 
+#include <cstdint>
 #include <map>
 #include <sstream>
+#include <stdexcept>
 
 #include <toml++/toml.h>
 
@@ -238,6 +240,73 @@ std::vector<std::string> scene_arguments(const std::filesystem::path& path) {
     }
   }
   return args;
+}
+
+// Adds one option's value to a scene table, typed as the key table says.
+static void add_value(toml::table& table, const std::string& key, Kind kind,
+                      const std::string& value) {
+  switch (kind) {
+    case Kind::Integer:
+      table.insert_or_assign(key, static_cast<std::int64_t>(std::stoll(value)));
+      break;
+    case Kind::Number:
+      table.insert_or_assign(key, std::stod(value));
+      break;
+    case Kind::Vector:
+    case Kind::Size: {
+      toml::array a;
+      const char separator = kind == Kind::Size ? 'x' : ',';
+      std::stringstream parts(value);
+      for (std::string part; std::getline(parts, part, separator);) a.push_back(std::stod(part));
+      table.insert_or_assign(key, std::move(a));
+      break;
+    }
+    case Kind::StringList:
+    case Kind::Elements: {
+      if (!table.contains(key)) table.insert(key, toml::array{});
+      table[key].as_array()->push_back(value);
+      break;
+    }
+    default:  // String, Time
+      table.insert_or_assign(key, value);
+      break;
+  }
+}
+
+std::string scene_toml(const std::vector<std::string>& arguments) {
+  toml::table table;
+  for (std::size_t i = 0; i < arguments.size(); ++i) {
+    std::string option = arguments[i], value;
+    if (option == "-q") option = "--quiet";
+    if (option.rfind("--", 0) != 0) throw InputError("scene: '" + option + "' is not an option");
+    bool has_value = false;
+    if (const std::size_t eq = option.find('='); eq != std::string::npos) {
+      value = option.substr(eq + 1);
+      option.resize(eq);
+      has_value = true;
+    }
+    std::string key = option.substr(2);
+    for (char& c : key)
+      if (c == '-') c = '_';
+    const auto it = keys().find(key);
+    if (it == keys().end()) throw InputError("scene: scenes have no key for " + option);
+    if (it->second == Kind::Flag) {
+      table.insert_or_assign(key, has_value ? value != "false" : true);
+      continue;
+    }
+    if (!has_value) {
+      if (i + 1 >= arguments.size()) throw InputError("scene: " + option + " needs a value");
+      value = arguments[++i];
+    }
+    try {
+      add_value(table, key, it->second, value);
+    } catch (const std::logic_error&) {  // stoll/stod: not a number
+      throw InputError("scene: " + option + " '" + value + "' is not a valid value");
+    }
+  }
+  std::ostringstream out;
+  out << "# written by ibfvs view; render it with: ibfvs render THIS.toml\n" << table << "\n";
+  return out.str();
 }
 
 }  // namespace ibfvs::app

@@ -17,4 +17,11 @@ bool is_scene_path(const std::string& arg);
 /// for a syntax error, an unknown key or a value of the wrong type.
 std::vector<std::string> scene_arguments(const std::filesystem::path& path);
 
+/// The inverse: a scene (TOML text) from `ibfvs render` arguments ("--key
+/// value", "--key=value" or a bare flag), the last value of an option
+/// winning and repeatable ones (element, scalar, field_step) adding up, so
+/// that scene_arguments of the result gives the same run. The viewer saves
+/// its state with it. Throws InputError for an option scenes do not know.
+std::string scene_toml(const std::vector<std::string>& arguments);
+
 }  // namespace ibfvs::app

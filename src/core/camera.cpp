@@ -35,27 +35,30 @@ glm::vec3 Camera::eye() const {
   const float az = glm::radians(params_.azimuth_deg);
   const float el = glm::radians(params_.elevation_deg);
   const glm::vec3 dir(std::sin(az) * std::cos(el), std::sin(el), std::cos(az) * std::cos(el));
-  return bounds_.centre() + distance_world() * dir;
+  return bounds_.centre() + params_.target + distance_world() * dir;
 }
 
 glm::mat4 Camera::view() const {
   const glm::vec3 eye_pos = eye();
-  const glm::vec3 forward = glm::normalize(bounds_.centre() - eye_pos);
+  const glm::vec3 look_at = bounds_.centre() + params_.target;
+  const glm::vec3 forward = glm::normalize(look_at - eye_pos);
   // Looking straight up or down: +Y is degenerate, take the azimuth direction.
   glm::vec3 up(0, 1, 0);
   if (std::abs(glm::dot(forward, up)) > 0.999f) {
     const float az = glm::radians(params_.azimuth_deg);
     up = glm::vec3(-std::sin(az), 0, -std::cos(az)) * (forward.y < 0 ? 1.0f : -1.0f);
   }
-  return glm::lookAt(eye_pos, bounds_.centre(), up);
+  return glm::lookAt(eye_pos, look_at, up);
 }
 
 glm::mat4 Camera::projection() const {
   const float diag = std::max(bounds_.diagonal(), 1e-6f);
   const float radius = bounds_.radius > 0.0f ? bounds_.radius : 0.5f * diag;
   const float dist = distance_world();
-  const float far_plane = dist + 1.5f * radius;
-  const float near_plane = std::max(dist - 1.5f * radius, 1e-3f * radius);
+  // The mesh lies within radius of the centre, which panning moves off the axis.
+  const float reach = 1.5f * radius + glm::length(params_.target);
+  const float far_plane = dist + reach;
+  const float near_plane = std::max(dist - reach, 1e-3f * radius);
   if (params_.orthographic) {
     // The same framing as the fitted perspective view at the centre's depth.
     const float half_h = dist * std::tan(glm::radians(params_.fov_deg) * 0.5f);

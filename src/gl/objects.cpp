@@ -185,6 +185,13 @@ void Framebuffer::read_rgba8(unsigned index, int width, int height,
   glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, out.data());
 }
 
+void Framebuffer::blit_to_default(unsigned index, int width, int height, int x0, int y0, int x1,
+                                  int y1) const {
+  glNamedFramebufferReadBuffer(id(), GL_COLOR_ATTACHMENT0 + index);
+  glBlitNamedFramebuffer(id(), 0, 0, 0, width, height, x0, y0, x1, y1, GL_COLOR_BUFFER_BIT,
+                         GL_LINEAR);
+}
+
 void Framebuffer::read_depth(int width, int height, std::span<float> out) const {
   const std::size_t need = static_cast<std::size_t>(width) * height;
   if (out.size() < need) throw GraphicsError("framebuffer depth read: buffer too small");
@@ -274,6 +281,13 @@ void Program::set(int loc, const glm::vec3& v) const {
 }
 void Program::set(int loc, const glm::mat4& v) const {
   glProgramUniformMatrix4fv(id(), loc, 1, GL_FALSE, glm::value_ptr(v));
+}
+
+void clear_window(int width, int height, const glm::vec4& rgba) {
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glViewport(0, 0, width, height);
+  glClearColor(rgba.r, rgba.g, rgba.b, rgba.a);
+  glClear(GL_COLOR_BUFFER_BIT);
 }
 
 void set_viewport(int width, int height) {

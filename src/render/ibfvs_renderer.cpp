@@ -84,6 +84,8 @@ IbfvsRenderer::IbfvsRenderer(const RenderSettings& settings) : settings_(setting
   u_.image_step = program_.location("u_image_step");
   u_.probe = program_.location("u_probe");
   u_.size = program_.location("u_size");
+  u_.texture_shift = program_.location("u_texture_shift");
+  u_.noise_shift = program_.location("u_noise_shift");
   u_.image_centre = program_.location("u_image_centre");
   color_map_ = gl::Texture2D(256, 1, gl::Format::RGBA32F, true);
   u_.phase_size = program_.location("u_phase_size");
@@ -239,6 +241,22 @@ void IbfvsRenderer::reset() {
   has_previous_ = false;
 }
 
+void IbfvsRenderer::shift_image(glm::vec2 pixels) {
+  texture_shift_ += pixels;
+  noise_shift_ += pixels;
+}
+
+void IbfvsRenderer::present(int window_width, int window_height) const {
+  gl::clear_window(window_width, window_height, glm::vec4(settings_.background, 1.0f));
+  const float scale = std::min(static_cast<float>(window_width) / settings_.width,
+                               static_cast<float>(window_height) / settings_.height);
+  const int w = static_cast<int>(std::lround(settings_.width * scale));
+  const int h = static_cast<int>(std::lround(settings_.height * scale));
+  const int x0 = (window_width - w) / 2, y0 = (window_height - h) / 2;
+  framebuffer_[current_].blit_to_default(1, settings_.width, settings_.height, x0, y0, x0 + w,
+                                         y0 + h);
+}
+
 void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
   const glm::mat4 vp = view.projection * view.view;
   const bool use_previous = settings_.advect_view == AdvectView::Previous && has_previous_;
@@ -260,6 +278,8 @@ void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
     program_.set(u_.view, view.view);
     program_.set(u_.dt, locked_ ? 0.0f : dt);
     program_.set(u_.probe, probe_);
+    program_.set(u_.texture_shift, texture_shift_);
+    program_.set(u_.noise_shift, noise_shift_);
     program_.set(u_.locked, locked_ ? 1 : 0);
     program_.set(u_.noise_time, settings_.noise.rate * static_cast<float>(frame_));
     texture_[current_].bind(0);
@@ -269,6 +289,7 @@ void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
     vao_.bind();
     gl::draw_triangles(index_count_, true);
   }
+  texture_shift_ = glm::vec2(0.0f);
   if (!locked_) {  // a locked F_t stays where it is; the output is shared
     current_ = next;
     previous_view_projection_ = vp;

@@ -68,6 +68,8 @@ layout(binding = 0) uniform sampler2D u_previous;  // F_t of the last frame
 layout(binding = 1) uniform sampler2D u_phases;    // phi_ij
 
 uniform float u_alpha;
+uniform vec2 u_texture_shift;  // pixels: F_t moved with the mouse for this frame (3.7)
+uniform vec2 u_noise_shift;    // pixels: G moved with the mouse, accumulated
 uniform float u_beta;
 uniform int u_inject;        // 0 blend (eq. 10), 1 add
 uniform float u_noise_time;  // v_g k
@@ -97,7 +99,7 @@ float profile(float t) {
 }
 
 float grid_value(ivec2 ij) {
-  ij = clamp(ij, ivec2(0), u_phase_size - 1);
+  ij = ((ij % u_phase_size) + u_phase_size) % u_phase_size;  // wraps when shifted (3.7)
   return profile(u_noise_time + texelFetch(u_phases, ij, 0).r);
 }
 
@@ -140,10 +142,12 @@ float solid_noise(vec3 p) {
 
 void main() {
   // A point that was behind the eye has no image position: no advection there.
-  vec2 texcoord = v_from.w > 1e-6 ? v_from.xy / v_from.w * 0.5 + 0.5
-                                  : gl_FragCoord.xy * u_inverse_size;
+  vec2 texcoord = (v_from.w > 1e-6 ? v_from.xy / v_from.w * 0.5 + 0.5
+                                   : gl_FragCoord.xy * u_inverse_size) -
+                  u_texture_shift * u_inverse_size;
   vec3 previous = texture(u_previous, texcoord).rgb;
-  float g = u_noise_space == 0 ? noise(gl_FragCoord.xy) : solid_noise(v_position_object);
+  float g = u_noise_space == 0 ? noise(gl_FragCoord.xy - u_noise_shift)
+                                : solid_noise(v_position_object);
   vec3 ft = u_inject == 0 ? mix(previous, vec3(g), u_alpha)
                           : min(previous * (1.0 - u_alpha) + vec3(g), vec3(1.0));
   if (u_locked != 0) ft = previous;  // a locked texture is only mapped, never changed

@@ -3,6 +3,7 @@
 // an orbit camera around the centre of the mesh's bounding box.
 
 #include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "ibfvs/core/mesh.h"
@@ -17,6 +18,7 @@ struct CameraParams {
   float distance = 0.0f;       ///< in bounding-box diagonals; 0 fits the mesh
   bool orthographic = false;   ///< orthographic instead of perspective
   float fov_deg = 30.0f;       ///< vertical field of view (perspective)
+  glm::vec3 target{0.0f};      ///< look-at point minus the box centre (panning), world units
 };
 
 /// Position and projection for one frame.

@@ -138,6 +138,9 @@ class Framebuffer : public Object<delete_framebuffer> {
   void read_rgba8(unsigned index, int width, int height, std::span<std::uint8_t> out) const;
   /// Reads the depth attachment as floats in [0, 1] (1: nothing drawn), rows bottom-up.
   void read_depth(int width, int height, std::span<float> out) const;
+  /// Copies colour attachment `index` (width x height) into the rectangle
+  /// (x0, y0)-(x1, y1) of the default framebuffer (the window), linearly filtered.
+  void blit_to_default(unsigned index, int width, int height, int x0, int y0, int x1, int y1) const;
 };
 
 /// Linked shader program, with uniform setters by name (locations cached by GL).
@@ -159,6 +162,9 @@ class Program : public Object<delete_program> {
 
 /// Global render state for the IBFVS passes.
 void set_viewport(int width, int height);
+/// Binds the default framebuffer (the window), sets the viewport to all of it
+/// and clears it to `rgba`.
+void clear_window(int width, int height, const glm::vec4& rgba);
 void enable_depth_test(bool on);
 void draw_triangles(std::size_t index_count, bool index32);
 void finish();

@@ -122,6 +122,10 @@ class IbfvsRenderer {
   [[nodiscard]] const glm::mat4& texture_view_projection() const {
     return locked_ ? lock_view_projection_ : previous_view_projection_;
   }
+  /// Section 3.7's option for dragging: the next frame takes F_t shifted by
+  /// `pixels` (x right, y up) and the noise G moves with it, so the pattern
+  /// follows the mouse pointer.
+  void shift_image(glm::vec2 pixels);
   /// One frame with displacement dt (world units per frame).
   void render_frame(const ViewState& view, float dt);
 
@@ -136,6 +140,9 @@ class IbfvsRenderer {
   [[nodiscard]] ImageF read_depth() const;
   /// 1 where the surface covers the pixel in the last frame, else 0 (rows bottom-up).
   [[nodiscard]] std::vector<std::uint8_t> read_coverage() const;
+  /// Draws the last output F into the window's framebuffer, scaled to fit a
+  /// window of that size with its aspect kept, the rest in the background colour.
+  void present(int window_width, int window_height) const;
   /// Blocks until the GPU has finished every submitted frame.
   void finish() const;
 
@@ -157,8 +164,10 @@ class IbfvsRenderer {
   gl::VertexArray vao_;
   std::size_t index_count_ = 0;
   std::size_t vertex_count_ = 0;
-  float probe_ = 1e-3f;  // 1/1000 of the mesh's bounding-box diagonal
-  int current_ = 0;      // texture_[current_] holds F_t of the last frame
+  float probe_ = 1e-3f;            // 1/1000 of the mesh's bounding-box diagonal
+  glm::vec2 texture_shift_{0.0f};  // pixels, for the next frame only
+  glm::vec2 noise_shift_{0.0f};    // pixels, accumulated
+  int current_ = 0;                // texture_[current_] holds F_t of the last frame
   int frame_ = 0;
   bool has_previous_ = false;
   bool locked_ = false;
@@ -169,7 +178,7 @@ class IbfvsRenderer {
     int view_projection, advect_view_projection, view, dt, alpha, beta, inject, noise_time,
         noise_scale, profile, spike_width, surface_color, phase_size, inverse_size, use_color,
         color_range, use_beta, beta_range, field_mix, use_image, image_centre, locked, noise_space,
-        object_cell, seed, image_step, probe, size;
+        object_cell, seed, image_step, probe, size, texture_shift, noise_shift;
   } u_{};
   void apply_settings_uniforms();
 };

@@ -1,0 +1,512 @@
+#include "ibfvs/view_command.h"
+
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <sstream>
+
+#include <epoxy/gl.h>
+#include <CLI/CLI.hpp>
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
+
+#include "ibfvs/core/displacement.h"
+#include "ibfvs/core/error.h"
+#include "ibfvs/core/image.h"
+#include "ibfvs/core/noise.h"
+#include "ibfvs/gl/window.h"
+#include "ibfvs/scene.h"
+#include "ibfvs/viewer_state.h"
+
+namespace ibfvs::app {
+namespace {
+
+const char* const kHelp =
+    "left drag      rotate\n"
+    "right drag     pan (or shift + left drag)\n"
+    "wheel          zoom\n"
+    "double-click   recentre on the surface point\n"
+    "space          pause / play\n"
+    "l              lock / unlock the texture (3.7)\n"
+    "m              next drag mode: plain, translate, freeze, previous\n"
+    "r              reset the camera\n"
+    "s              screenshot (ibfvs-view-NNNN.png)\n"
+    "p              show / hide the panel\n"
+    "h              show / hide this help\n"
+    "q, escape      quit";
+
+double g_scroll = 0.0;  // wheel steps since the last frame (GLFW callback)
+
+void on_scroll(GLFWwindow* window, double dx, double dy) {
+  g_scroll += dy;
+  ImGui_ImplGlfw_ScrollCallback(window, dx, dy);
+}
+
+// Edge detection for keyboard shortcuts.
+class Keys {
+ public:
+  explicit Keys(GLFWwindow* w) : window_(w) {}
+  bool pressed(int key) {
+    const bool down = glfwGetKey(window_, key) == GLFW_PRESS;
+    const bool was = down_[static_cast<std::size_t>(key)];
+    down_[static_cast<std::size_t>(key)] = down;
+    return down && !was;
+  }
+
+ private:
+  GLFWwindow* window_;
+  std::array<bool, GLFW_KEY_LAST + 1> down_{};
+};
+
+// The window, the engine and the interaction state, one frame at a time.
+class Viewer {
+ public:
+  Viewer(const ViewOptions& options, PreparedScene scene)
+      : options_(options),
+        scene_(std::move(scene)),
+        window_(scene_.width, scene_.height, "ibfvs view", options.vsync),
+        camera_(mesh_bounds(*scene_.mesh), scene_.camera,
+                static_cast<float>(scene_.width) / static_cast<float>(scene_.height)),
+        drag_mode_(parse_drag_mode(options.drag)),
+        show_panel_(!options.no_panel) {
+    if (!options.script.empty()) script_ = read_script(options.script);
+    make_renderer();
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini next to the user's files
+    ImGui::StyleColorsDark();
+    glfwSetScrollCallback(window_.handle(), on_scroll);
+    ImGui_ImplGlfw_InitForOpenGL(window_.handle(), false);
+    ImGui_ImplOpenGL3_Init("#version 450 core");
+  }
+
+  ~Viewer() {
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+  }
+
+  Viewer(const Viewer&) = delete;
+  Viewer& operator=(const Viewer&) = delete;
+
+  int run() {
+    Keys keys(window_.handle());
+    auto last_title = std::chrono::steady_clock::now();
+    int frames_since_title = 0;
+    while (!window_.should_close()) {
+      gl::WindowContext::poll_events();
+      run_script();
+      if (window_.should_close()) break;
+      handle_keys(keys);
+      handle_mouse();
+      if (!paused_) {
+        if (scene_.step_count > 1) {
+          time_ += 1.0 / options_.render.frames_per_step;
+          player_->seek(time_, *renderer_);
+        }
+        render();
+      }
+      int w = 0, h = 0;
+      window_.framebuffer_size(w, h);
+      renderer_->present(w, h);
+      draw_interface();
+      window_.swap_buffers();
+      ++frames_since_title;
+      const auto now = std::chrono::steady_clock::now();
+      const double seconds = std::chrono::duration<double>(now - last_title).count();
+      if (seconds > 0.5) {
+        char title[256];
+        std::snprintf(title, sizeof title, "ibfvs view - %s - %.1f fps - drag: %s%s",
+                      scene_.mesh_name.c_str(), frames_since_title / seconds,
+                      to_string(drag_mode_).c_str(), renderer_->locked() ? " - locked" : "");
+        window_.set_title(title);
+        fps_ = frames_since_title / seconds;
+        frames_since_title = 0;
+        last_title = now;
+      }
+    }
+    return 0;
+  }
+
+ private:
+  const ViewOptions& options_;
+  PreparedScene scene_;
+  gl::WindowContext window_;
+  ViewerCamera camera_;
+  std::unique_ptr<IbfvsRenderer> renderer_;
+  std::unique_ptr<FieldPlayer> player_;
+  DragMode drag_mode_;
+  bool show_panel_ = true, show_help_ = false, paused_ = false;
+  bool dragging_ = false, locked_by_drag_ = false;
+  glm::vec2 last_cursor_{0.0f};
+  double last_click_ = -1.0;
+  double time_ = 0.0;
+  double fps_ = 0.0;
+  int screenshots_ = 0;
+  std::vector<ScriptAction> script_;
+  std::size_t next_action_ = 0;
+  struct ScriptDrag {
+    glm::vec2 per_frame{0.0f};
+    int frames_left = 0;
+  } script_drag_;
+  std::string save_path_ = "view.toml";
+  float step_px_ = options_.render.step;  // --step, changed by `set step`
+
+  void make_renderer() {
+    player_.reset();
+    renderer_ = std::make_unique<IbfvsRenderer>(scene_.settings);
+    load_scene(*renderer_, scene_, options_.render);
+    player_ = std::make_unique<FieldPlayer>(scene_, *renderer_);
+  }
+
+  void render() {
+    const Camera c = camera_.camera();
+    renderer_->render_frame({c.view(), c.projection()}, scene_.dt);
+  }
+
+  // Section 3.7: what the texture does while the user drags.
+  void begin_drag() {
+    dragging_ = true;
+    if (drag_mode_ == DragMode::Freeze && !renderer_->locked()) {
+      renderer_->lock();
+      locked_by_drag_ = true;
+    }
+    RenderSettings s = renderer_->settings();
+    s.advect_view = drag_mode_ == DragMode::Previous ? AdvectView::Previous : AdvectView::Current;
+    renderer_->update_settings(s);
+  }
+
+  void drag_by(glm::vec2 pixels, bool pan) {
+    if (pan)
+      camera_.pan(pixels, scene_.height);
+    else
+      camera_.rotate(pixels);
+    if (drag_mode_ == DragMode::Translate) {
+      // The paper's option: move F_t and G with the pointer (exact for a pan).
+      renderer_->shift_image(pixels);
+    }
+  }
+
+  void end_drag() {
+    dragging_ = false;
+    if (locked_by_drag_) {
+      renderer_->unlock();
+      locked_by_drag_ = false;
+    }
+    RenderSettings s = renderer_->settings();
+    s.advect_view = scene_.settings.advect_view;
+    renderer_->update_settings(s);
+  }
+
+  void zoom(float steps) {
+    camera_.zoom(steps);
+    // Keep the fastest motion at --step pixels: zooming in would stretch it.
+    const Camera c = camera_.camera();
+    const float speed = max_pixel_speed(scene_.mesh->positions, scene_.field, c.view_projection(),
+                                        scene_.width, scene_.height);
+    if (speed > 0.0f && options_.render.dt <= 0.0f) scene_.dt = step_px_ / speed;
+  }
+
+  void handle_mouse() {
+    GLFWwindow* w = window_.handle();
+    double x = 0, y = 0;
+    glfwGetCursorPos(w, &x, &y);
+    const glm::vec2 cursor(static_cast<float>(x), static_cast<float>(y));
+    const bool over_panel = ImGui::GetCurrentContext() && ImGui::GetIO().WantCaptureMouse;
+    const bool left = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+    const bool right = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS ||
+                       glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS;
+    const bool shift = glfwGetKey(w, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS;
+    if ((left || right) && !dragging_ && !over_panel) {
+      begin_drag();
+      last_cursor_ = cursor;
+      const double now = glfwGetTime();
+      if (left && last_click_ >= 0 && now - last_click_ < 0.3) recentre_at(cursor);
+      last_click_ = left ? now : -1.0;
+    } else if (dragging_ && (left || right)) {
+      const glm::vec2 d(cursor.x - last_cursor_.x, last_cursor_.y - cursor.y);  // y up
+      if (d != glm::vec2(0.0f)) drag_by(d, right || shift);
+      last_cursor_ = cursor;
+    } else if (dragging_ && script_drag_.frames_left == 0) {
+      end_drag();
+    }
+    if (g_scroll != 0.0 && !over_panel) zoom(static_cast<float>(g_scroll));
+    g_scroll = 0.0;
+  }
+
+  // Double-click: the surface point under the cursor becomes the centre.
+  void recentre_at(glm::vec2 cursor) {
+    const ImageF depth = renderer_->read_depth();
+    int ww = 0, wh = 0;
+    glfwGetWindowSize(window_.handle(), &ww, &wh);
+    const int px = static_cast<int>(cursor.x * scene_.width / std::max(ww, 1));
+    const int py = scene_.height - 1 - static_cast<int>(cursor.y * scene_.height / std::max(wh, 1));
+    if (px < 0 || py < 0 || px >= scene_.width || py >= scene_.height) return;
+    const float z = depth.pixels[static_cast<std::size_t>(py) * scene_.width + px];
+    if (z >= 1.0f) return;  // background
+    const Camera c = camera_.camera();
+    const glm::vec4 ndc(2.0f * (px + 0.5f) / scene_.width - 1.0f,
+                        2.0f * (py + 0.5f) / scene_.height - 1.0f, 2.0f * z - 1.0f, 1.0f);
+    const glm::vec4 world = glm::inverse(c.view_projection()) * ndc;
+    camera_.recentre(glm::vec3(world) / world.w);
+  }
+
+  void handle_keys(Keys& keys) {
+    if (ImGui::GetIO().WantCaptureKeyboard) return;
+    if (keys.pressed(GLFW_KEY_Q) || keys.pressed(GLFW_KEY_ESCAPE)) window_.request_close();
+    if (keys.pressed(GLFW_KEY_SPACE)) paused_ = !paused_;
+    if (keys.pressed(GLFW_KEY_L)) toggle_lock();
+    if (keys.pressed(GLFW_KEY_M))
+      drag_mode_ = static_cast<DragMode>((static_cast<int>(drag_mode_) + 1) % 4);
+    if (keys.pressed(GLFW_KEY_R)) camera_.reset();
+    if (keys.pressed(GLFW_KEY_S)) {
+      char name[64];
+      std::snprintf(name, sizeof name, "ibfvs-view-%04d.png", screenshots_++);
+      screenshot(name);
+    }
+    if (keys.pressed(GLFW_KEY_P)) show_panel_ = !show_panel_;
+    if (keys.pressed(GLFW_KEY_H)) show_help_ = !show_help_;
+  }
+
+  void toggle_lock() {
+    if (renderer_->locked())
+      renderer_->unlock();
+    else
+      renderer_->lock();
+  }
+
+  void screenshot(const std::string& file) {
+    write_png(renderer_->read_output(), file);
+    std::printf("ibfvs: wrote %s\n", file.c_str());
+  }
+
+  // A parameter by its option name, as the script's `set` and the panel use.
+  void set(const std::string& name, const std::string& value) {
+    RenderSettings s = renderer_->settings();
+    const float v = parse_numbers(name == "background" || name == "surface-color" ? "0" : value,
+                                  "set " + name)[0];
+    if (name == "alpha") {
+      s.alpha = v;
+    } else if (name == "beta") {
+      s.beta = v;
+    } else if (name == "vg") {
+      s.noise.rate = v;
+    } else if (name == "profile") {
+      s.noise.profile = parse_noise_profile(value);
+    } else if (name == "background" || name == "surface-color") {
+      (name == "background" ? s.background : s.surface_color) = parse_vec3(value, "set " + name);
+    } else if (name == "step") {
+      if (!(v > 0.0f)) throw InputError("set step: must be a positive number of pixels");
+      scene_.dt *= v / step_px_;
+      step_px_ = v;
+      overrides_[name] = value;
+      return;
+    } else {
+      throw InputError("set: unknown parameter '" + name +
+                       "' (alpha, beta, vg, profile, background, surface-color, step)");
+    }
+    s.validate();
+    renderer_->update_settings(s);
+    scene_.settings = s;
+    overrides_[name] = value;
+  }
+
+  std::map<std::string, std::string> overrides_;
+
+  // The render options as given, then every live change, then the camera and
+  // the frame count: `ibfvs render SCENE.toml` gives this frame.
+  void save_scene(const std::string& file) {
+    std::vector<std::string> args = render_arguments_of(options_.arguments);
+    for (const auto& [name, value] : overrides_) {
+      args.push_back("--" + name);
+      args.push_back(value);
+    }
+    const CameraParams& p = camera_.params();
+    if (p.target != glm::vec3(0.0f))
+      std::fprintf(stderr, "ibfvs: warning: %s: the pan is not saved (scenes have no key for it)\n",
+                   file.c_str());
+    const float diagonal = std::max(camera_.bounds().diagonal(), 1e-6f);
+    char camera[128];
+    std::snprintf(camera, sizeof camera, "%.6g,%.6g,%.6g", p.azimuth_deg, p.elevation_deg,
+                  p.distance > 0.0f ? camera_.camera().distance_world() / diagonal : 0.0f);
+    args.insert(args.end(), {"--camera", camera, "--frames", std::to_string(renderer_->frame())});
+    args.insert(args.end(),
+                {"--size", std::to_string(scene_.width) + "x" + std::to_string(scene_.height)});
+    std::ofstream out(file);
+    out << scene_toml(args);
+    if (!out) throw InputError(file + ": cannot write the scene");
+    std::printf("ibfvs: saved %s (frame %d)\n", file.c_str(), renderer_->frame());
+  }
+
+  void run_script() {
+    if (script_drag_.frames_left > 0) {
+      drag_by(script_drag_.per_frame, false);
+      if (--script_drag_.frames_left == 0) end_drag();
+    }
+    while (next_action_ < script_.size() && script_[next_action_].frame <= renderer_->frame()) {
+      const ScriptAction& a = script_[next_action_++];
+      const auto number = [&](std::size_t i) { return parse_numbers(a.args[i], a.verb)[0]; };
+      if (a.verb == "drag") {
+        begin_drag();
+        script_drag_.frames_left = static_cast<int>(number(2));
+        script_drag_.per_frame =
+            glm::vec2(number(0), number(1)) / static_cast<float>(script_drag_.frames_left);
+      } else if (a.verb == "zoom") {
+        zoom(number(0));
+      } else if (a.verb == "pan") {
+        camera_.pan({number(0), number(1)}, scene_.height);
+      } else if (a.verb == "set") {
+        set(a.args[0], a.args[1]);
+      } else if (a.verb == "mode") {
+        drag_mode_ = parse_drag_mode(a.args[0]);
+      } else if (a.verb == "lock") {
+        renderer_->lock();
+      } else if (a.verb == "unlock") {
+        renderer_->unlock();
+      } else if (a.verb == "screenshot") {
+        screenshot(a.args[0]);
+      } else if (a.verb == "texture") {
+        write_png16(renderer_->read_texture().select_channels(0, 3), a.args[0]);
+      } else if (a.verb == "save") {
+        save_scene(a.args[0]);
+      } else if (a.verb == "quit") {
+        window_.request_close();
+        return;
+      }
+    }
+  }
+
+  void draw_interface() {
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+    if (show_panel_) draw_panel();
+    if (show_help_) {
+      ImGui::SetNextWindowBgAlpha(0.8f);
+      ImGui::Begin("Help", &show_help_, ImGuiWindowFlags_AlwaysAutoResize);
+      ImGui::TextUnformatted(kHelp);
+      ImGui::End();
+    }
+    ImGui::Render();
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+  }
+
+  void draw_panel() {
+    ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowBgAlpha(0.75f);
+    ImGui::Begin("ibfvs", &show_panel_, ImGuiWindowFlags_AlwaysAutoResize);
+    ImGui::Text("%.1f fps, frame %d, %zu triangles", fps_, renderer_->frame(),
+                scene_.mesh->triangle_count());
+    RenderSettings s = renderer_->settings();
+    bool changed = false;
+    changed |= ImGui::SliderFloat("alpha", &s.alpha, 0.0f, 1.0f);
+    changed |= ImGui::SliderFloat("beta", &s.beta, 0.0f, 1.0f);
+    changed |= ImGui::SliderFloat("v_g", &s.noise.rate, 0.0f, 0.2f);
+    int profile = static_cast<int>(s.noise.profile);
+    const char* profiles[] = {"square", "sawtooth", "sine", "spike"};
+    if (ImGui::Combo("profile", &profile, profiles, 4)) {
+      s.noise.profile = parse_noise_profile(profiles[profile]);
+      changed = true;
+    }
+    changed |= ImGui::ColorEdit3("background", &s.background.x);
+    changed |= ImGui::ColorEdit3("surface", &s.surface_color.x);
+    if (changed) {
+      char colour[96];
+      overrides_["alpha"] = std::to_string(s.alpha);
+      overrides_["beta"] = std::to_string(s.beta);
+      overrides_["vg"] = std::to_string(s.noise.rate);
+      overrides_["profile"] = profiles[static_cast<int>(s.noise.profile)];
+      std::snprintf(colour, sizeof colour, "%g,%g,%g", s.background.r, s.background.g,
+                    s.background.b);
+      overrides_["background"] = colour;
+      std::snprintf(colour, sizeof colour, "%g,%g,%g", s.surface_color.r, s.surface_color.g,
+                    s.surface_color.b);
+      overrides_["surface-color"] = colour;
+      renderer_->update_settings(s);
+      scene_.settings = s;
+    }
+    int mode = static_cast<int>(drag_mode_);
+    const char* modes[] = {"plain (a)", "translate (b)", "freeze (c)", "previous (d)"};
+    if (ImGui::Combo("drag", &mode, modes, 4)) drag_mode_ = static_cast<DragMode>(mode);
+    bool locked = renderer_->locked();
+    if (ImGui::Checkbox("lock texture", &locked)) toggle_lock();
+    ImGui::SameLine();
+    ImGui::Checkbox("pause", &paused_);
+    if (ImGui::Button("reset camera")) camera_.reset();
+    ImGui::SameLine();
+    if (ImGui::Button("restart texture")) renderer_->reset();
+    if (scene_.step_count > 1) {
+      float t = static_cast<float>(time_);
+      if (ImGui::SliderFloat("time step", &t, 0.0f,
+                             static_cast<float>(scene_.step_count) - 0.01f)) {
+        time_ = t;
+        player_->seek(time_, *renderer_);
+      }
+    }
+    char path[256];
+    std::snprintf(path, sizeof path, "%s", save_path_.c_str());
+    if (ImGui::InputText("scene file", path, sizeof path)) save_path_ = path;
+    if (ImGui::Button("save scene")) save_scene(save_path_);
+    ImGui::SameLine();
+    if (ImGui::Button("screenshot")) {
+      char name[64];
+      std::snprintf(name, sizeof name, "ibfvs-view-%04d.png", screenshots_++);
+      screenshot(name);
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("help (h)")) show_help_ = !show_help_;
+    ImGui::End();
+  }
+};
+
+}  // namespace
+
+void add_view_options(CLI::App& cmd, ViewOptions& o) {
+  add_render_options(cmd, o.render);
+  cmd.add_option("--drag", o.drag,
+                 "What the texture does while you drag (paper 3.7): plain (fixed on the screen), "
+                 "translate (F_t and G move with the pointer), freeze (locked until release), "
+                 "previous (advected with the last frame's view: stays on the surface)")
+      ->capture_default_str();
+  cmd.add_flag("--vsync", o.vsync, "Wait for the display's refresh (default: as fast as it goes)");
+  cmd.add_flag("--no-panel", o.no_panel, "Start with the parameter panel hidden (p shows it)");
+  cmd.add_option("--script", o.script,
+                 "FILE of timed actions (FRAME VERB ARGS per line: drag, zoom, pan, set, mode, "
+                 "lock, unlock, screenshot, texture, save, quit), for tests and demos");
+}
+
+std::vector<std::string> render_arguments_of(const std::vector<std::string>& arguments) {
+  std::vector<std::string> out;
+  for (std::size_t i = 0; i < arguments.size(); ++i) {
+    const std::string& a = arguments[i];
+    const std::string name = a.substr(0, a.find('='));
+    if (name == "--vsync" || name == "--no-panel") continue;
+    if (name == "--drag" || name == "--script") {
+      if (a.find('=') == std::string::npos) ++i;  // and its value
+      continue;
+    }
+    out.push_back(a);
+  }
+  return out;
+}
+
+int run_view(const ViewOptions& o) {
+  parse_drag_mode(o.drag);
+  if (!o.script.empty()) read_script(o.script);  // errors before any window
+  if (!gl::display_available())
+    throw InputError(
+        "no display: DISPLAY and WAYLAND_DISPLAY are unset, so ibfvs view cannot open a "
+        "window; use ibfvs render for pictures and videos without one");
+  PreparedScene scene = prepare_scene(o.render);
+  Viewer viewer(o, std::move(scene));
+  return viewer.run();
+}
+
+}  // namespace ibfvs::app

@@ -1,0 +1,190 @@
+// `ibfvs view`: the real window under Xvfb, driven by a script, and the
+// viewer's logic without a window.
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "command_runner.h"
+#include "helpers.h"
+#include "ibfvs/core/error.h"
+#include "ibfvs/core/image.h"
+#include "ibfvs/core/procedural.h"
+#include "ibfvs/scene.h"
+#include "ibfvs/viewer_state.h"
+
+namespace ibfvs {
+namespace {
+
+using ViewCommand = test::CommandTest;
+using test::Result;
+
+// Mean absolute difference of two RGB(A) images, 0..1.
+double mean_difference(const ImageU8& a, const ImageU8& b) {
+  EXPECT_EQ(a.pixels.size(), b.pixels.size());
+  double sum = 0;
+  const std::size_t n = std::min(a.pixels.size(), b.pixels.size());
+  for (std::size_t i = 0; i < n; ++i) sum += std::abs(int(a.pixels[i]) - int(b.pixels[i]));
+  return sum / (255.0 * static_cast<double>(std::max<std::size_t>(n, 1)));
+}
+
+// The texture F_t recovered from two frames that differ only in beta
+// (F = beta F_t + (1 - beta) F_s, eq. 11): with beta 0.5 and 0,
+// F_t = 2 a - b. Its standard deviation over the surface (where b is not the
+// grey background), in 0..1: near 0 for a blank texture.
+double texture_spread(const ImageU8& a, const ImageU8& b) {
+  double sum = 0, sum2 = 0;
+  std::size_t n = 0;
+  for (std::size_t i = 0; i + 2 < b.pixels.size(); i += b.channels) {
+    if (std::abs(int(b.pixels[i]) - 128) + std::abs(int(b.pixels[i + 1]) - 128) < 4) continue;
+    const double f = (2.0 * a.pixels[i] - b.pixels[i]) / 255.0;
+    sum += f;
+    sum2 += f * f;
+    ++n;
+  }
+  if (n < 100) return 0.0;
+  const double mean = sum / static_cast<double>(n);
+  return std::sqrt(std::max(0.0, sum2 / static_cast<double>(n) - mean * mean));
+}
+
+TEST_F(ViewCommand, WithoutADisplayItSaysSoAndSuggestsRender) {
+  const Result r = run("view --mesh torus", "env -u DISPLAY -u WAYLAND_DISPLAY");
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_EQ(r.err.rfind("ibfvs: error: no display", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find("ibfvs render"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+}
+
+TEST_F(ViewCommand, ScriptedSessionUnderXvfb) {
+  if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0)
+    GTEST_SKIP() << "xvfb-run missing (Debian package xvfb)";
+  file("session.txt",
+       "# the texture appears, beta matters, a saved scene re-renders, freezing holds\n"
+       "30 screenshot a.png\n"
+       "30 set beta 0\n"
+       "31 screenshot b.png\n"
+       "31 set beta 0.3\n"
+       "40 save s.toml\n"
+       "40 screenshot c.png\n"
+       "40 texture t0.png\n"
+       "40 mode freeze\n"
+       "40 drag 80 0 10\n"
+       "50 texture t1.png\n"
+       "50 screenshot d.png\n"
+       "51 quit\n");
+  const Result v = run("view --mesh torus --camera 20,35,0 --size 160x128 --script session.txt",
+                       "xvfb-run -a -s '-screen 0 640x480x24'");
+  ASSERT_EQ(v.status, 0) << v.out << v.err;
+  const ImageU8 a = read_png(dir_ / "a.png"), b = read_png(dir_ / "b.png");
+  const ImageU8 c = read_png(dir_ / "c.png"), d = read_png(dir_ / "d.png");
+  EXPECT_EQ(a.width, 160);
+  EXPECT_EQ(a.height, 128);
+  // The texture appears (beta 0.5) and goes with beta 0: fine detail drops.
+  const double spread = texture_spread(a, b);
+  std::printf("view: texture spread on the surface %.3f; beta 0.5 -> 0 changes the image by %.4f\n",
+              spread, mean_difference(a, b));
+  EXPECT_GT(spread, 0.08);
+  EXPECT_GT(mean_difference(a, b), 0.01);
+  // Freezing (section 3.7): F_t does not change while the camera turns.
+  EXPECT_EQ(test::read_file(dir_ / "t0.png"), test::read_file(dir_ / "t1.png"));
+  EXPECT_GT(mean_difference(c, d), 0.01);  // the view did turn
+  // The saved scene, rendered headless, gives the viewer's frame.
+  const Result r = run("render s.toml --out r.png -q");
+  ASSERT_EQ(r.status, 0) << r.err << test::read_file(dir_ / "s.toml");
+  const double diff = mean_difference(c, read_png(dir_ / "r.png"));
+  std::printf("view: saved scene re-rendered by ibfvs render differs by %.5f (mean, 0..1)\n", diff);
+  EXPECT_LT(diff, 0.005);
+}
+
+TEST_F(ViewCommand, BadScriptsAndModesFailCleanly) {
+  file("bad.txt", "5 dance\n");
+  expect_error("view --mesh torus --script bad.txt", "bad.txt:1: unknown action 'dance'");
+  file("args.txt", "5 zoom\n");
+  expect_error("view --mesh torus --script args.txt", "'zoom' takes 1 argument(s), got 0");
+  file("order.txt", "5 lock\n2 unlock\n");
+  expect_error("view --mesh torus --script order.txt", "order.txt:2: frames must not decrease");
+  expect_error("view --mesh torus --script missing.txt", "missing.txt: cannot open the script");
+  expect_error("view --mesh torus --drag sideways", "--drag: expected plain");
+}
+
+TEST(ViewerCamera, RotateZoomPanReset) {
+  const TriMesh m = make_torus(1.0f, 0.4f, 16, 8);
+  app::ViewerCamera c(mesh_bounds(m), {}, 1.0f);
+  c.rotate({100.0f, -50.0f});  // right and down: the camera goes left and up
+  EXPECT_FLOAT_EQ(c.params().azimuth_deg, -30.0f);
+  EXPECT_FLOAT_EQ(c.params().elevation_deg, 15.0f);
+  c.rotate({0.0f, -1000.0f});
+  EXPECT_FLOAT_EQ(c.params().elevation_deg, 89.0f);  // never over the pole
+  const float before = c.camera().distance_world();
+  c.zoom(1.0f);
+  EXPECT_NEAR(c.camera().distance_world(), 0.9f * before, 1e-4f * before);
+  // Panning moves the look-at point in the view plane by the pointer's motion.
+  app::ViewerCamera p(mesh_bounds(m), {}, 1.0f);
+  const glm::vec3 centre = mesh_bounds(m).centre();
+  const glm::vec2 at = project_to_pixels(p.camera().view_projection(), centre, 200, 200);
+  p.pan({10.0f, 0.0f}, 200);
+  const glm::vec2 moved = project_to_pixels(p.camera().view_projection(), centre, 200, 200);
+  EXPECT_NEAR(moved.x - at.x, 10.0f, 0.05f);
+  EXPECT_NEAR(moved.y - at.y, 0.0f, 0.05f);
+  p.reset();
+  EXPECT_EQ(p.params().target, glm::vec3(0.0f));
+  EXPECT_EQ(app::parse_drag_mode("freeze"), app::DragMode::Freeze);
+  EXPECT_EQ(app::to_string(app::DragMode::Translate), "translate");
+  EXPECT_THROW(app::parse_drag_mode("spin"), InputError);
+}
+
+TEST(SceneToml, WritesWhatSceneArgumentsReadsBack) {
+  test::TempDir dir;
+  const std::vector<std::string> args = {"--mesh",     "torus",
+                                         "--alpha",    "0.2",
+                                         "--beta=0.3", "--camera",
+                                         "10,20,1.5",  "--size",
+                                         "64x48",      "--ortho",
+                                         "--element",  "0,0,0,0,1,0,1,0,0",
+                                         "--element",  "1,0,0,1,1,0,0,1,0",
+                                         "--alpha",    "0.25",
+                                         "--time",     "0:11",
+                                         "-q"};
+  const std::string text = app::scene_toml(args);
+  test::write_file(dir / "s.toml", text);
+  const std::vector<std::string> back = app::scene_arguments(dir / "s.toml");
+  const auto value = [&](const std::string& option) {
+    std::vector<std::string> found;
+    for (std::size_t i = 0; i + 1 < back.size(); ++i)
+      if (back[i] == option) found.push_back(back[i + 1]);
+    return found;
+  };
+  EXPECT_EQ(value("--alpha"), std::vector<std::string>{"0.25"}) << text;  // the last one wins
+  EXPECT_EQ(value("--beta"), std::vector<std::string>{"0.3"}) << text;
+  EXPECT_EQ(value("--camera"), std::vector<std::string>{"10,20,1.5"}) << text;
+  EXPECT_EQ(value("--size"), std::vector<std::string>{"64x48"}) << text;
+  EXPECT_EQ(value("--element").size(), 2u) << text;  // repeatable ones add up
+  EXPECT_EQ(value("--time"), std::vector<std::string>{"0:11"}) << text;
+  EXPECT_NE(std::find(back.begin(), back.end(), "--ortho"), back.end()) << text;
+  EXPECT_NE(std::find(back.begin(), back.end(), "--quiet"), back.end()) << text;
+  EXPECT_THROW(app::scene_toml({"--window-title", "x"}), InputError);
+  EXPECT_THROW(app::scene_toml({"--alpha", "much"}), InputError);
+  EXPECT_THROW(app::scene_toml({"--alpha"}), InputError);
+}
+
+TEST(ViewerScript, ReadsActions) {
+  test::TempDir dir;
+  test::write_file(dir / "s.txt", "# comment\n\n0 zoom 2\n5 drag 10 -4 3  # trailing\n9 quit\n");
+  const std::vector<app::ScriptAction> s = app::read_script(dir / "s.txt");
+  ASSERT_EQ(s.size(), 3u);
+  EXPECT_EQ(s[1].frame, 5);
+  EXPECT_EQ(s[1].verb, "drag");
+  EXPECT_EQ(s[1].args, (std::vector<std::string>{"10", "-4", "3"}));
+  test::write_file(dir / "b.txt", "x zoom 1\n");
+  EXPECT_THROW(app::read_script(dir / "b.txt"), InputError);
+  test::write_file(dir / "c.txt", "1 drag 1 2 zero\n");
+  EXPECT_THROW(app::read_script(dir / "c.txt"), InputError);
+}
+
+}  // namespace
+}  // namespace ibfvs

@@ -117,6 +117,11 @@ class Viewer {
       window_.framebuffer_size(w, h);
       renderer_->present(w, h);
       draw_interface();
+      if (!window_shot_.empty()) {
+        write_png(window_.read_pixels(), window_shot_);
+        std::printf("ibfvs: wrote %s\n", window_shot_.c_str());
+        window_shot_.clear();
+      }
       window_.swap_buffers();
       ++frames_since_title;
       const auto now = std::chrono::steady_clock::now();
@@ -157,6 +162,7 @@ class Viewer {
     int frames_left = 0;
   } script_drag_;
   std::string save_path_ = "view.toml";
+  std::string window_shot_;               // a window capture due after this frame's interface
   float step_px_ = options_.render.step;  // --step, changed by `set step`
 
   void make_renderer() {
@@ -372,6 +378,10 @@ class Viewer {
         renderer_->unlock();
       } else if (a.verb == "screenshot") {
         screenshot(a.args[0]);
+      } else if (a.verb == "window") {
+        window_shot_ = a.args[0];
+      } else if (a.verb == "help") {
+        show_help_ = !show_help_;
       } else if (a.verb == "texture") {
         write_png16(renderer_->read_texture().select_channels(0, 3), a.args[0]);
       } else if (a.verb == "save") {
@@ -389,6 +399,8 @@ class Viewer {
     ImGui::NewFrame();
     if (show_panel_) draw_panel();
     if (show_help_) {
+      const ImVec2 size = ImGui::GetIO().DisplaySize;
+      ImGui::SetNextWindowPos(ImVec2(size.x - 8, size.y - 8), ImGuiCond_Always, ImVec2(1, 1));
       ImGui::SetNextWindowBgAlpha(0.8f);
       ImGui::Begin("Help", &show_help_, ImGuiWindowFlags_AlwaysAutoResize);
       ImGui::TextUnformatted(kHelp);
@@ -479,7 +491,8 @@ void add_view_options(CLI::App& cmd, ViewOptions& o) {
   cmd.add_flag("--no-panel", o.no_panel, "Start with the parameter panel hidden (p shows it)");
   cmd.add_option("--script", o.script,
                  "FILE of timed actions (FRAME VERB ARGS per line: drag, zoom, pan, set, mode, "
-                 "lock, unlock, screenshot, texture, save, quit), for tests and demos");
+                 "lock, unlock, screenshot, window, texture, save, help, quit), for tests and "
+                 "demos");
 }
 
 std::vector<std::string> render_arguments_of(const std::vector<std::string>& arguments) {

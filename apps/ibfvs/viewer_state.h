@@ -54,9 +54,8 @@ class ViewerCamera {
 
 /// One timed action of a `--script` file.
 struct ScriptAction {
-  int frame = 0;  ///< the frame before which it happens
-  std::string
-      verb;  ///< drag, rotate, zoom, pan, set, mode, lock, unlock, screenshot, texture, save, quit
+  int frame = 0;     ///< the frame before which it happens
+  std::string verb;  ///< the action; see read_script
   std::vector<std::string> args;
 };
 
@@ -65,7 +64,8 @@ struct ScriptAction {
 ///   drag DX DY FRAMES    a mouse drag of DX, DY pixels spread over FRAMES frames
 ///                        (button down, move, release), through the drag mode
 ///   zoom STEPS | pan DX DY | set NAME VALUE | mode plain|translate|freeze|previous
-///   lock | unlock | screenshot FILE.png | texture FILE.png | save SCENE.toml | quit
+///   lock | unlock | screenshot FILE.png (the image) | window FILE.png (with the panel)
+///   texture FILE.png (F_t, 16 bits) | save SCENE.toml | help | quit
 /// Throws InputError naming the file and line.
 std::vector<ScriptAction> read_script(const std::filesystem::path& path);
 

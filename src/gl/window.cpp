@@ -85,6 +85,17 @@ void WindowContext::swap_buffers() {
   glfwSwapBuffers(window_);
 }
 
+ImageU8 WindowContext::read_pixels() const {
+  int w = 0, h = 0;
+  framebuffer_size(w, h);
+  ImageU8 image(w, h, 4);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  glReadBuffer(GL_BACK);
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, image.pixels.data());
+  return image;
+}
+
 void WindowContext::poll_events() {
   glfwPollEvents();
 }

@@ -682,6 +682,38 @@ TEST_F(RendererGLTest, SurfaceImageIsMappedByLongitudeAndLatitude) {
   EXPECT_NEAR(plain.at(30, 48, 0), plain.at(30, 48, 2), 20);
 }
 
+TEST_F(RendererGLTest, ShiftImageMovesTheTextureWithThePointer) {
+  // Section 3.7's option (b): while dragging, F_t moves with the mouse. With
+  // no flow and no fresh ink (alpha 0) one shifted frame is F_t moved by
+  // exactly that many pixels.
+  constexpr int w = 96, h = 64;
+  TriMesh square = make_square(2.0f, 4);
+  const std::vector<glm::vec3> zero(square.vertex_count(), glm::vec3(0));
+  RenderSettings settings;
+  settings.width = w;
+  settings.height = h;
+  settings.alpha = 0.0f;
+  IbfvsRenderer r(settings);
+  r.set_mesh(square, zero);
+  r.fill_texture_with_cell_colors(3);
+  r.render_frame(flat_view(), 0.0f);
+  const ImageF before = r.read_texture().select_channels(0, 1);
+  r.shift_image({7.0f, -3.0f});
+  r.render_frame(flat_view(), 0.0f);
+  const ImageF after = r.read_texture().select_channels(0, 1);
+  double worst = 0.0;
+  for (int y = 8; y < h - 8; ++y)
+    for (int x = 8; x < w - 8; ++x)
+      worst = std::max(worst, static_cast<double>(std::abs(
+                                  after.pixels[static_cast<std::size_t>(y) * w + x] -
+                                  before.pixels[static_cast<std::size_t>(y + 3) * w + x - 7])));
+  EXPECT_LT(worst, 1e-3);
+  // The shift is for one frame: the next one stands still again.
+  r.render_frame(flat_view(), 0.0f);
+  EXPECT_LT(test::difference(r.read_texture().select_channels(0, 1).pixels, after.pixels).max,
+            1e-3);
+}
+
 TEST_F(RendererGLTest, LockedTextureStaysOnTheSurface) {
   constexpr int w = 160, h = 160;
   Scene s = sphere_scene("rotate:0,1,0", TangentMode::Project);

@@ -5,6 +5,8 @@
 
 #include <string>
 
+#include "ibfvs/core/image.h"
+
 struct GLFWwindow;
 
 namespace ibfvs::gl {
@@ -33,6 +35,8 @@ class WindowContext {
   /// Size of the default framebuffer in pixels.
   void framebuffer_size(int& width, int& height) const;
   void swap_buffers();
+  /// What the window shows (its back buffer, before swap_buffers), RGBA, rows bottom-up.
+  [[nodiscard]] ImageU8 read_pixels() const;
   static void poll_events();
   /// "llvmpipe (LLVM 15.0.6, 256 bits) | OpenGL 4.5 (Core Profile) Mesa 22.3.6"
   [[nodiscard]] std::string renderer() const;

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <map>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include <epoxy/gl.h>
@@ -16,13 +17,19 @@
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
+#include <glm/trigonometric.hpp>
 
+#include "ibfvs/core/colormap.h"
 #include "ibfvs/core/displacement.h"
 #include "ibfvs/core/error.h"
 #include "ibfvs/core/image.h"
 #include "ibfvs/core/noise.h"
+#include "ibfvs/core/potential_flow.h"
+#include "ibfvs/core/vector_field.h"
 #include "ibfvs/gl/window.h"
 #include "ibfvs/scene.h"
+#include "ibfvs/styles.h"
+#include "ibfvs/video_writer.h"
 #include "ibfvs/viewer_state.h"
 
 namespace ibfvs::app {
@@ -70,6 +77,8 @@ class Viewer {
  public:
   Viewer(const ViewOptions& options, PreparedScene scene)
       : options_(options),
+        render_(options.render),
+        args_(render_arguments_of(options.arguments)),
         scene_(std::move(scene)),
         window_(scene_.width, scene_.height, "ibfvs view", options.vsync),
         camera_(mesh_bounds(*scene_.mesh), scene_.camera,
@@ -108,7 +117,7 @@ class Viewer {
       handle_mouse();
       if (!paused_) {
         if (scene_.step_count > 1) {
-          time_ += 1.0 / options_.render.frames_per_step;
+          time_ += 1.0 / render_.frames_per_step;
           player_->seek(time_, *renderer_);
         }
         render();
@@ -142,6 +151,8 @@ class Viewer {
 
  private:
   const ViewOptions& options_;
+  RenderOptions render_;           // the render options in force (styles and loads change them)
+  std::vector<std::string> args_;  // the same as arguments, for reloading and saving
   PreparedScene scene_;
   gl::WindowContext window_;
   ViewerCamera camera_;
@@ -162,19 +173,140 @@ class Viewer {
     int frames_left = 0;
   } script_drag_;
   std::string save_path_ = "view.toml";
-  std::string window_shot_;               // a window capture due after this frame's interface
-  float step_px_ = options_.render.step;  // --step, changed by `set step`
+  std::string window_shot_;       // a window capture due after this frame's interface
+  float step_px_ = render_.step;  // --step, changed by `set step`
+  std::string message_;           // the last error or note, shown in the panel
+  std::string load_path_;
+  int selected_element_ = -1;
+  bool elements_edited_ = false;
+  std::unique_ptr<VideoWriter> video_;
+  int recordings_ = 0;
 
   void make_renderer() {
     player_.reset();
     renderer_ = std::make_unique<IbfvsRenderer>(scene_.settings);
-    load_scene(*renderer_, scene_, options_.render);
+    load_scene(*renderer_, scene_, render_);
     player_ = std::make_unique<FieldPlayer>(scene_, *renderer_);
   }
 
   void render() {
     const Camera c = camera_.camera();
     renderer_->render_frame({c.view(), c.projection()}, scene_.dt);
+    if (video_) video_->write(renderer_->read_output());
+  }
+
+  static std::string numbers(std::initializer_list<float> values) {
+    std::string out;
+    char one[32];
+    for (const float v : values) {
+      std::snprintf(one, sizeof one, "%s%.6g", out.empty() ? "" : ",", v);
+      out += one;
+    }
+    return out;
+  }
+
+  // Parses render arguments as `ibfvs render` does and, when the scene they
+  // describe prepares without error, replaces the current one (styles, loading
+  // a mesh or a scene). Errors go to the panel; the old scene stays.
+  bool reload(const std::vector<std::string>& args) {
+    try {
+      CLI::App parser;
+      RenderOptions options;
+      add_render_options(parser, options);
+      std::vector<std::string> reversed(args.rbegin(), args.rend());
+      parser.parse(reversed);
+      PreparedScene scene = prepare_scene(options);
+      render_ = options;
+      args_ = args;
+      scene_ = std::move(scene);
+      camera_ = ViewerCamera(mesh_bounds(*scene_.mesh), scene_.camera,
+                             static_cast<float>(scene_.width) / static_cast<float>(scene_.height));
+      step_px_ = render_.step;
+      overrides_.clear();
+      elements_edited_ = false;
+      selected_element_ = -1;
+      time_ = 0.0;
+      make_renderer();
+      message_ = "loaded " + scene_.mesh_name;
+      return true;
+    } catch (const std::exception& e) {
+      message_ = std::string("error: ") + e.what();
+      std::fprintf(stderr, "ibfvs: %s\n", message_.c_str());
+      return false;
+    }
+  }
+
+  void apply_style(const std::string& name) {
+    std::vector<std::string> args = args_;
+    const std::vector<std::string> style = style_arguments(name);
+    args.insert(args.end(), style.begin(), style.end());  // the preset wins
+    if (reload(args)) message_ = "style " + name;
+  }
+
+  void load(const std::string& path) {
+    if (is_scene_path(path)) {
+      try {
+        reload(scene_arguments(path));
+      } catch (const std::exception& e) {
+        message_ = std::string("error: ") + e.what();
+      }
+      return;
+    }
+    std::vector<std::string> args = args_;
+    args.insert(args.end(), {"--mesh", path});
+    reload(args);
+  }
+
+  // Flow elements changed: the field is evaluated again and uploaded.
+  void elements_changed() {
+    FieldSpec& spec = scene_.field_spec;
+    if (spec.kind != FieldKind::Elements) {
+      spec = FieldSpec::parse("elements");
+      message_ = "the field is now the flow elements";
+    }
+    try {
+      for (const FlowElement& e : spec.elements) e.validate();
+      scene_.field = evaluate_field(*scene_.mesh, spec, parse_tangent_mode(render_.tangent));
+      renderer_->set_field(scene_.field);
+      elements_edited_ = true;
+      update_dt();
+    } catch (const std::exception& e) {
+      message_ = std::string("error: ") + e.what();
+    }
+  }
+
+  // The surface point under the cursor (window coordinates), if any.
+  std::optional<glm::vec3> surface_point(glm::vec2 cursor) {
+    const ImageF depth = renderer_->read_depth();
+    int ww = 0, wh = 0;
+    glfwGetWindowSize(window_.handle(), &ww, &wh);
+    const int px = static_cast<int>(cursor.x * scene_.width / std::max(ww, 1));
+    const int py = scene_.height - 1 - static_cast<int>(cursor.y * scene_.height / std::max(wh, 1));
+    if (px < 0 || py < 0 || px >= scene_.width || py >= scene_.height) return std::nullopt;
+    const float z = depth.pixels[static_cast<std::size_t>(py) * scene_.width + px];
+    if (z >= 1.0f) return std::nullopt;  // background
+    const Camera c = camera_.camera();
+    const glm::vec4 ndc(2.0f * (px + 0.5f) / scene_.width - 1.0f,
+                        2.0f * (py + 0.5f) / scene_.height - 1.0f, 2.0f * z - 1.0f, 1.0f);
+    const glm::vec4 world = glm::inverse(c.view_projection()) * ndc;
+    return glm::vec3(world) / world.w;
+  }
+
+  void toggle_recording() {
+    if (video_) {
+      video_->close();
+      video_.reset();
+      message_ = "recording saved";
+      return;
+    }
+    char name[64];
+    std::snprintf(name, sizeof name, "ibfvs-view-%04d.mp4", recordings_++);
+    try {
+      video_ = std::make_unique<VideoWriter>(name, scene_.width, scene_.height, 30.0);
+      message_ = std::string("recording ") + name;
+    } catch (const std::exception& e) {
+      message_ = std::string("error: ") + e.what();
+    }
   }
 
   // Section 3.7: what the texture does while the user drags.
@@ -213,11 +345,16 @@ class Viewer {
 
   void zoom(float steps) {
     camera_.zoom(steps);
-    // Keep the fastest motion at --step pixels: zooming in would stretch it.
+    update_dt();
+  }
+
+  // The fastest motion back to --step pixels a frame, after a zoom (which
+  // would stretch it) or a new field (as render sets dt).
+  void update_dt() {
     const Camera c = camera_.camera();
     const float speed = max_pixel_speed(scene_.mesh->positions, scene_.field, c.view_projection(),
                                         scene_.width, scene_.height);
-    if (speed > 0.0f && options_.render.dt <= 0.0f) scene_.dt = step_px_ / speed;
+    if (speed > 0.0f && render_.dt <= 0.0f) scene_.dt = step_px_ / speed;
   }
 
   void handle_mouse() {
@@ -230,7 +367,20 @@ class Viewer {
     const bool right = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS ||
                        glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS;
     const bool shift = glfwGetKey(w, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS;
-    if ((left || right) && !dragging_ && !over_panel) {
+    const bool ctrl = glfwGetKey(w, GLFW_KEY_LEFT_CONTROL) == GLFW_PRESS ||
+                      glfwGetKey(w, GLFW_KEY_RIGHT_CONTROL) == GLFW_PRESS;
+    std::vector<FlowElement>& elements = scene_.field_spec.elements;
+    if (ctrl && left && !over_panel && !dragging_ && selected_element_ >= 0 &&
+        selected_element_ < static_cast<int>(elements.size())) {
+      // Ctrl + drag: the selected element follows the surface under the pointer.
+      if (const auto p = surface_point(cursor)) {
+        FlowElement& e = elements[static_cast<std::size_t>(selected_element_)];
+        const glm::vec3 half = 0.5f * (e.b - e.a);
+        e.a = *p - half;
+        e.b = *p + half;
+        elements_changed();
+      }
+    } else if ((left || right) && !dragging_ && !over_panel) {
       begin_drag();
       last_cursor_ = cursor;
       const double now = glfwGetTime();
@@ -249,19 +399,7 @@ class Viewer {
 
   // Double-click: the surface point under the cursor becomes the centre.
   void recentre_at(glm::vec2 cursor) {
-    const ImageF depth = renderer_->read_depth();
-    int ww = 0, wh = 0;
-    glfwGetWindowSize(window_.handle(), &ww, &wh);
-    const int px = static_cast<int>(cursor.x * scene_.width / std::max(ww, 1));
-    const int py = scene_.height - 1 - static_cast<int>(cursor.y * scene_.height / std::max(wh, 1));
-    if (px < 0 || py < 0 || px >= scene_.width || py >= scene_.height) return;
-    const float z = depth.pixels[static_cast<std::size_t>(py) * scene_.width + px];
-    if (z >= 1.0f) return;  // background
-    const Camera c = camera_.camera();
-    const glm::vec4 ndc(2.0f * (px + 0.5f) / scene_.width - 1.0f,
-                        2.0f * (py + 0.5f) / scene_.height - 1.0f, 2.0f * z - 1.0f, 1.0f);
-    const glm::vec4 world = glm::inverse(c.view_projection()) * ndc;
-    camera_.recentre(glm::vec3(world) / world.w);
+    if (const auto p = surface_point(cursor)) camera_.recentre(*p);
   }
 
   void handle_keys(Keys& keys) {
@@ -329,7 +467,24 @@ class Viewer {
   // The render options as given, then every live change, then the camera and
   // the frame count: `ibfvs render SCENE.toml` gives this frame.
   void save_scene(const std::string& file) {
-    std::vector<std::string> args = render_arguments_of(options_.arguments);
+    std::vector<std::string> args;
+    for (std::size_t i = 0; i < args_.size(); ++i) {
+      // Edited elements replace the field and element options given.
+      const std::string name = args_[i].substr(0, args_[i].find('='));
+      if (elements_edited_ && (name == "--element" || name == "--field")) {
+        if (args_[i].find('=') == std::string::npos) ++i;
+        continue;
+      }
+      args.push_back(args_[i]);
+    }
+    if (elements_edited_) {
+      const glm::vec3 u = scene_.field_spec.value;
+      args.insert(args.end(), {"--field", "elements:" + numbers({u.x, u.y, u.z})});
+      for (const FlowElement& e : scene_.field_spec.elements)
+        args.insert(args.end(),
+                    {"--element", numbers({e.a.x, e.a.y, e.a.z, e.b.x, e.b.y, e.b.z, e.rotational,
+                                           e.radial, e.tangential, e.core})});
+    }
     for (const auto& [name, value] : overrides_) {
       args.push_back("--" + name);
       args.push_back(value);
@@ -378,6 +533,19 @@ class Viewer {
         renderer_->unlock();
       } else if (a.verb == "screenshot") {
         screenshot(a.args[0]);
+      } else if (a.verb == "style") {
+        apply_style(a.args[0]);
+      } else if (a.verb == "load") {
+        load(a.args[0]);
+      } else if (a.verb == "element") {
+        std::vector<FlowElement> kept = scene_.field_spec.elements;
+        kept.push_back(FlowElement::parse(a.args[0]));
+        if (scene_.field_spec.kind != FieldKind::Elements)
+          scene_.field_spec = FieldSpec::parse("elements");
+        scene_.field_spec.elements = kept;
+        elements_changed();
+      } else if (a.verb == "record") {
+        toggle_recording();
       } else if (a.verb == "window") {
         window_shot_ = a.args[0];
       } else if (a.verb == "help") {
@@ -455,13 +623,25 @@ class Viewer {
     ImGui::SameLine();
     if (ImGui::Button("restart texture")) renderer_->reset();
     if (scene_.step_count > 1) {
+      // Unsteady data (months on the globe): play with pause, step, slide.
       float t = static_cast<float>(time_);
       if (ImGui::SliderFloat("time step", &t, 0.0f,
                              static_cast<float>(scene_.step_count) - 0.01f)) {
         time_ = t;
         player_->seek(time_, *renderer_);
       }
+      if (ImGui::Button("<")) time_ = std::floor(time_) - 1.0 + scene_.step_count;
+      ImGui::SameLine();
+      if (ImGui::Button(">")) time_ = std::floor(time_) + 1.0;
+      ImGui::SameLine();
+      ImGui::Text("step %d of %zu", static_cast<int>(time_) % static_cast<int>(scene_.step_count),
+                  scene_.step_count);
+      player_->seek(time_, *renderer_);
     }
+    if (ImGui::CollapsingHeader("More parameters")) draw_more_parameters();
+    if (ImGui::CollapsingHeader("Styles and files")) draw_styles_and_files();
+    if (ImGui::CollapsingHeader("Flow elements")) draw_elements();
+    if (!message_.empty()) ImGui::TextWrapped("%s", message_.c_str());
     char path[256];
     std::snprintf(path, sizeof path, "%s", save_path_.c_str());
     if (ImGui::InputText("scene file", path, sizeof path)) save_path_ = path;
@@ -473,8 +653,129 @@ class Viewer {
       screenshot(name);
     }
     ImGui::SameLine();
+    if (ImGui::Button(video_ ? "stop recording" : "record")) toggle_recording();
+    ImGui::SameLine();
     if (ImGui::Button("help (h)")) show_help_ = !show_help_;
     ImGui::End();
+  }
+
+  // s, step, noise space, tangent mode, colour map and ranges.
+  void draw_more_parameters() {
+    RenderSettings s = renderer_->settings();
+    float scale = s.noise.scale;
+    if (ImGui::SliderFloat("s (noise scale)", &scale, 1.0f, 16.0f) && scale != s.noise.scale) {
+      scene_.settings.noise.scale = scale;
+      overrides_["scale"] = std::to_string(scale);
+      make_renderer();  // a new grid: the texture starts again
+      return;
+    }
+    float step = step_px_;
+    if (ImGui::SliderFloat("step (px/frame)", &step, 0.25f, 8.0f) && step > 0.0f)
+      set("step", std::to_string(step));
+    int space = s.object_noise ? 1 : 0;
+    const char* spaces[] = {"image (paper)", "object (3.6)"};
+    if (ImGui::Combo("noise space", &space, spaces, 2)) {
+      s.object_noise = space == 1;
+      // s pixels at the distance of the mesh centre, as render does.
+      const Camera c = camera_.camera();
+      s.object_cell = s.noise.scale * 2.0f * c.distance_world() *
+                      std::tan(glm::radians(c.params().fov_deg) * 0.5f) /
+                      static_cast<float>(scene_.height);
+      overrides_["noise-space"] = space == 1 ? "object" : "image";
+      renderer_->update_settings(s);
+      scene_.settings = s;
+    }
+    int tangent = render_.tangent == "3d" ? 1 : 0;
+    const char* tangents[] = {"project", "3d"};
+    if (ImGui::Combo("tangent", &tangent, tangents, 2)) {
+      render_.tangent = tangents[tangent];
+      overrides_["tangent"] = render_.tangent;
+      try {
+        scene_.field =
+            evaluate_field(*scene_.mesh, scene_.field_spec, parse_tangent_mode(render_.tangent));
+        renderer_->set_field(scene_.field);
+      } catch (const std::exception& e) {
+        message_ = std::string("error: ") + e.what();
+      }
+    }
+    if (s.use_color) {
+      int map = static_cast<int>(s.color_map);
+      const char* maps[] = {"viridis", "coolwarm", "grey", "bronze"};
+      bool changed = ImGui::Combo("colour map", &map, maps, 4);
+      changed |= ImGui::DragFloat2("colour range", &s.color_range.x, 0.01f);
+      if (changed) {
+        s.color_map = parse_color_map(maps[map]);
+        overrides_["color-map"] = maps[map];
+        overrides_["color-range"] = numbers({s.color_range.x, s.color_range.y});
+        renderer_->update_settings(s);
+        scene_.settings = s;
+      }
+    }
+    if (s.use_beta && ImGui::DragFloat2("beta range", &s.beta_range.x, 0.01f)) {
+      overrides_["beta-range"] = numbers({s.beta_range.x, s.beta_range.y});
+      renderer_->update_settings(s);
+      scene_.settings = s;
+    }
+  }
+
+  void draw_styles_and_files() {
+    for (const char* name : {"flow", "particles", "principal", "bronze", "eroded", "topology"}) {
+      if (ImGui::Button(name)) apply_style(name);
+      ImGui::SameLine();
+    }
+    ImGui::NewLine();
+    char path[512];
+    std::snprintf(path, sizeof path, "%s", load_path_.c_str());
+    if (ImGui::InputText("mesh or scene", path, sizeof path)) load_path_ = path;
+    if (ImGui::Button("load") && !load_path_.empty()) load(load_path_);
+  }
+
+  // Add, select, move (ctrl + drag on the surface) and shape flow elements.
+  void draw_elements() {
+    std::vector<FlowElement>& elements = scene_.field_spec.elements;
+    bool changed = false;
+    for (std::size_t i = 0; i < elements.size(); ++i) {
+      char label[32];
+      std::snprintf(label, sizeof label, "element %zu", i + 1);
+      if (ImGui::RadioButton(label, selected_element_ == static_cast<int>(i)))
+        selected_element_ = static_cast<int>(i);
+    }
+    if (ImGui::Button("add")) {
+      // A vertical line through the look-at point, a fifth of the mesh long.
+      const Bounds& b = camera_.bounds();
+      const glm::vec3 c = b.centre() + camera_.params().target;
+      const float half = 0.1f * b.diagonal();
+      FlowElement e;
+      e.a = c - glm::vec3(0, half, 0);
+      e.b = c + glm::vec3(0, half, 0);
+      e.rotational = 1.0f;
+      elements.push_back(e);
+      selected_element_ = static_cast<int>(elements.size()) - 1;
+      changed = true;
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("remove") && selected_element_ >= 0 &&
+        selected_element_ < static_cast<int>(elements.size())) {
+      elements.erase(elements.begin() + selected_element_);
+      selected_element_ = -1;
+      changed = true;
+    }
+    if (selected_element_ >= 0 && selected_element_ < static_cast<int>(elements.size())) {
+      FlowElement& e = elements[static_cast<std::size_t>(selected_element_)];
+      changed |= ImGui::SliderFloat("rotational", &e.rotational, -2.0f, 2.0f);
+      changed |= ImGui::SliderFloat("radial", &e.radial, -2.0f, 2.0f);
+      changed |= ImGui::SliderFloat("tangential", &e.tangential, -2.0f, 2.0f);
+      float length = glm::length(e.b - e.a);
+      const float diagonal = camera_.bounds().diagonal();
+      if (ImGui::SliderFloat("length", &length, 0.01f * diagonal, 2.0f * diagonal)) {
+        const glm::vec3 mid = 0.5f * (e.a + e.b), dir = glm::normalize(e.b - e.a);
+        e.a = mid - 0.5f * length * dir;
+        e.b = mid + 0.5f * length * dir;
+        changed = true;
+      }
+      ImGui::TextUnformatted("ctrl + drag moves it along the surface");
+    }
+    if (changed) elements_changed();
   }
 };
 
@@ -491,8 +792,8 @@ void add_view_options(CLI::App& cmd, ViewOptions& o) {
   cmd.add_flag("--no-panel", o.no_panel, "Start with the parameter panel hidden (p shows it)");
   cmd.add_option("--script", o.script,
                  "FILE of timed actions (FRAME VERB ARGS per line: drag, zoom, pan, set, mode, "
-                 "lock, unlock, screenshot, window, texture, save, help, quit), for tests and "
-                 "demos");
+                 "lock, unlock, screenshot, window, texture, save, style, load, element, record, "
+                 "help, quit), for tests and demos");
 }
 
 std::vector<std::string> render_arguments_of(const std::vector<std::string>& arguments) {

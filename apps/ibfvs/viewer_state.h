@@ -65,7 +65,9 @@ struct ScriptAction {
 ///                        (button down, move, release), through the drag mode
 ///   zoom STEPS | pan DX DY | set NAME VALUE | mode plain|translate|freeze|previous
 ///   lock | unlock | screenshot FILE.png (the image) | window FILE.png (with the panel)
-///   texture FILE.png (F_t, 16 bits) | save SCENE.toml | help | quit
+///   texture FILE.png (F_t, 16 bits) | save SCENE.toml | style NAME | load MESH|SCENE
+///   element AX,AY,AZ,BX,BY,BZ,ROT,RAD,TAN[,CORE] (adds one) | record (toggles MP4)
+///   help | quit
 /// Throws InputError naming the file and line.
 std::vector<ScriptAction> read_script(const std::filesystem::path& path);
 

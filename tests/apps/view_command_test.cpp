@@ -101,6 +101,41 @@ TEST_F(ViewCommand, ScriptedSessionUnderXvfb) {
   EXPECT_LT(diff, 0.005);
 }
 
+TEST_F(ViewCommand, ElementsStylesAndRecordingUnderXvfb) {
+  if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0)
+    GTEST_SKIP() << "xvfb-run missing (Debian package xvfb)";
+  file("session.txt",
+       "2 record\n"
+       "10 screenshot a.png\n"
+       "10 element 0,-1,0,0,1,0,1.5,0.5,0\n"
+       "20 screenshot b.png\n"
+       "20 save el.toml\n"
+       "20 style bronze\n"
+       "30 screenshot c.png\n"
+       "30 record\n"
+       "31 quit\n");
+  const Result v = run("view --mesh torus --camera 0,40,0 --size 128x96 --script session.txt",
+                       "xvfb-run -a -s '-screen 0 640x480x24'");
+  ASSERT_EQ(v.status, 0) << v.out << v.err;
+  // The element replaced the rotation: the saved scene says so and renders.
+  const std::string scene = test::read_file(dir_ / "el.toml");
+  EXPECT_NE(scene.find("field = 'elements:0,0,0'"), std::string::npos) << scene;
+  EXPECT_NE(scene.find("element = [ '0,-1,0,0,1,0,1.5,0.5,0,0' ]"), std::string::npos) << scene;
+  const Result r = run("render el.toml --out el.png -q");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_GT(mean_difference(read_png(dir_ / "a.png"), read_png(dir_ / "b.png")), 0.01);
+  // The bronze preset: warm colours on the surface.
+  const ImageU8 c = read_png(dir_ / "c.png");
+  double red = 0, blue = 0;
+  for (std::size_t i = 0; i + 2 < c.pixels.size(); i += c.channels) {
+    red += c.pixels[i];
+    blue += c.pixels[i + 2];
+  }
+  EXPECT_GT(red, 1.1 * blue);
+  // The recording: one MP4 with the frames between the two toggles.
+  EXPECT_GT(std::filesystem::file_size(dir_ / "ibfvs-view-0000.mp4"), 1000u);
+}
+
 TEST_F(ViewCommand, BadScriptsAndModesFailCleanly) {
   file("bad.txt", "5 dance\n");
   expect_error("view --mesh torus --script bad.txt", "bad.txt:1: unknown action 'dance'");

@@ -181,6 +181,7 @@ class Viewer {
   bool elements_edited_ = false;
   std::unique_ptr<VideoWriter> video_;
   int recordings_ = 0;
+  int snapshot_size_[2] = {2048, 2048};
 
   void make_renderer() {
     player_.reset();
@@ -290,6 +291,30 @@ class Viewer {
                         2.0f * (py + 0.5f) / scene_.height - 1.0f, 2.0f * z - 1.0f, 1.0f);
     const glm::vec4 world = glm::inverse(c.view_projection()) * ndc;
     return glm::vec3(world) / world.w;
+  }
+
+  // The current state rendered offscreen at another size: a renderer of
+  // that size runs `frames` frames with the current camera and parameters
+  // (the texture needs about 22 to form, section 3.7) and writes its image.
+  void snapshot(int width, int height, const std::string& file, int frames = 60) {
+    RenderSettings s = renderer_->settings();
+    s.width = width;
+    s.height = height;
+    PreparedScene big = scene_;
+    big.settings = s;
+    IbfvsRenderer r(s);
+    load_scene(r, big, render_);
+    ViewerCamera cam = camera_;
+    cam.set_aspect(static_cast<float>(width) / static_cast<float>(height));
+    const Camera c = cam.camera();
+    // The same motion in pixels per frame as in the window.
+    const float speed =
+        max_pixel_speed(scene_.mesh->positions, scene_.field, c.view_projection(), width, height);
+    const float dt = speed > 0.0f ? step_px_ / speed : 0.0f;
+    for (int k = 0; k < frames; ++k) r.render_frame({c.view(), c.projection()}, dt);
+    write_png(r.read_output(), file);
+    message_ = "wrote " + file;
+    std::printf("ibfvs: wrote %s (%dx%d)\n", file.c_str(), width, height);
   }
 
   void toggle_recording() {
@@ -544,6 +569,12 @@ class Viewer {
           scene_.field_spec = FieldSpec::parse("elements");
         scene_.field_spec.elements = kept;
         elements_changed();
+      } else if (a.verb == "snapshot") {
+        const std::vector<float> n = parse_numbers(a.args[0], "snapshot", 2, "W,H");
+        const glm::vec2 size(n[0], n[1]);
+        if (!(size.x >= 1 && size.y >= 1 && size.x <= 16384 && size.y <= 16384))
+          throw InputError("snapshot: the size must be within 1..16384 pixels");
+        snapshot(static_cast<int>(size.x), static_cast<int>(size.y), a.args[1]);
       } else if (a.verb == "record") {
         toggle_recording();
       } else if (a.verb == "window") {
@@ -654,6 +685,19 @@ class Viewer {
     }
     ImGui::SameLine();
     if (ImGui::Button(video_ ? "stop recording" : "record")) toggle_recording();
+    ImGui::SetNextItemWidth(120);
+    ImGui::InputInt2("##snapshot size", snapshot_size_);
+    ImGui::SameLine();
+    if (ImGui::Button("render offscreen")) {
+      char name[64];
+      std::snprintf(name, sizeof name, "ibfvs-view-%04d.png", screenshots_++);
+      try {
+        snapshot(std::clamp(snapshot_size_[0], 1, 16384), std::clamp(snapshot_size_[1], 1, 16384),
+                 name);
+      } catch (const std::exception& e) {
+        message_ = std::string("error: ") + e.what();
+      }
+    }
     ImGui::SameLine();
     if (ImGui::Button("help (h)")) show_help_ = !show_help_;
     ImGui::End();
@@ -793,7 +837,7 @@ void add_view_options(CLI::App& cmd, ViewOptions& o) {
   cmd.add_option("--script", o.script,
                  "FILE of timed actions (FRAME VERB ARGS per line: drag, zoom, pan, set, mode, "
                  "lock, unlock, screenshot, window, texture, save, style, load, element, record, "
-                 "help, quit), for tests and demos");
+                 "snapshot, help, quit), for tests and demos");
 }
 
 std::vector<std::string> render_arguments_of(const std::vector<std::string>& arguments) {

@@ -80,9 +80,10 @@ std::vector<ScriptAction> read_script(const std::filesystem::path& path) {
   if (!in) throw InputError(path.string() + ": cannot open the script");
   // Verb -> number of arguments.
   static const std::map<std::string, int> arity = {
-      {"drag", 3},   {"zoom", 1},       {"pan", 2},     {"set", 2},     {"mode", 1},  {"lock", 0},
-      {"unlock", 0}, {"screenshot", 1}, {"texture", 1}, {"save", 1},    {"quit", 0},  {"window", 1},
-      {"help", 0},   {"style", 1},      {"load", 1},    {"element", 1}, {"record", 0}};
+      {"drag", 3},    {"zoom", 1},   {"pan", 2},        {"set", 2},     {"mode", 1},
+      {"lock", 0},    {"unlock", 0}, {"screenshot", 1}, {"texture", 1}, {"save", 1},
+      {"quit", 0},    {"window", 1}, {"help", 0},       {"style", 1},   {"load", 1},
+      {"element", 1}, {"record", 0}, {"snapshot", 2}};
   std::vector<ScriptAction> actions;
   int line_number = 0;
   for (std::string line; std::getline(in, line);) {
@@ -103,7 +104,7 @@ std::vector<ScriptAction> read_script(const std::filesystem::path& path) {
     if (it == arity.end())
       throw InputError(where + ": unknown action '" + a.verb +
                        "' (drag, zoom, pan, set, mode, lock, unlock, screenshot, window, texture, "
-                       "save, style, load, element, record, help, quit)");
+                       "save, style, load, element, record, snapshot, help, quit)");
     for (std::string w; words >> w;) a.args.push_back(w);
     if (static_cast<int>(a.args.size()) != it->second)
       throw InputError(where + ": '" + a.verb + "' takes " + std::to_string(it->second) +

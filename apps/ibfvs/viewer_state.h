@@ -67,6 +67,7 @@ struct ScriptAction {
 ///   lock | unlock | screenshot FILE.png (the image) | window FILE.png (with the panel)
 ///   texture FILE.png (F_t, 16 bits) | save SCENE.toml | style NAME | load MESH|SCENE
 ///   element AX,AY,AZ,BX,BY,BZ,ROT,RAD,TAN[,CORE] (adds one) | record (toggles MP4)
+///   snapshot W,H FILE.png (the current state rendered offscreen at that size)
 ///   help | quit
 /// Throws InputError naming the file and line.
 std::vector<ScriptAction> read_script(const std::filesystem::path& path);

@@ -112,6 +112,7 @@ TEST_F(ViewCommand, ElementsStylesAndRecordingUnderXvfb) {
        "20 save el.toml\n"
        "20 style bronze\n"
        "30 screenshot c.png\n"
+       "30 snapshot 200,150 big.png\n"
        "30 record\n"
        "31 quit\n");
   const Result v = run("view --mesh torus --camera 0,40,0 --size 128x96 --script session.txt",
@@ -132,6 +133,9 @@ TEST_F(ViewCommand, ElementsStylesAndRecordingUnderXvfb) {
     blue += c.pixels[i + 2];
   }
   EXPECT_GT(red, 1.1 * blue);
+  // The offscreen render at another size.
+  EXPECT_EQ(read_png(dir_ / "big.png").width, 200);
+  EXPECT_EQ(read_png(dir_ / "big.png").height, 150);
   // The recording: one MP4 with the frames between the two toggles.
   EXPECT_GT(std::filesystem::file_size(dir_ / "ibfvs-view-0000.mp4"), 1000u);
 }

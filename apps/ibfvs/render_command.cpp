@@ -174,6 +174,9 @@ void add_render_options(CLI::App& cmd, RenderOptions& o) {
   cmd.add_option("--camera", o.camera,
                  "AZIMUTH,ELEVATION,DISTANCE: degrees about +Y and above the horizon, distance in "
                  "bounding-box diagonals (0 fits the mesh). Default 0,0,0: from +Z, +Y up, fitted");
+  cmd.add_option("--look-at", o.look_at,
+                 "X,Y,Z: the point the camera turns about and looks at, as an offset from the "
+                 "bounding-box centre in world units (the viewer's pan). Default 0,0,0");
   cmd.add_flag("--ortho", o.ortho, "Orthographic instead of perspective projection");
   cmd.add_option("--fov", o.fov, "Vertical field of view in degrees")->capture_default_str();
   cmd.add_option("--orbit", o.orbit,
@@ -382,6 +385,7 @@ PreparedScene prepare_scene(const RenderOptions& o) {
     if (c.z < 0.0f) throw InputError("--camera: the distance must not be negative");
   }
   cam.orthographic = o.ortho;
+  if (!o.look_at.empty()) cam.target = parse_vec3(o.look_at, "--look-at");
   cam.fov_deg = o.fov;
 
   // ---- mesh

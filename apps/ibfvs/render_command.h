@@ -65,6 +65,7 @@ struct RenderOptions {
       field_steps;           ///< PLY files whose vx vy vz are the steps of an unsteady field
   int frames_per_step = 30;  ///< frames from one time step to the next
   std::string camera;        ///< "AZ,EL,DIST"
+  std::string look_at;       ///< "X,Y,Z" offset of the look-at point from the box centre
   bool ortho = false;
   float fov = 30.0f;
   float orbit = 0.0f;

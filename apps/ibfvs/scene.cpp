@@ -59,6 +59,7 @@ const std::map<std::string, Kind>& keys() {
       {"field_step", Kind::StringList},
       {"frames_per_step", Kind::Integer},
       {"camera", Kind::Vector},
+      {"look_at", Kind::Vector},
       {"ortho", Kind::Flag},
       {"fov", Kind::Number},
       {"orbit", Kind::Number},

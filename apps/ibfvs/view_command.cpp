@@ -165,7 +165,7 @@ class Viewer {
   double last_click_ = -1.0;
   double time_ = 0.0;
   double fps_ = 0.0;
-  int screenshots_ = 0;
+  int screenshots_ = 0;  // the number in the next ibfvs-view-NNNN file
   std::vector<ScriptAction> script_;
   std::size_t next_action_ = 0;
   struct ScriptDrag {
@@ -180,7 +180,6 @@ class Viewer {
   int selected_element_ = -1;
   bool elements_edited_ = false;
   std::unique_ptr<VideoWriter> video_;
-  int recordings_ = 0;
   int snapshot_size_[2] = {2048, 2048};
 
   void make_renderer() {
@@ -307,10 +306,7 @@ class Viewer {
     ViewerCamera cam = camera_;
     cam.set_aspect(static_cast<float>(width) / static_cast<float>(height));
     const Camera c = cam.camera();
-    // The same motion in pixels per frame as in the window.
-    const float speed =
-        max_pixel_speed(scene_.mesh->positions, scene_.field, c.view_projection(), width, height);
-    const float dt = speed > 0.0f ? step_px_ / speed : 0.0f;
+    const float dt = dt_for(c, width, height);  // the same pixels per frame as the window
     for (int k = 0; k < frames; ++k) r.render_frame({c.view(), c.projection()}, dt);
     write_png(r.read_output(), file);
     message_ = "wrote " + file;
@@ -324,8 +320,7 @@ class Viewer {
       message_ = "recording saved";
       return;
     }
-    char name[64];
-    std::snprintf(name, sizeof name, "ibfvs-view-%04d.mp4", recordings_++);
+    const std::string name = numbered_name(".mp4");
     try {
       video_ = std::make_unique<VideoWriter>(name, scene_.width, scene_.height, 30.0);
       message_ = std::string("recording ") + name;
@@ -376,10 +371,23 @@ class Viewer {
   // The fastest motion back to --step pixels a frame, after a zoom (which
   // would stretch it) or a new field (as render sets dt).
   void update_dt() {
-    const Camera c = camera_.camera();
-    const float speed = max_pixel_speed(scene_.mesh->positions, scene_.field, c.view_projection(),
-                                        scene_.width, scene_.height);
-    if (speed > 0.0f && render_.dt <= 0.0f) scene_.dt = step_px_ / speed;
+    if (render_.dt > 0.0f) return;  // the user's own dt stays
+    const float dt = dt_for(camera_.camera(), scene_.width, scene_.height);
+    if (dt > 0.0f) scene_.dt = dt;
+  }
+
+  // dt that moves the fastest vertex step_px_ pixels in a width x height image.
+  float dt_for(const Camera& c, int width, int height) const {
+    const float speed =
+        max_pixel_speed(scene_.mesh->positions, scene_.field, c.view_projection(), width, height);
+    return speed > 0.0f ? step_px_ / speed : 0.0f;
+  }
+
+  // ibfvs-view-NNNN.EXT in the current folder, numbered on from the last one.
+  std::string numbered_name(const char* extension) {
+    char name[64];
+    std::snprintf(name, sizeof name, "ibfvs-view-%04d%s", screenshots_++, extension);
+    return name;
   }
 
   void handle_mouse() {
@@ -436,8 +444,7 @@ class Viewer {
       drag_mode_ = static_cast<DragMode>((static_cast<int>(drag_mode_) + 1) % 4);
     if (keys.pressed(GLFW_KEY_R)) camera_.reset();
     if (keys.pressed(GLFW_KEY_S)) {
-      char name[64];
-      std::snprintf(name, sizeof name, "ibfvs-view-%04d.png", screenshots_++);
+      const std::string name = numbered_name(".png");
       screenshot(name);
     }
     if (keys.pressed(GLFW_KEY_P)) show_panel_ = !show_panel_;
@@ -515,14 +522,13 @@ class Viewer {
       args.push_back(value);
     }
     const CameraParams& p = camera_.params();
-    if (p.target != glm::vec3(0.0f))
-      std::fprintf(stderr, "ibfvs: warning: %s: the pan is not saved (scenes have no key for it)\n",
-                   file.c_str());
     const float diagonal = std::max(camera_.bounds().diagonal(), 1e-6f);
     char camera[128];
     std::snprintf(camera, sizeof camera, "%.6g,%.6g,%.6g", p.azimuth_deg, p.elevation_deg,
                   p.distance > 0.0f ? camera_.camera().distance_world() / diagonal : 0.0f);
-    args.insert(args.end(), {"--camera", camera, "--frames", std::to_string(renderer_->frame())});
+    args.insert(args.end(),
+                {"--camera", camera, "--look-at", numbers({p.target.x, p.target.y, p.target.z}),
+                 "--frames", std::to_string(renderer_->frame())});
     args.insert(args.end(),
                 {"--size", std::to_string(scene_.width) + "x" + std::to_string(scene_.height)});
     std::ofstream out(file);
@@ -679,8 +685,7 @@ class Viewer {
     if (ImGui::Button("save scene")) save_scene(save_path_);
     ImGui::SameLine();
     if (ImGui::Button("screenshot")) {
-      char name[64];
-      std::snprintf(name, sizeof name, "ibfvs-view-%04d.png", screenshots_++);
+      const std::string name = numbered_name(".png");
       screenshot(name);
     }
     ImGui::SameLine();
@@ -689,8 +694,7 @@ class Viewer {
     ImGui::InputInt2("##snapshot size", snapshot_size_);
     ImGui::SameLine();
     if (ImGui::Button("render offscreen")) {
-      char name[64];
-      std::snprintf(name, sizeof name, "ibfvs-view-%04d.png", screenshots_++);
+      const std::string name = numbered_name(".png");
       try {
         snapshot(std::clamp(snapshot_size_[0], 1, 16384), std::clamp(snapshot_size_[1], 1, 16384),
                  name);

@@ -107,6 +107,8 @@ class Viewer {
 
   int run() {
     Keys keys(window_.handle());
+    const auto started = std::chrono::steady_clock::now();
+    int frames_shown = 0;
     auto last_title = std::chrono::steady_clock::now();
     int frames_since_title = 0;
     while (!window_.should_close()) {
@@ -133,6 +135,7 @@ class Viewer {
       }
       window_.swap_buffers();
       ++frames_since_title;
+      ++frames_shown;
       const auto now = std::chrono::steady_clock::now();
       const double seconds = std::chrono::duration<double>(now - last_title).count();
       if (seconds > 0.5) {
@@ -146,6 +149,12 @@ class Viewer {
         last_title = now;
       }
     }
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    if (!render_.quiet)
+      std::printf("ibfvs: viewed %s for %d frames at %.1f fps (%dx%d) on %s\n",
+                  scene_.mesh_name.c_str(), frames_shown, frames_shown / std::max(seconds, 1e-9),
+                  scene_.width, scene_.height, window_.renderer().c_str());
     return 0;
   }
 

@@ -353,6 +353,7 @@ TEST_F(RenderCommand, ImpossibleOptionsFailCleanly) {
   expect_error(m + "--field rotate:0,0,0 --out x.png", "--field rotate");
   expect_error(m + "--tangent flat --out x.png", "--tangent");
   expect_error(m + "--image-normalize --dt 0.1 --out x.png", "--image-normalize");
+  expect_error(m + "--look-at 1,2 --out x.png", "--look-at");
   expect_error(m + "--field principal:min:smooth=many --out x.png", "smooth=many");
   // Generated shapes: bad parameters name the spec.
   const std::string g = "render --frames 1 --size 16x16 --out x.png --mesh ";

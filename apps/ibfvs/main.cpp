@@ -12,6 +12,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "ibfvs/bench_command.h"
 #include "ibfvs/geometry_command.h"
 #include "ibfvs/render_command.h"
 #include "ibfvs/scene.h"
@@ -38,6 +39,12 @@ int main(int argc, char** argv) {
       "Open an interactive window (GLFW, OpenGL 4.5): the same options as render, plus mouse, "
       "keyboard (h: help) and a parameter panel");
   ibfvs::app::add_view_options(*view, *view_options);
+  auto bench_options = std::make_unique<ibfvs::app::BenchOptions>();
+  CLI::App* bench = app.add_subcommand(
+      "bench",
+      "The paper's Table 1: fps on the Loop-subdivided cow at three image sizes, static and "
+      "rotating, beside the 2003 figures");
+  ibfvs::app::add_bench_options(*bench, *bench_options);
   auto geometry_options = std::make_unique<ibfvs::app::GeometryOptions>();
   CLI::App* geometry = app.add_subcommand(
       "geometry",
@@ -87,15 +94,16 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help
     // One line in the same form as every other error.
-    if (*render || *geometry || *view)
+    if (*render || *geometry || *view || *bench)
       std::fprintf(stderr, "ibfvs: error: %s (see ibfvs %s --help)\n", e.what(),
-                   *render ? "render"
-                   : *view ? "view"
-                           : "geometry");
+                   *render  ? "render"
+                   : *view  ? "view"
+                   : *bench ? "bench"
+                            : "geometry");
     else
       std::fprintf(
           stderr,
-          "ibfvs: error: unknown command '%s' (expected render, view or geometry; see ibfvs "
+          "ibfvs: error: unknown command '%s' (expected render, view, geometry or bench; see ibfvs "
           "--help)\n",
           argv[1]);
     return 1;
@@ -104,6 +112,7 @@ int main(int argc, char** argv) {
     if (*render) return ibfvs::app::run_render(*render_options);
     if (*geometry) return ibfvs::app::run_geometry(*geometry_options);
     if (*view) return ibfvs::app::run_view(*view_options);
+    if (*bench) return ibfvs::app::run_bench(*bench_options);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "ibfvs: error: %s\n", e.what());
     return 1;

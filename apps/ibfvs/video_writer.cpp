@@ -63,24 +63,65 @@ VideoWriter::VideoWriter(const std::filesystem::path& path, int width, int heigh
   const std::string command = cmd.str();
   pipe_ = popen(command.c_str(), "w");
   if (!pipe_) throw InputError(path.string() + ": cannot start ffmpeg");
+  writer_ = std::thread(&VideoWriter::feed, this);
 }
 
 VideoWriter::~VideoWriter() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    closing_ = true;
+  }
+  changed_.notify_all();
+  if (writer_.joinable()) writer_.join();
   if (pipe_) pclose(pipe_);
 }
 
-void VideoWriter::write(const ImageU8& frame) {
+void VideoWriter::feed() {
+  for (;;) {
+    ImageU8 frame;
+    {
+      std::unique_lock<std::mutex> lock(mutex_);
+      changed_.wait(lock, [&] { return !queue_.empty() || closing_; });
+      if (queue_.empty()) return;  // closing, all written
+      frame = std::move(queue_.front());
+      queue_.pop_front();
+    }
+    changed_.notify_all();  // room in the queue
+    if (std::fwrite(frame.pixels.data(), 1, frame.pixels.size(), pipe_) != frame.pixels.size()) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      error_ = path_.string() + ": ffmpeg stopped accepting frames (see its message above)";
+      queue_.clear();
+      closing_ = true;
+      changed_.notify_all();
+      return;
+    }
+  }
+}
+
+void VideoWriter::write(ImageU8 frame) {
   if (!pipe_) throw InputError(path_.string() + ": video already closed");
   if (frame.width != width_ || frame.height != height_ || frame.channels != 4)
     throw InputError(path_.string() + ": frame size changed");
-  if (std::fwrite(frame.pixels.data(), 1, frame.pixels.size(), pipe_) != frame.pixels.size())
-    throw InputError(path_.string() + ": ffmpeg stopped accepting frames (see its message above)");
+  std::unique_lock<std::mutex> lock(mutex_);
+  changed_.wait(lock, [&] { return queue_.size() < kQueued || closing_; });
+  if (!error_.empty()) throw InputError(error_);
+  if (closing_) throw InputError(path_.string() + ": video already closed");
+  queue_.push_back(std::move(frame));
+  lock.unlock();
+  changed_.notify_all();
 }
 
 void VideoWriter::close() {
   if (!pipe_) return;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    closing_ = true;
+  }
+  changed_.notify_all();
+  if (writer_.joinable()) writer_.join();
   const int status = pclose(pipe_);
   pipe_ = nullptr;
+  if (!error_.empty()) throw InputError(error_);
   if (status == -1 || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
     throw InputError(path_.string() + ": ffmpeg failed to write the video");
 }

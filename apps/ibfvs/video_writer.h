@@ -1,9 +1,16 @@
 #pragma once
 // Video output through the ffmpeg program: raw RGBA frames go down a pipe, and
-// ffmpeg encodes in its own process, beside the rendering.
+// ffmpeg encodes in its own process, beside the rendering. A thread of ours
+// feeds the pipe, so the render loop only hands frames over (issue 7: video
+// must not be the bottleneck).
 
+#include <condition_variable>
 #include <cstdio>
+#include <deque>
 #include <filesystem>
+#include <mutex>
+#include <string>
+#include <thread>
 
 #include "ibfvs/core/image.h"
 
@@ -20,16 +27,26 @@ class VideoWriter {
   VideoWriter(const VideoWriter&) = delete;
   VideoWriter& operator=(const VideoWriter&) = delete;
 
-  /// Writes one RGBA8 frame (rows bottom-up, as read back). Throws InputError
+  /// Queues one RGBA8 frame (rows bottom-up, as read back) for the writer
+  /// thread; blocks only while kQueued frames are waiting. Throws InputError
   /// if ffmpeg has stopped.
-  void write(const ImageU8& frame);
-  /// Waits for ffmpeg; throws InputError if it failed.
+  void write(ImageU8 frame);
+  /// Writes what is queued, waits for ffmpeg; throws InputError if it failed.
   void close();
 
  private:
+  static constexpr std::size_t kQueued = 4;
+  void feed();  // the writer thread
+
   std::filesystem::path path_;
   std::FILE* pipe_ = nullptr;
   int width_, height_;
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  std::deque<ImageU8> queue_;
+  bool closing_ = false;
+  std::string error_;  // set by the writer thread
+  std::thread writer_;
 };
 
 }  // namespace ibfvs::app

@@ -387,9 +387,8 @@ class Viewer {
 
   // dt that moves the fastest vertex step_px_ pixels in a width x height image.
   float dt_for(const Camera& c, int width, int height) const {
-    const float speed =
-        max_pixel_speed(scene_.mesh->positions, scene_.field, c.view_projection(), width, height);
-    return speed > 0.0f ? step_px_ / speed : 0.0f;
+    return dt_for_pixel_step(scene_.mesh->positions, scene_.field, c.view_projection(), width,
+                             height, step_px_);
   }
 
   // ibfvs-view-NNNN.EXT in the current folder, numbered on from the last one.

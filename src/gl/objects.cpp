@@ -113,6 +113,12 @@ Texture2D::Texture2D(int width, int height, Format format, bool linear)
   glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
 }
 
+void Texture2D::set_repeat(bool repeat) {
+  const GLint mode = repeat ? GL_REPEAT : GL_CLAMP_TO_EDGE;
+  glTextureParameteri(id(), GL_TEXTURE_WRAP_S, mode);
+  glTextureParameteri(id(), GL_TEXTURE_WRAP_T, mode);
+}
+
 void Texture2D::upload_float(std::span<const float> data, int channels) {
   const std::size_t need = static_cast<std::size_t>(width_) * height_ * channels;
   if (data.size() < need) throw GraphicsError("texture upload: not enough data");
@@ -301,6 +307,11 @@ void enable_depth_test(bool on) {
     glDisable(GL_DEPTH_TEST);
   }
 }
+void draw_attributeless_triangle(const VertexArray& vao) {
+  vao.bind();
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+}
+
 void draw_triangles(std::size_t index_count, bool index32) {
   glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(index_count),
                  index32 ? GL_UNSIGNED_INT : GL_UNSIGNED_SHORT, nullptr);

@@ -106,6 +106,17 @@ IbfvsRenderer::IbfvsRenderer(const RenderSettings& settings) : settings_(setting
   const NoiseGrid grid(w, h, settings_.noise);
   phases_ = gl::Texture2D(grid.columns(), grid.rows(), gl::Format::R32F, false);
   phases_.upload_float(grid.phases(), 1);
+  // The grid pass writes G_ij here; sampling it bilinearly is equation 7.
+  grid_ = gl::Texture2D(grid.columns(), grid.rows(), gl::Format::R32F, true);
+  grid_.set_repeat(true);
+  grid_framebuffer_ = gl::Framebuffer::create();
+  grid_framebuffer_.attach_color(0, grid_);
+  grid_framebuffer_.finish(1);
+  grid_program_ = gl::Program(shaders::kGridVertex, shaders::kGridFragment);
+  grid_noise_time_ = grid_program_.location("u_noise_time");
+  grid_profile_ = grid_program_.location("u_profile");
+  grid_spike_width_ = grid_program_.location("u_spike_width");
+  empty_vao_ = gl::VertexArray::create();
   program_.set(u_.noise_scale, settings_.noise.scale);
   glm::ivec2 size(grid.columns(), grid.rows());
   program_.use();
@@ -122,6 +133,10 @@ void IbfvsRenderer::apply_settings_uniforms() {
   program_.set(u_.inject, settings_.inject == InjectMode::Add ? 1 : 0);
   program_.set(u_.profile, static_cast<int>(settings_.noise.profile));
   program_.set(u_.spike_width, settings_.noise.spike_width);
+  if (grid_program_) {
+    grid_program_.set(grid_profile_, static_cast<int>(settings_.noise.profile));
+    grid_program_.set(grid_spike_width_, settings_.noise.spike_width);
+  }
   program_.set(u_.surface_color, settings_.surface_color);
   program_.set(u_.noise_space, settings_.object_noise ? 1 : 0);
   program_.set(u_.object_cell, settings_.object_cell);
@@ -267,6 +282,16 @@ void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
   fb.clear_color(1, b);
   fb.clear_depth();
   if (index_count_ > 0) {
+    const float noise_time = settings_.noise.rate * static_cast<float>(frame_);
+    if (!settings_.object_noise) {  // the grid pass: G_ij of this frame
+      grid_framebuffer_.bind();
+      gl::set_viewport(grid_.width(), grid_.height());
+      gl::enable_depth_test(false);
+      grid_program_.use();
+      grid_program_.set(grid_noise_time_, noise_time);
+      phases_.bind(0);
+      gl::draw_attributeless_triangle(empty_vao_);
+    }
     fb.bind();
     gl::set_viewport(settings_.width, settings_.height);
     gl::enable_depth_test(true);
@@ -281,9 +306,9 @@ void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
     program_.set(u_.texture_shift, texture_shift_);
     program_.set(u_.noise_shift, noise_shift_);
     program_.set(u_.locked, locked_ ? 1 : 0);
-    program_.set(u_.noise_time, settings_.noise.rate * static_cast<float>(frame_));
+    program_.set(u_.noise_time, noise_time);
     texture_[current_].bind(0);
-    phases_.bind(1);
+    grid_.bind(1);
     color_map_.bind(2);
     if (surface_image_) surface_image_.bind(3);
     vao_.bind();

@@ -65,7 +65,7 @@ layout(location = 0) out vec4 o_texture;  // F_t of this frame
 layout(location = 1) out vec4 o_color;    // F
 
 layout(binding = 0) uniform sampler2D u_previous;  // F_t of the last frame
-layout(binding = 1) uniform sampler2D u_phases;    // phi_ij
+layout(binding = 1) uniform sampler2D u_grid;      // w(v_g k + phi_ij), this frame's grid values
 
 uniform float u_alpha;
 uniform vec2 u_texture_shift;  // pixels: F_t moved with the mouse for this frame (3.7)
@@ -98,22 +98,12 @@ float profile(float t) {
   return f < u_spike_width ? 1.0 : 0.0;
 }
 
-float grid_value(ivec2 ij) {
-  ij = clamp(ij, ivec2(0), u_phase_size - 1);
-  return profile(u_noise_time + texelFetch(u_phases, ij, 0).r);
-}
-
-// Equations 6-7: grid values s pixels apart, triangular pulses = bilinear.
+// Equations 6-7: grid values s pixels apart, triangular pulses = bilinear
+// interpolation, which the texture unit does: grid point (i, j) at pixel
+// (i s, j s) is the centre of texel (i, j). The grid pass wrote this frame's
+// values; the texture repeats, so the pattern wraps when shifted (3.7).
 float noise(vec2 x) {
-  vec2 u = x / u_noise_scale;
-  vec2 fl = floor(u);
-  ivec2 i = ivec2(fl);
-  // Shifted with the mouse (3.7): wrap into the table, once per lookup group
-  // (a per-lookup modulo costs llvmpipe 17% of the frame).
-  if (u_noise_shift != vec2(0.0)) i = ((i % u_phase_size) + u_phase_size) % u_phase_size;
-  vec2 a = u - fl;
-  return mix(mix(grid_value(i), grid_value(i + ivec2(1, 0)), a.x),
-             mix(grid_value(i + ivec2(0, 1)), grid_value(i + ivec2(1, 1)), a.x), a.y);
+  return texture(u_grid, (x / u_noise_scale + 0.5) / vec2(u_phase_size)).r;
 }
 
 // Section 3.6 beyond the paper: G on a 3D lattice at the surface point. The
@@ -182,6 +172,36 @@ void main() {
                 ? 0.0
                 : clamp((v_scalars.y - u_beta_range.x) / (u_beta_range.y - u_beta_range.x), 0.0, 1.0);
   o_color = vec4(beta * ft + (1.0 - beta) * shaded, 1.0);
+}
+)";
+
+// The grid pass: one fragment per grid point, G_ij = w(v_g k + phi_ij)
+// (equation 8), once per frame instead of four times per pixel.
+const char* const kGridVertex = R"(#version 450 core
+void main() {
+  // One triangle that covers the viewport.
+  vec2 p = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);
+  gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);
+}
+)";
+
+const char* const kGridFragment = R"(#version 450 core
+layout(location = 0) out float o_value;
+layout(binding = 0) uniform sampler2D u_phases;  // phi_ij
+uniform float u_noise_time;  // v_g k
+uniform int u_profile;       // 0 square, 1 sawtooth, 2 sine, 3 spike
+uniform float u_spike_width;
+
+float profile(float t) {  // as in the IBFVS fragment shader
+  float f = t - floor(t);
+  if (u_profile == 0) return f < 0.5 ? 1.0 : 0.0;
+  if (u_profile == 1) return f;
+  if (u_profile == 2) return 0.5 + 0.5 * sin(6.28318530718 * f);
+  return f < u_spike_width ? 1.0 : 0.0;
+}
+
+void main() {
+  o_value = profile(u_noise_time + texelFetch(u_phases, ivec2(gl_FragCoord.xy), 0).r);
 }
 )";
 

@@ -104,6 +104,8 @@ class Texture2D : public Object<delete_texture> {
   /// Uploads float data (channels matching the format) for the whole texture.
   void upload_float(std::span<const float> data, int channels);
   void bind(unsigned unit) const;
+  /// Repeat (true) or clamp to the edge (false, the default) outside [0, 1].
+  void set_repeat(bool repeat);
   /// Reads the whole texture as floats, `channels` per pixel (1 or 4), rows bottom-up.
   void read_float(std::span<float> out, int channels) const;
   [[nodiscard]] int width() const { return width_; }
@@ -167,6 +169,9 @@ void set_viewport(int width, int height);
 void clear_window(int width, int height, const glm::vec4& rgba);
 void enable_depth_test(bool on);
 void draw_triangles(std::size_t index_count, bool index32);
+/// One triangle of three vertices with no attributes (the shader places them
+/// from gl_VertexID), for full-viewport passes; `vao` is any vertex array.
+void draw_attributeless_triangle(const VertexArray& vao);
 void finish();
 
 }  // namespace ibfvs::gl

@@ -152,6 +152,11 @@ class IbfvsRenderer {
   gl::Texture2D texture_[2];  // F_t ping-pong
   gl::Texture2D output_;      // F
   gl::Texture2D phases_;      // phi_ij
+  gl::Texture2D grid_;        // this frame's grid values G_ij (the grid pass)
+  gl::Framebuffer grid_framebuffer_;
+  gl::Program grid_program_;
+  gl::VertexArray empty_vao_;  // for the attributeless grid pass
+  int grid_noise_time_ = -1, grid_profile_ = -1, grid_spike_width_ = -1;
   gl::Renderbuffer depth_;
   gl::Framebuffer framebuffer_[2];  // [i] draws into texture_[i] and output_
   gl::Buffer vertices_;

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
 
 #include "ibfvs/core/error.h"
 
@@ -135,6 +136,24 @@ std::size_t remove_degenerate_triangles(TriMesh& mesh) {
     return !(glm::dot(n, n) > 0.0f);
   });
   return before - mesh.triangles.size();
+}
+
+int closed_orientation(const TriMesh& mesh) {
+  if (mesh.triangles.empty()) return 0;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
+  edges.reserve(mesh.triangles.size() * 3);
+  for (const Triangle& t : mesh.triangles)
+    for (int k = 0; k < 3; ++k) edges.emplace_back(t[k], t[(k + 1) % 3]);
+  std::sort(edges.begin(), edges.end());
+  if (std::adjacent_find(edges.begin(), edges.end()) != edges.end()) return 0;  // a->b twice
+  for (const auto& [a, b] : edges)
+    if (!std::binary_search(edges.begin(), edges.end(), std::make_pair(b, a))) return 0;
+  double volume = 0.0;  // six times the signed volume
+  for (const Triangle& t : mesh.triangles) {
+    const glm::dvec3 p(mesh.positions[t[0]]), q(mesh.positions[t[1]]), r(mesh.positions[t[2]]);
+    volume += glm::dot(p, glm::cross(q, r));
+  }
+  return volume > 0.0 ? 1 : volume < 0.0 ? -1 : 0;
 }
 
 }  // namespace ibfvs

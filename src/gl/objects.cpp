@@ -299,6 +299,15 @@ void clear_window(int width, int height, const glm::vec4& rgba) {
 void set_viewport(int width, int height) {
   glViewport(0, 0, width, height);
 }
+void set_face_culling(int orientation) {
+  if (orientation == 0) {
+    glDisable(GL_CULL_FACE);
+    return;
+  }
+  glEnable(GL_CULL_FACE);
+  glCullFace(orientation > 0 ? GL_BACK : GL_FRONT);
+}
+
 void enable_depth_test(bool on) {
   if (on) {
     glEnable(GL_DEPTH_TEST);

@@ -57,5 +57,19 @@ TEST(Mesh, DegenerateTrianglesAreRemovedAndNormalsStayFinite) {
   EXPECT_EQ(m.triangle_count(), 2u);
 }
 
+TEST(Mesh, ClosedOrientationSaysWhenBackFacesCanBeCulled) {
+  const TriMesh torus = make_torus(1.0f, 0.4f, 24, 12);
+  EXPECT_EQ(closed_orientation(torus), 1);
+  TriMesh inside_out = torus;
+  for (Triangle& t : inside_out.triangles) std::swap(t[1], t[2]);
+  EXPECT_EQ(closed_orientation(inside_out), -1);
+  EXPECT_EQ(closed_orientation(make_square(1.0f, 4)), 0);             // open
+  EXPECT_EQ(closed_orientation(make_cylinder(1.0f, 1.0f, 8, 2)), 0);  // open ends
+  TriMesh mixed = torus;
+  std::swap(mixed.triangles[5][1], mixed.triangles[5][2]);  // one flipped triangle
+  EXPECT_EQ(closed_orientation(mixed), 0);
+  EXPECT_EQ(closed_orientation(TriMesh{}), 0);
+}
+
 }  // namespace
 }  // namespace ibfvs

@@ -65,4 +65,11 @@ struct Topology {
 /// Counts edges, boundary loops, non-manifold edges and isolated vertices.
 Topology analyze_topology(const TriMesh& mesh);
 
+/// For a closed, consistently oriented mesh (every directed edge a->b
+/// matched by exactly one b->a): +1 when its triangles wind counter-clockwise
+/// seen from outside (positive volume), -1 when clockwise; 0 for any other
+/// mesh (open, non-manifold, inconsistent). Back faces of such a mesh are
+/// always hidden, so the renderer may cull them.
+int closed_orientation(const TriMesh& mesh);
+
 }  // namespace ibfvs

@@ -168,6 +168,8 @@ void set_viewport(int width, int height);
 /// and clears it to `rgba`.
 void clear_window(int width, int height, const glm::vec4& rgba);
 void enable_depth_test(bool on);
+/// 0: draw every face; +1: cull clockwise (back) faces; -1: cull counter-clockwise ones.
+void set_face_culling(int orientation);
 void draw_triangles(std::size_t index_count, bool index32);
 /// One triangle of three vertices with no attributes (the shader places them
 /// from gl_VertexID), for full-viewport passes; `vao` is any vertex array.

@@ -170,6 +170,7 @@ class IbfvsRenderer {
   std::size_t index_count_ = 0;
   std::size_t vertex_count_ = 0;
   float probe_ = 1e-3f;            // 1/1000 of the mesh's bounding-box diagonal
+  int cull_ = 0;                   // closed_orientation of the mesh: its back faces are never seen
   glm::vec2 texture_shift_{0.0f};  // pixels, for the next frame only
   glm::vec2 noise_shift_{0.0f};    // pixels, accumulated
   int current_ = 0;                // texture_[current_] holds F_t of the last frame

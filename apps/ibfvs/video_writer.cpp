@@ -52,9 +52,11 @@ VideoWriter::VideoWriter(const std::filesystem::path& path, int width, int heigh
   if (ext == ".webm") {
     codec = "-c:v libvpx-vp9 -b:v 0 -crf 32 -pix_fmt yuv420p";
   } else if (ext != ".gif") {
-    // yuv420p needs even dimensions; crf 18 keeps the fine noise texture.
+    // yuv420p needs even dimensions; crf 18 keeps the fine noise texture;
+    // ultrafast leaves the cores to rendering (300 frames at 1024^2 to MP4:
+    // 1.30x the time of no output, 1.59x with veryfast on 2 cores).
     filters += ",pad=ceil(iw/2)*2:ceil(ih/2)*2";
-    codec = "-c:v libx264 -preset veryfast -crf 18 -pix_fmt yuv420p";
+    codec = "-c:v libx264 -preset ultrafast -crf 18 -pix_fmt yuv420p";
   }
   std::ostringstream cmd;
   cmd << "ffmpeg -nostdin -y -loglevel error -f rawvideo -pix_fmt rgba -s " << width << "x"

@@ -55,8 +55,6 @@ void main() {
 )";
 
 const char* const kIbfvsFragment = R"(#version 450 core
-// Hidden fragments are never shaded: nothing here writes depth or discards.
-layout(early_fragment_tests) in;
 in vec4 v_from;
 in vec2 v_scalars;
 in vec3 v_normal_eye;

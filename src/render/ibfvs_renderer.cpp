@@ -58,7 +58,7 @@ void RenderSettings::validate() const {
 
 IbfvsRenderer::IbfvsRenderer(const RenderSettings& settings) : settings_(settings) {
   settings_.validate();
-  program_ = gl::Program(shaders::kIbfvsVertex, shaders::kIbfvsFragment);
+  program_ = gl::Program(shaders::kIbfvsVertex, shaders::ibfvs_fragment_source());
   u_.view_projection = program_.location("u_view_projection");
   u_.advect_view_projection = program_.location("u_advect_view_projection");
   u_.view = program_.location("u_view");
@@ -112,7 +112,7 @@ IbfvsRenderer::IbfvsRenderer(const RenderSettings& settings) : settings_(setting
   grid_framebuffer_ = gl::Framebuffer::create();
   grid_framebuffer_.attach_color(0, grid_);
   grid_framebuffer_.finish(1);
-  grid_program_ = gl::Program(shaders::kGridVertex, shaders::kGridFragment);
+  grid_program_ = gl::Program(shaders::kGridVertex, shaders::grid_fragment_source());
   grid_noise_time_ = grid_program_.location("u_noise_time");
   grid_profile_ = grid_program_.location("u_profile");
   grid_spike_width_ = grid_program_.location("u_spike_width");

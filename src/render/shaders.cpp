@@ -54,7 +54,31 @@ void main() {
 }
 )";
 
-const char* const kIbfvsFragment = R"(#version 450 core
+// The grid pass's vertex shader: one triangle that covers the viewport.
+const char* const kGridVertex = R"(#version 450 core
+void main() {
+  vec2 p = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);
+  gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);
+}
+)";
+
+namespace {
+
+// The noise time profile w(t), period 1 (equation 8): shared by the grid pass
+// and the object-space noise of the IBFVS pass.
+const char* const kProfile = R"(
+uniform int u_profile;  // 0 square, 1 sawtooth, 2 sine, 3 spike
+uniform float u_spike_width;
+float profile(float t) {
+  float f = t - floor(t);
+  if (u_profile == 0) return f < 0.5 ? 1.0 : 0.0;
+  if (u_profile == 1) return f;
+  if (u_profile == 2) return 0.5 + 0.5 * sin(6.28318530718 * f);
+  return f < u_spike_width ? 1.0 : 0.0;
+}
+)";
+
+const char* const kIbfvsFragmentBody = R"(
 in vec4 v_from;
 in vec2 v_scalars;
 in vec3 v_normal_eye;
@@ -74,8 +98,6 @@ uniform float u_beta;
 uniform int u_inject;        // 0 blend (eq. 10), 1 add
 uniform float u_noise_time;  // v_g k
 uniform float u_noise_scale; // s
-uniform int u_profile;       // 0 square, 1 sawtooth, 2 sine, 3 spike
-uniform float u_spike_width;
 uniform ivec2 u_phase_size;
 uniform vec2 u_inverse_size;  // 1 / image size in pixels
 uniform vec3 u_surface_color;
@@ -89,14 +111,6 @@ uniform vec2 u_color_range;  // scalar values at the ends of the map
 uniform int u_use_beta;      // modulate beta by v_scalars.y
 uniform vec2 u_beta_range;   // beta is 0 at the first value, u_beta at the second
 
-// w(t), period 1 (equation 8).
-float profile(float t) {
-  float f = t - floor(t);
-  if (u_profile == 0) return f < 0.5 ? 1.0 : 0.0;
-  if (u_profile == 1) return f;
-  if (u_profile == 2) return 0.5 + 0.5 * sin(6.28318530718 * f);
-  return f < u_spike_width ? 1.0 : 0.0;
-}
 
 // Equations 6-7: grid values s pixels apart, triangular pulses = bilinear
 // interpolation, which the texture unit does: grid point (i, j) at pixel
@@ -177,32 +191,24 @@ void main() {
 
 // The grid pass: one fragment per grid point, G_ij = w(v_g k + phi_ij)
 // (equation 8), once per frame instead of four times per pixel.
-const char* const kGridVertex = R"(#version 450 core
-void main() {
-  // One triangle that covers the viewport.
-  vec2 p = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);
-  gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);
-}
-)";
-
-const char* const kGridFragment = R"(#version 450 core
+const char* const kGridFragmentBody = R"(
 layout(location = 0) out float o_value;
 layout(binding = 0) uniform sampler2D u_phases;  // phi_ij
 uniform float u_noise_time;  // v_g k
-uniform int u_profile;       // 0 square, 1 sawtooth, 2 sine, 3 spike
-uniform float u_spike_width;
-
-float profile(float t) {  // as in the IBFVS fragment shader
-  float f = t - floor(t);
-  if (u_profile == 0) return f < 0.5 ? 1.0 : 0.0;
-  if (u_profile == 1) return f;
-  if (u_profile == 2) return 0.5 + 0.5 * sin(6.28318530718 * f);
-  return f < u_spike_width ? 1.0 : 0.0;
-}
 
 void main() {
   o_value = profile(u_noise_time + texelFetch(u_phases, ivec2(gl_FragCoord.xy), 0).r);
 }
 )";
+
+}  // namespace
+
+std::string ibfvs_fragment_source() {
+  return std::string("#version 450 core\n") + kProfile + kIbfvsFragmentBody;
+}
+
+std::string grid_fragment_source() {
+  return std::string("#version 450 core\n") + kProfile + kGridFragmentBody;
+}
 
 }  // namespace ibfvs::shaders

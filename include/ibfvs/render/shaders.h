@@ -1,11 +1,13 @@
 #pragma once
-// GLSL sources of the IBFVS pass.
+// GLSL sources of the IBFVS pass and of the noise grid pass.
+
+#include <string>
 
 namespace ibfvs::shaders {
 
 extern const char* const kIbfvsVertex;
-extern const char* const kIbfvsFragment;
+std::string ibfvs_fragment_source();
 extern const char* const kGridVertex;
-extern const char* const kGridFragment;
+std::string grid_fragment_source();
 
 }  // namespace ibfvs::shaders

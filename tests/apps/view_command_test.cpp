@@ -21,7 +21,15 @@
 namespace ibfvs {
 namespace {
 
-using ViewCommand = test::CommandTest;
+// Runs `ibfvs view ARGS --script session.txt` in a virtual X server.
+class ViewCommand : public test::CommandTest {
+ protected:
+  static bool have_xvfb() { return std::system("command -v xvfb-run >/dev/null 2>&1") == 0; }
+  test::Result view_under_xvfb(const std::string& args, const std::string& script) {
+    file("session.txt", script);
+    return run("view " + args + " --script session.txt", "xvfb-run -a -s '-screen 0 640x480x24'");
+  }
+};
 using test::Result;
 
 // Mean absolute difference of two RGB(A) images, 0..1.
@@ -61,24 +69,22 @@ TEST_F(ViewCommand, WithoutADisplayItSaysSoAndSuggestsRender) {
 }
 
 TEST_F(ViewCommand, ScriptedSessionUnderXvfb) {
-  if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0)
-    GTEST_SKIP() << "xvfb-run missing (Debian package xvfb)";
-  file("session.txt",
-       "# the texture appears, beta matters, a saved scene re-renders, freezing holds\n"
-       "30 screenshot a.png\n"
-       "30 set beta 0\n"
-       "31 screenshot b.png\n"
-       "31 set beta 0.3\n"
-       "40 save s.toml\n"
-       "40 screenshot c.png\n"
-       "40 texture t0.png\n"
-       "40 mode freeze\n"
-       "40 drag 80 0 10\n"
-       "50 texture t1.png\n"
-       "50 screenshot d.png\n"
-       "51 quit\n");
-  const Result v = run("view --mesh torus --camera 20,35,0 --size 160x128 --script session.txt",
-                       "xvfb-run -a -s '-screen 0 640x480x24'");
+  if (!have_xvfb()) GTEST_SKIP() << "xvfb-run missing (Debian package xvfb)";
+  const Result v = view_under_xvfb(
+      "--mesh torus --camera 20,35,0 --size 160x128",
+      "# the texture appears, beta matters, a saved scene re-renders, freezing holds\n"
+      "30 screenshot a.png\n"
+      "30 set beta 0\n"
+      "31 screenshot b.png\n"
+      "31 set beta 0.3\n"
+      "40 save s.toml\n"
+      "40 screenshot c.png\n"
+      "40 texture t0.png\n"
+      "40 mode freeze\n"
+      "40 drag 80 0 10\n"
+      "50 texture t1.png\n"
+      "50 screenshot d.png\n"
+      "51 quit\n");
   ASSERT_EQ(v.status, 0) << v.out << v.err;
   const ImageU8 a = read_png(dir_ / "a.png"), b = read_png(dir_ / "b.png");
   const ImageU8 c = read_png(dir_ / "c.png"), d = read_png(dir_ / "d.png");
@@ -102,21 +108,18 @@ TEST_F(ViewCommand, ScriptedSessionUnderXvfb) {
 }
 
 TEST_F(ViewCommand, ElementsStylesAndRecordingUnderXvfb) {
-  if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0)
-    GTEST_SKIP() << "xvfb-run missing (Debian package xvfb)";
-  file("session.txt",
-       "2 record\n"
-       "10 screenshot a.png\n"
-       "10 element 0,-1,0,0,1,0,1.5,0.5,0\n"
-       "20 screenshot b.png\n"
-       "20 save el.toml\n"
-       "20 style bronze\n"
-       "30 screenshot c.png\n"
-       "30 snapshot 200,150 big.png\n"
-       "30 record\n"
-       "31 quit\n");
-  const Result v = run("view --mesh torus --camera 0,40,0 --size 128x96 --script session.txt",
-                       "xvfb-run -a -s '-screen 0 640x480x24'");
+  if (!have_xvfb()) GTEST_SKIP() << "xvfb-run missing (Debian package xvfb)";
+  const Result v = view_under_xvfb("--mesh torus --camera 0,40,0 --size 128x96",
+                                   "2 record\n"
+                                   "10 screenshot a.png\n"
+                                   "10 element 0,-1,0,0,1,0,1.5,0.5,0\n"
+                                   "20 screenshot b.png\n"
+                                   "20 save el.toml\n"
+                                   "20 style bronze\n"
+                                   "30 screenshot c.png\n"
+                                   "30 snapshot 200,150 big.png\n"
+                                   "30 record\n"
+                                   "31 quit\n");
   ASSERT_EQ(v.status, 0) << v.out << v.err;
   // The element replaced the rotation: the saved scene says so and renders.
   const std::string scene = test::read_file(dir_ / "el.toml");

@@ -58,39 +58,7 @@ void RenderSettings::validate() const {
 
 IbfvsRenderer::IbfvsRenderer(const RenderSettings& settings) : settings_(settings) {
   settings_.validate();
-  program_ = gl::Program(shaders::kIbfvsVertex, shaders::ibfvs_fragment_source());
-  u_.view_projection = program_.location("u_view_projection");
-  u_.advect_view_projection = program_.location("u_advect_view_projection");
-  u_.view = program_.location("u_view");
-  u_.dt = program_.location("u_dt");
-  u_.alpha = program_.location("u_alpha");
-  u_.beta = program_.location("u_beta");
-  u_.inject = program_.location("u_inject");
-  u_.noise_time = program_.location("u_noise_time");
-  u_.noise_scale = program_.location("u_noise_scale");
-  u_.profile = program_.location("u_profile");
-  u_.spike_width = program_.location("u_spike_width");
-  u_.surface_color = program_.location("u_surface_color");
-  u_.use_color = program_.location("u_use_color");
-  u_.color_range = program_.location("u_color_range");
-  u_.use_beta = program_.location("u_use_beta");
-  u_.beta_range = program_.location("u_beta_range");
-  u_.field_mix = program_.location("u_field_mix");
-  u_.use_image = program_.location("u_use_image");
-  u_.locked = program_.location("u_locked");
-  u_.noise_space = program_.location("u_noise_space");
-  u_.object_cell = program_.location("u_object_cell");
-  u_.seed = program_.location("u_seed");
-  u_.image_step = program_.location("u_image_step");
-  u_.probe = program_.location("u_probe");
-  u_.size = program_.location("u_size");
-  u_.texture_shift = program_.location("u_texture_shift");
-  u_.noise_shift = program_.location("u_noise_shift");
-  u_.image_centre = program_.location("u_image_centre");
   color_map_ = gl::Texture2D(256, 1, gl::Format::RGBA32F, true);
-  u_.phase_size = program_.location("u_phase_size");
-  u_.inverse_size = program_.location("u_inverse_size");
-
   const int w = settings_.width, h = settings_.height;
   for (int i = 0; i < 2; ++i) texture_[i] = gl::Texture2D(w, h, gl::Format::RGBA16F, true);
   output_ = gl::Texture2D(w, h, gl::Format::RGBA8, false);
@@ -104,6 +72,7 @@ IbfvsRenderer::IbfvsRenderer(const RenderSettings& settings) : settings_(setting
   }
 
   const NoiseGrid grid(w, h, settings_.noise);
+  phase_size_ = glm::ivec2(grid.columns(), grid.rows());
   phases_ = gl::Texture2D(grid.columns(), grid.rows(), gl::Format::R32F, false);
   phases_.upload_float(grid.phases(), 1);
   // The grid pass writes G_ij here; sampling it bilinearly is equation 7.
@@ -117,37 +86,82 @@ IbfvsRenderer::IbfvsRenderer(const RenderSettings& settings) : settings_(setting
   grid_profile_ = grid_program_.location("u_profile");
   grid_spike_width_ = grid_program_.location("u_spike_width");
   empty_vao_ = gl::VertexArray::create();
-  program_.set(u_.noise_scale, settings_.noise.scale);
-  glm::ivec2 size(grid.columns(), grid.rows());
-  program_.use();
-  program_.set(u_.phase_size, size);
-  program_.set(u_.inverse_size, glm::vec2(1.0f / static_cast<float>(settings_.width),
-                                          1.0f / static_cast<float>(settings_.height)));
-  apply_settings_uniforms();
+  apply_settings();
+  static_cast<void>(program());  // compile now: a shader error shows at construction
   reset();
 }
 
-void IbfvsRenderer::apply_settings_uniforms() {
-  program_.set(u_.alpha, settings_.alpha);
-  program_.set(u_.beta, settings_.beta);
-  program_.set(u_.inject, settings_.inject == InjectMode::Add ? 1 : 0);
-  program_.set(u_.profile, static_cast<int>(settings_.noise.profile));
-  program_.set(u_.spike_width, settings_.noise.spike_width);
-  if (grid_program_) {
-    grid_program_.set(grid_profile_, static_cast<int>(settings_.noise.profile));
-    grid_program_.set(grid_spike_width_, settings_.noise.spike_width);
+shaders::ShaderFeatures IbfvsRenderer::features() const {
+  shaders::ShaderFeatures f;
+  f.object_noise = settings_.object_noise;
+  f.surface_image = static_cast<bool>(surface_image_);
+  f.color_scalar = settings_.use_color;
+  f.beta_scalar = settings_.use_beta;
+  f.image_step = settings_.image_step > 0.0f;
+  f.inject_add = settings_.inject == InjectMode::Add;
+  return f;
+}
+
+IbfvsRenderer::Variant& IbfvsRenderer::program() {
+  const shaders::ShaderFeatures f = features();
+  Variant& v = variants_[f.key()];
+  if (!v.program) {
+    v.program = gl::Program(shaders::ibfvs_vertex_source(f), shaders::ibfvs_fragment_source(f));
+    const gl::Program& p = v.program;
+    v.u.view_projection = p.location("u_view_projection");
+    v.u.advect_view_projection = p.location("u_advect_view_projection");
+    v.u.view = p.location("u_view");
+    v.u.dt = p.location("u_dt");
+    v.u.alpha = p.location("u_alpha");
+    v.u.beta = p.location("u_beta");
+    v.u.noise_time = p.location("u_noise_time");
+    v.u.noise_scale = p.location("u_noise_scale");
+    v.u.profile = p.location("u_profile");
+    v.u.spike_width = p.location("u_spike_width");
+    v.u.surface_color = p.location("u_surface_color");
+    v.u.color_range = p.location("u_color_range");
+    v.u.beta_range = p.location("u_beta_range");
+    v.u.field_mix = p.location("u_field_mix");
+    v.u.locked = p.location("u_locked");
+    v.u.object_cell = p.location("u_object_cell");
+    v.u.seed = p.location("u_seed");
+    v.u.image_step = p.location("u_image_step");
+    v.u.probe = p.location("u_probe");
+    v.u.size = p.location("u_size");
+    v.u.texture_shift = p.location("u_texture_shift");
+    v.u.noise_shift = p.location("u_noise_shift");
+    v.u.image_centre = p.location("u_image_centre");
+    v.u.phase_size = p.location("u_phase_size");
+    v.u.inverse_size = p.location("u_inverse_size");
   }
-  program_.set(u_.surface_color, settings_.surface_color);
-  program_.set(u_.noise_space, settings_.object_noise ? 1 : 0);
-  program_.set(u_.object_cell, settings_.object_cell);
-  program_.set(u_.seed, settings_.noise.seed);
-  program_.set(u_.image_step, settings_.image_step);
-  program_.set(u_.size, glm::vec2(static_cast<float>(settings_.width),
-                                  static_cast<float>(settings_.height)));
-  program_.set(u_.use_color, settings_.use_color ? 1 : 0);
-  program_.set(u_.color_range, settings_.color_range);
-  program_.set(u_.use_beta, settings_.use_beta ? 1 : 0);
-  program_.set(u_.beta_range, settings_.beta_range);
+  if (v.applied != settings_version_) {  // the settings changed since it was last used
+    const gl::Program& p = v.program;
+    p.set(v.u.alpha, settings_.alpha);
+    p.set(v.u.beta, settings_.beta);
+    p.set(v.u.profile, static_cast<int>(settings_.noise.profile));
+    p.set(v.u.spike_width, settings_.noise.spike_width);
+    p.set(v.u.surface_color, settings_.surface_color);
+    p.set(v.u.object_cell, settings_.object_cell);
+    p.set(v.u.seed, settings_.noise.seed);
+    p.set(v.u.image_step, settings_.image_step);
+    p.set(v.u.size,
+          glm::vec2(static_cast<float>(settings_.width), static_cast<float>(settings_.height)));
+    p.set(v.u.color_range, settings_.color_range);
+    p.set(v.u.beta_range, settings_.beta_range);
+    p.set(v.u.noise_scale, settings_.noise.scale);
+    p.set(v.u.phase_size, phase_size_);
+    p.set(v.u.inverse_size, glm::vec2(1.0f / static_cast<float>(settings_.width),
+                                      1.0f / static_cast<float>(settings_.height)));
+    p.set(v.u.image_centre, image_centre_);
+    v.applied = settings_version_;
+  }
+  return v;
+}
+
+void IbfvsRenderer::apply_settings() {
+  ++settings_version_;
+  grid_program_.set(grid_profile_, static_cast<int>(settings_.noise.profile));
+  grid_program_.set(grid_spike_width_, settings_.noise.spike_width);
   std::vector<float> table(256 * 4);
   for (int i = 0; i < 256; ++i) {
     const glm::vec3 c = color_map(settings_.color_map, static_cast<float>(i) / 255.0f);
@@ -162,7 +176,7 @@ void IbfvsRenderer::update_settings(const RenderSettings& settings) {
       settings.noise.scale != settings_.noise.scale || settings.noise.seed != settings_.noise.seed)
     throw InputError("renderer: size, noise scale and seed need a new renderer");
   settings_ = settings;
-  apply_settings_uniforms();
+  apply_settings();
 }
 
 void IbfvsRenderer::set_mesh(const TriMesh& mesh, std::span<const glm::vec3> field) {
@@ -206,7 +220,7 @@ void IbfvsRenderer::set_field(std::span<const glm::vec3> field) {
     throw InputError("renderer: the field needs one vector per vertex");
   field_.update(0, bytes_of(field));
   field_next_.update(0, bytes_of(field));
-  program_.set(u_.field_mix, 0.0f);
+  field_mix_ = 0.0f;
 }
 
 void IbfvsRenderer::set_field_steps(std::span<const glm::vec3> current,
@@ -218,12 +232,12 @@ void IbfvsRenderer::set_field_steps(std::span<const glm::vec3> current,
 }
 
 void IbfvsRenderer::set_field_mix(float mix) {
-  program_.set(u_.field_mix, std::clamp(mix, 0.0f, 1.0f));
+  field_mix_ = std::clamp(mix, 0.0f, 1.0f);
 }
 
 void IbfvsRenderer::set_surface_image(const ImageU8& image, const glm::vec3& centre) {
   if (image.pixels.empty()) {
-    program_.set(u_.use_image, 0);
+    surface_image_ = gl::Texture2D();
     return;
   }
   if (image.channels != 4) throw InputError("renderer: the surface image must be RGBA");
@@ -231,8 +245,8 @@ void IbfvsRenderer::set_surface_image(const ImageU8& image, const glm::vec3& cen
   for (std::size_t i = 0; i < rgba.size(); ++i) rgba[i] = image.pixels[i] / 255.0f;
   surface_image_ = gl::Texture2D(image.width, image.height, gl::Format::RGBA8, true);
   surface_image_.upload_float(rgba, 4);
-  program_.set(u_.use_image, 1);
-  program_.set(u_.image_centre, centre);
+  image_centre_ = centre;
+  ++settings_version_;
 }
 
 void IbfvsRenderer::set_scalars(std::span<const float> color, std::span<const float> beta) {
@@ -300,18 +314,21 @@ void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
     // A closed mesh hides its back faces behind its front ones: culling them
     // halves llvmpipe's triangle setup and changes no pixel.
     gl::set_face_culling(cull_);
-    program_.use();
-    program_.set(u_.view_projection, vp);
-    program_.set(u_.advect_view_projection, locked_        ? lock_view_projection_
-                                            : use_previous ? previous_view_projection_
-                                                           : vp);
-    program_.set(u_.view, view.view);
-    program_.set(u_.dt, locked_ ? 0.0f : dt);
-    program_.set(u_.probe, probe_);
-    program_.set(u_.texture_shift, texture_shift_);
-    program_.set(u_.noise_shift, noise_shift_);
-    program_.set(u_.locked, locked_ ? 1 : 0);
-    program_.set(u_.noise_time, noise_time);
+    const Variant& v = program();
+    const gl::Program& p = v.program;
+    p.use();
+    p.set(v.u.view_projection, vp);
+    p.set(v.u.advect_view_projection, locked_        ? lock_view_projection_
+                                      : use_previous ? previous_view_projection_
+                                                     : vp);
+    p.set(v.u.view, view.view);
+    p.set(v.u.dt, locked_ ? 0.0f : dt);
+    p.set(v.u.probe, probe_);
+    p.set(v.u.field_mix, field_mix_);
+    p.set(v.u.texture_shift, texture_shift_);
+    p.set(v.u.noise_shift, noise_shift_);
+    p.set(v.u.locked, locked_ ? 1 : 0);
+    p.set(v.u.noise_time, noise_time);
     texture_[current_].bind(0);
     grid_.bind(1);
     color_map_.bind(2);

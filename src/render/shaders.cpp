@@ -2,7 +2,9 @@
 
 namespace ibfvs::shaders {
 
-const char* const kIbfvsVertex = R"(#version 450 core
+namespace {
+
+const char* const kIbfvsVertexBody = R"(
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
 layout(location = 2) in vec3 a_vector;       // the field at the current time step
@@ -14,9 +16,11 @@ uniform mat4 u_advect_view_projection;   // T_k or T_{k-1}: where its texture co
 uniform mat4 u_view;
 uniform float u_dt;
 uniform float u_field_mix;  // 0: a_vector, 1: a_vector_next
-uniform float u_image_step;  // > 0: every vector moves this many pixels (image-space normalisation)
+#ifdef IBFVS_IMAGE_STEP
+uniform float u_image_step;  // every vector moves this many pixels (image-space normalisation)
 uniform float u_probe;       // world length of the probe step for it
 uniform vec2 u_size;         // image size in pixels
+#endif
 
 // Equation 13, t = T(r - v dt), evaluated per fragment: the homogeneous
 // clip-space point T(r_i - v_i dt) of each vertex is interpolated
@@ -27,16 +31,21 @@ uniform vec2 u_size;         // image size in pixels
 // interpolations err (section 3.9's artifact). It also avoids noperspective
 // varyings, which llvmpipe (Mesa 22.3) corrupts on triangles it clips.
 out vec4 v_from;
+#if defined(IBFVS_COLOR_SCALAR) || defined(IBFVS_BETA_SCALAR)
 out vec2 v_scalars;
+#endif
 out vec3 v_normal_eye;
 out vec3 v_position_eye;
-out vec3 v_position_object;  // for the spherical image map
+#if defined(IBFVS_SURFACE_IMAGE) || defined(IBFVS_OBJECT_NOISE)
+out vec3 v_position_object;  // for the spherical image map and the solid noise
+#endif
 
 void main() {
   gl_Position = u_view_projection * vec4(a_position, 1.0);
   vec3 v = mix(a_vector, a_vector_next, u_field_mix);
   vec3 step = v * u_dt;
-  if (u_image_step > 0.0) {  // as image_normalized_step() in core/camera.cpp
+#ifdef IBFVS_IMAGE_STEP
+  {  // as image_normalized_step() in core/camera.cpp
     step = vec3(0.0);
     float speed = length(v);
     vec4 a = u_advect_view_projection * vec4(a_position, 1.0);
@@ -46,13 +55,20 @@ void main() {
       if (moved > 0.0) step = v / speed * (u_probe * min(u_image_step / moved, 50.0));
     }
   }
+#endif
   v_from = u_advect_view_projection * vec4(a_position - step, 1.0);
+#if defined(IBFVS_COLOR_SCALAR) || defined(IBFVS_BETA_SCALAR)
   v_scalars = a_scalars;
+#endif
   v_normal_eye = mat3(u_view) * a_normal;
   v_position_eye = (u_view * vec4(a_position, 1.0)).xyz;
+#if defined(IBFVS_SURFACE_IMAGE) || defined(IBFVS_OBJECT_NOISE)
   v_position_object = a_position;
+#endif
 }
 )";
+
+}  // namespace
 
 // The grid pass's vertex shader: one triangle that covers the viewport.
 const char* const kGridVertex = R"(#version 450 core
@@ -78,12 +94,18 @@ float profile(float t) {
 }
 )";
 
+// Features a renderer does not use are compiled out (ShaderFeatures), not
+// skipped by uniform branches: llvmpipe runs both sides of every branch.
 const char* const kIbfvsFragmentBody = R"(
 in vec4 v_from;
+#if defined(IBFVS_COLOR_SCALAR) || defined(IBFVS_BETA_SCALAR)
 in vec2 v_scalars;
+#endif
 in vec3 v_normal_eye;
 in vec3 v_position_eye;
+#if defined(IBFVS_SURFACE_IMAGE) || defined(IBFVS_OBJECT_NOISE)
 in vec3 v_position_object;
+#endif
 
 layout(location = 0) out vec4 o_texture;  // F_t of this frame
 layout(location = 1) out vec4 o_color;    // F
@@ -95,23 +117,25 @@ uniform float u_alpha;
 uniform vec2 u_texture_shift;  // pixels: F_t moved with the mouse for this frame (3.7)
 uniform vec2 u_noise_shift;    // pixels: G moved with the mouse, accumulated
 uniform float u_beta;
-uniform int u_inject;        // 0 blend (eq. 10), 1 add
 uniform float u_noise_time;  // v_g k
 uniform float u_noise_scale; // s
 uniform ivec2 u_phase_size;
 uniform vec2 u_inverse_size;  // 1 / image size in pixels
 uniform vec3 u_surface_color;
-layout(binding = 2) uniform sampler2D u_color_map;  // 256 x 1
-layout(binding = 3) uniform sampler2D u_surface_image;  // equirectangular, lon -180..180
-uniform int u_use_image;     // the image stands in for the surface colour
 uniform int u_locked;        // section 3.7: map F_t, do not update it
+#ifdef IBFVS_SURFACE_IMAGE
+layout(binding = 3) uniform sampler2D u_surface_image;  // equirectangular, lon -180..180
 uniform vec3 u_image_centre; // centre of the spherical mapping
-uniform int u_use_color;     // colour the surface by v_scalars.x
+#endif
+#ifdef IBFVS_COLOR_SCALAR
+layout(binding = 2) uniform sampler2D u_color_map;  // 256 x 1
 uniform vec2 u_color_range;  // scalar values at the ends of the map
-uniform int u_use_beta;      // modulate beta by v_scalars.y
+#endif
+#ifdef IBFVS_BETA_SCALAR
 uniform vec2 u_beta_range;   // beta is 0 at the first value, u_beta at the second
+#endif
 
-
+#ifndef IBFVS_OBJECT_NOISE
 // Equations 6-7: grid values s pixels apart, triangular pulses = bilinear
 // interpolation, which the texture unit does: grid point (i, j) at pixel
 // (i s, j s) is the centre of texel (i, j). The grid pass wrote this frame's
@@ -119,10 +143,9 @@ uniform vec2 u_beta_range;   // beta is 0 at the first value, u_beta at the seco
 float noise(vec2 x) {
   return texture(u_grid, (x / u_noise_scale + 0.5) / vec2(u_phase_size)).r;
 }
-
+#else
 // Section 3.6 beyond the paper: G on a 3D lattice at the surface point. The
 // hash is solid_phase() of noise.cpp, bit for bit.
-uniform int u_noise_space;    // 0 image, 1 object
 uniform float u_object_cell;  // lattice spacing in world units
 uniform uint u_seed;
 float solid_phase(ivec3 i) {
@@ -146,6 +169,7 @@ float solid_noise(vec3 p) {
   }
   return g;
 }
+#endif
 
 void main() {
   // A point that was behind the eye has no image position: no advection there.
@@ -153,21 +177,28 @@ void main() {
                                    : gl_FragCoord.xy * u_inverse_size) -
                   u_texture_shift * u_inverse_size;
   vec3 previous = texture(u_previous, texcoord).rgb;
-  float g = u_noise_space == 0 ? noise(gl_FragCoord.xy - u_noise_shift)
-                                : solid_noise(v_position_object);
-  vec3 ft = u_inject == 0 ? mix(previous, vec3(g), u_alpha)
-                          : min(previous * (1.0 - u_alpha) + vec3(g), vec3(1.0));
+#ifdef IBFVS_OBJECT_NOISE
+  float g = solid_noise(v_position_object);
+#else
+  float g = noise(gl_FragCoord.xy - u_noise_shift);
+#endif
+#ifdef IBFVS_INJECT_ADD
+  vec3 ft = min(previous * (1.0 - u_alpha) + vec3(g), vec3(1.0));
+#else
+  vec3 ft = mix(previous, vec3(g), u_alpha);  // equation 10
+#endif
   if (u_locked != 0) ft = previous;  // a locked texture is only mapped, never changed
   o_texture = vec4(ft, 1.0);
 
   // F_s: Blinn-Phong with a headlight, lit from both sides (open meshes).
   vec3 n = normalize(v_normal_eye);
   vec3 to_eye = normalize(-v_position_eye);
-  if (dot(n, to_eye) < 0.0) n = -n;
-  float diffuse = max(dot(n, to_eye), 0.0);
-  float specular = pow(max(dot(n, to_eye), 0.0), 40.0);  // half vector = view for a headlight
+  float diffuse = min(abs(dot(n, to_eye)), 1.0);
+  float d2 = diffuse * diffuse, d8 = d2 * d2 * d2 * d2, d32 = d8 * d8 * d8 * d8;
+  float specular = d32 * d8;  // diffuse^40: half vector = view for a headlight
   vec3 albedo = u_surface_color;
-  if (u_use_image != 0) {
+#ifdef IBFVS_SURFACE_IMAGE
+  {
     // Longitude and latitude of the direction from the centre, per pixel (no
     // seam where a triangle crosses the date line): +Y north, +Z longitude 0.
     vec3 d = normalize(v_position_object - u_image_centre);
@@ -175,16 +206,20 @@ void main() {
     vec2 uv = vec2(lon / 6.28318530718 + 0.5, lat / 3.14159265359 + 0.5);
     albedo = textureGrad(u_surface_image, uv, vec2(0.0), vec2(0.0)).rgb;
   }
-  if (u_use_color != 0 && !isnan(v_scalars.x)) {  // missing data keeps the surface colour
+#endif
+#ifdef IBFVS_COLOR_SCALAR
+  if (!isnan(v_scalars.x)) {  // missing data keeps the surface colour
     float t = clamp((v_scalars.x - u_color_range.x) / (u_color_range.y - u_color_range.x), 0.0, 1.0);
     albedo = texture(u_color_map, vec2((t * 255.0 + 0.5) / 256.0, 0.5)).rgb;
   }
+#endif
   vec3 shaded = albedo * (0.18 + 0.82 * diffuse) + vec3(0.25 * specular);
   float beta = u_beta;
-  if (u_use_beta != 0)
-    beta *= isnan(v_scalars.y)
-                ? 0.0
-                : clamp((v_scalars.y - u_beta_range.x) / (u_beta_range.y - u_beta_range.x), 0.0, 1.0);
+#ifdef IBFVS_BETA_SCALAR
+  beta *= isnan(v_scalars.y)
+              ? 0.0
+              : clamp((v_scalars.y - u_beta_range.x) / (u_beta_range.y - u_beta_range.x), 0.0, 1.0);
+#endif
   o_color = vec4(beta * ft + (1.0 - beta) * shaded, 1.0);
 }
 )";
@@ -203,8 +238,36 @@ void main() {
 
 }  // namespace
 
-std::string ibfvs_fragment_source() {
-  return std::string("#version 450 core\n") + kProfile + kIbfvsFragmentBody;
+namespace {
+
+std::string with_defines(const ShaderFeatures& features, const char* body, bool profile) {
+  std::string source = "#version 450 core\n";
+  const auto define = [&](bool on, const char* name) {
+    if (on) source += std::string("#define ") + name + "\n";
+  };
+  define(features.object_noise, "IBFVS_OBJECT_NOISE");
+  define(features.surface_image, "IBFVS_SURFACE_IMAGE");
+  define(features.color_scalar, "IBFVS_COLOR_SCALAR");
+  define(features.beta_scalar, "IBFVS_BETA_SCALAR");
+  define(features.image_step, "IBFVS_IMAGE_STEP");
+  define(features.inject_add, "IBFVS_INJECT_ADD");
+  if (profile) source += kProfile;
+  return source + body;
+}
+
+}  // namespace
+
+unsigned ShaderFeatures::key() const {
+  return (object_noise ? 1u : 0u) | (surface_image ? 2u : 0u) | (color_scalar ? 4u : 0u) |
+         (beta_scalar ? 8u : 0u) | (image_step ? 16u : 0u) | (inject_add ? 32u : 0u);
+}
+
+std::string ibfvs_vertex_source(const ShaderFeatures& features) {
+  return with_defines(features, kIbfvsVertexBody, false);
+}
+
+std::string ibfvs_fragment_source(const ShaderFeatures& features) {
+  return with_defines(features, kIbfvsFragmentBody, features.object_noise);
 }
 
 std::string grid_fragment_source() {

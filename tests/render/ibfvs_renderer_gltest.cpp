@@ -476,6 +476,57 @@ TEST_F(RendererGLTest, SameSeedSameImage) {
   EXPECT_NE(a, c);
 }
 
+TEST_F(RendererGLTest, FeaturesSwitchedLiveMatchAFreshRenderer) {
+  // Each combination of features is its own compiled program. Switching
+  // colouring on for some frames and off again must leave F_t untouched and
+  // give, once off, the picture a renderer that never switched gives.
+  Scene s = sphere_scene("rotate:0,1,0", TangentMode::Project);
+  std::vector<float> height(s.mesh.vertex_count());
+  for (std::size_t i = 0; i < height.size(); ++i) height[i] = s.mesh.positions[i].y;
+  RenderSettings plain;
+  plain.width = plain.height = 128;
+  const ViewState view{s.camera.view(), s.camera.projection()};
+  IbfvsRenderer a(plain), b(plain);
+  for (IbfvsRenderer* r : {&a, &b}) {
+    r->set_mesh(s.mesh, s.field);
+    r->set_scalars(height, height);
+  }
+  RenderSettings coloured = plain;
+  coloured.use_color = coloured.use_beta = true;
+  coloured.color_range = coloured.beta_range = {-1.0f, 1.0f};
+  coloured.alpha = 0.2f;
+  bool differed = false;
+  for (int k = 0; k < 30; ++k) {
+    a.render_frame(view, 0.01f);
+    if (k == 10) b.update_settings(coloured);
+    if (k == 12) {
+      coloured.alpha = plain.alpha;  // alpha back, colour still on
+      b.update_settings(coloured);
+    }
+    if (k == 20) b.update_settings(plain);
+    b.render_frame(view, 0.01f);
+    if (k == 15) differed = a.read_output().pixels != b.read_output().pixels;
+  }
+  EXPECT_TRUE(differed) << "colouring should change the picture while it is on";
+  EXPECT_NE(a.read_texture().pixels, b.read_texture().pixels)
+      << "alpha 0.2 for two frames changes F_t";
+  // The same again without the alpha change: F_t and F end equal.
+  IbfvsRenderer c(plain), d(plain);
+  for (IbfvsRenderer* r : {&c, &d}) {
+    r->set_mesh(s.mesh, s.field);
+    r->set_scalars(height, height);
+  }
+  coloured.alpha = plain.alpha;
+  for (int k = 0; k < 30; ++k) {
+    c.render_frame(view, 0.01f);
+    if (k == 10) d.update_settings(coloured);
+    if (k == 20) d.update_settings(plain);
+    d.render_frame(view, 0.01f);
+  }
+  EXPECT_EQ(c.read_texture().pixels, d.read_texture().pixels);
+  EXPECT_EQ(c.read_output().pixels, d.read_output().pixels);
+}
+
 // Correlation of the final texture with the texture before a camera orbit,
 // (a) at the same pixel (texture fixed in image space) and (b) at the pixel
 // where the same surface point was (texture fixed on the surface).

@@ -17,6 +17,7 @@
 // (section 3.9), F_t in 16-bit float, and an option to advect with the
 // previous frame's transform (section 3.7).
 
+#include <array>
 #include <cstdint>
 #include <span>
 #include <string_view>
@@ -31,6 +32,7 @@
 #include "ibfvs/core/noise.h"
 #include "ibfvs/core/reference.h"
 #include "ibfvs/gl/objects.h"
+#include "ibfvs/render/shaders.h"
 
 namespace ibfvs {
 
@@ -147,8 +149,30 @@ class IbfvsRenderer {
   void finish() const;
 
  private:
+  // One compiled program per combination of features in use (see
+  // shaders::ShaderFeatures), made on first use; settings_version_ tells
+  // which ones still need the current settings as uniforms.
+  struct Uniforms {
+    int view_projection, advect_view_projection, view, dt, alpha, beta, noise_time, noise_scale,
+        profile, spike_width, surface_color, phase_size, inverse_size, color_range, beta_range,
+        field_mix, image_centre, locked, object_cell, seed, image_step, probe, size, texture_shift,
+        noise_shift;
+  };
+  struct Variant {
+    gl::Program program;
+    Uniforms u{};
+    std::uint64_t applied = 0;  // settings_version_ last set
+  };
+  [[nodiscard]] shaders::ShaderFeatures features() const;
+  Variant& program();     // the variant for the current features, compiled and up to date
+  void apply_settings();  // after settings_ changed
+
   RenderSettings settings_;
-  gl::Program program_;
+  std::array<Variant, shaders::ShaderFeatures::kVariantCount> variants_;
+  std::uint64_t settings_version_ = 0;
+  glm::ivec2 phase_size_{0};
+  glm::vec3 image_centre_{0.0f};
+  float field_mix_ = 0.0f;
   gl::Texture2D texture_[2];  // F_t ping-pong
   gl::Texture2D output_;      // F
   gl::Texture2D phases_;      // phi_ij
@@ -179,14 +203,6 @@ class IbfvsRenderer {
   bool locked_ = false;
   glm::mat4 lock_view_projection_{1.0f};
   glm::mat4 previous_view_projection_{1.0f};
-
-  struct Uniforms {
-    int view_projection, advect_view_projection, view, dt, alpha, beta, inject, noise_time,
-        noise_scale, profile, spike_width, surface_color, phase_size, inverse_size, use_color,
-        color_range, use_beta, beta_range, field_mix, use_image, image_centre, locked, noise_space,
-        object_cell, seed, image_step, probe, size, texture_shift, noise_shift;
-  } u_{};
-  void apply_settings_uniforms();
 };
 
 }  // namespace ibfvs

@@ -5,8 +5,23 @@
 
 namespace ibfvs::shaders {
 
-extern const char* const kIbfvsVertex;
-std::string ibfvs_fragment_source();
+/// Optional parts of the IBFVS pass. Each program is compiled with only the
+/// parts it uses: llvmpipe executes both sides of a branch, so a feature
+/// switched off by a uniform would still cost its full price per pixel.
+struct ShaderFeatures {
+  static constexpr unsigned kVariantCount = 64;
+  bool object_noise = false;   ///< G on a 3D lattice (else the image-space grid)
+  bool surface_image = false;  ///< an equirectangular image as the surface colour
+  bool color_scalar = false;   ///< colour by the per-vertex colour scalar
+  bool beta_scalar = false;    ///< beta modulated by the per-vertex beta scalar
+  bool image_step = false;     ///< image-space normalisation of the step
+  bool inject_add = false;     ///< add noise (particles) instead of blending (eq. 10)
+  /// A distinct small number per combination (fewer than kVariantCount).
+  [[nodiscard]] unsigned key() const;
+};
+
+std::string ibfvs_vertex_source(const ShaderFeatures& features);
+std::string ibfvs_fragment_source(const ShaderFeatures& features);
 extern const char* const kGridVertex;
 std::string grid_fragment_source();
 

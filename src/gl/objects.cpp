@@ -43,6 +43,8 @@ FormatInfo info(Format f) {
       return {GL_RGBA8, GL_RGBA};
     case Format::RGBA16F:
       return {GL_RGBA16F, GL_RGBA};
+    case Format::R16F:
+      return {GL_R16F, GL_RED};
     case Format::RGBA32F:
       return {GL_RGBA32F, GL_RGBA};
     case Format::R32F:

@@ -21,6 +21,10 @@ bool in_unit(float v) {
   return v >= 0.0f && v <= 1.0f;
 }
 
+bool grey(const glm::vec3& c) {
+  return c.r == c.g && c.g == c.b;
+}
+
 }  // namespace
 
 AdvectView parse_advect_view(std::string_view text) {
@@ -60,16 +64,9 @@ IbfvsRenderer::IbfvsRenderer(const RenderSettings& settings) : settings_(setting
   settings_.validate();
   color_map_ = gl::Texture2D(256, 1, gl::Format::RGBA32F, true);
   const int w = settings_.width, h = settings_.height;
-  for (int i = 0; i < 2; ++i) texture_[i] = gl::Texture2D(w, h, gl::Format::RGBA16F, true);
   output_ = gl::Texture2D(w, h, gl::Format::RGBA8, false);
   depth_ = gl::Renderbuffer(w, h, gl::Format::Depth24);
-  for (int i = 0; i < 2; ++i) {
-    framebuffer_[i] = gl::Framebuffer::create();
-    framebuffer_[i].attach_color(0, texture_[i]);
-    framebuffer_[i].attach_color(1, output_);
-    framebuffer_[i].attach_depth(depth_);
-    framebuffer_[i].finish(2);
-  }
+  allocate_texture(!grey(settings_.background));
 
   const NoiseGrid grid(w, h, settings_.noise);
   phase_size_ = glm::ivec2(grid.columns(), grid.rows());
@@ -91,6 +88,26 @@ IbfvsRenderer::IbfvsRenderer(const RenderSettings& settings) : settings_(setting
   reset();
 }
 
+void IbfvsRenderer::allocate_texture(bool colour) {
+  colour_texture_ = colour;
+  const gl::Format format = colour ? gl::Format::RGBA16F : gl::Format::R16F;
+  for (int i = 0; i < 2; ++i) {
+    texture_[i] = gl::Texture2D(settings_.width, settings_.height, format, true);
+    framebuffer_[i] = gl::Framebuffer::create();
+    framebuffer_[i].attach_color(0, texture_[i]);
+    framebuffer_[i].attach_color(1, output_);
+    framebuffer_[i].attach_depth(depth_);
+    framebuffer_[i].finish(2);
+  }
+}
+
+void IbfvsRenderer::use_colour_texture() {
+  if (colour_texture_) return;
+  const ImageF grey_texture = read_texture();  // already spread to RGBA
+  allocate_texture(true);
+  texture_[current_].upload_float(grey_texture.pixels, 4);
+}
+
 shaders::ShaderFeatures IbfvsRenderer::features() const {
   shaders::ShaderFeatures f;
   f.object_noise = settings_.object_noise;
@@ -99,6 +116,7 @@ shaders::ShaderFeatures IbfvsRenderer::features() const {
   f.beta_scalar = settings_.use_beta;
   f.image_step = settings_.image_step > 0.0f;
   f.inject_add = settings_.inject == InjectMode::Add;
+  f.mono_texture = !colour_texture_;
   return f;
 }
 
@@ -176,6 +194,7 @@ void IbfvsRenderer::update_settings(const RenderSettings& settings) {
       settings.noise.scale != settings_.noise.scale || settings.noise.seed != settings_.noise.seed)
     throw InputError("renderer: size, noise scale and seed need a new renderer");
   settings_ = settings;
+  if (!grey(settings_.background)) use_colour_texture();  // a grey texture stays until reset()
   apply_settings();
 }
 
@@ -260,6 +279,7 @@ void IbfvsRenderer::set_scalars(std::span<const float> color, std::span<const fl
 }
 
 void IbfvsRenderer::reset() {
+  if (colour_texture_ == grey(settings_.background)) allocate_texture(!grey(settings_.background));
   const glm::vec4 b(settings_.background, 1.0f);
   for (auto& fb : framebuffer_) {
     fb.clear_color(0, b);
@@ -356,6 +376,7 @@ void IbfvsRenderer::unlock() {
 }
 
 void IbfvsRenderer::fill_texture_with_cell_colors(std::uint32_t seed) {
+  use_colour_texture();
   const int w = settings_.width, h = settings_.height;
   const float s = settings_.noise.scale;
   const int columns = static_cast<int>(std::ceil(static_cast<float>(w) / s)) + 1;
@@ -381,7 +402,17 @@ ImageU8 IbfvsRenderer::read_output() const {
 
 ImageF IbfvsRenderer::read_texture() const {
   ImageF image(settings_.width, settings_.height, 4);
-  texture_[current_].read_float(image.pixels, 4);
+  if (colour_texture_) {
+    texture_[current_].read_float(image.pixels, 4);
+    return image;
+  }
+  std::vector<float> grey_values(image.pixels.size() / 4);
+  texture_[current_].read_float(grey_values, 1);
+  for (std::size_t i = 0; i < grey_values.size(); ++i) {
+    float* p = &image.pixels[4 * i];
+    p[0] = p[1] = p[2] = grey_values[i];
+    p[3] = 1.0f;
+  }
   return image;
 }
 

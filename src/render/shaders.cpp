@@ -176,7 +176,11 @@ void main() {
   vec2 texcoord = (v_from.w > 1e-6 ? v_from.xy / v_from.w * 0.5 + 0.5
                                    : gl_FragCoord.xy * u_inverse_size) -
                   u_texture_shift * u_inverse_size;
+#ifdef IBFVS_MONO_TEXTURE
+  vec3 previous = texture(u_previous, texcoord).rrr;
+#else
   vec3 previous = texture(u_previous, texcoord).rgb;
+#endif
 #ifdef IBFVS_OBJECT_NOISE
   float g = solid_noise(v_position_object);
 #else
@@ -251,6 +255,7 @@ std::string with_defines(const ShaderFeatures& features, const char* body, bool 
   define(features.beta_scalar, "IBFVS_BETA_SCALAR");
   define(features.image_step, "IBFVS_IMAGE_STEP");
   define(features.inject_add, "IBFVS_INJECT_ADD");
+  define(features.mono_texture, "IBFVS_MONO_TEXTURE");
   if (profile) source += kProfile;
   return source + body;
 }
@@ -259,7 +264,8 @@ std::string with_defines(const ShaderFeatures& features, const char* body, bool 
 
 unsigned ShaderFeatures::key() const {
   return (object_noise ? 1u : 0u) | (surface_image ? 2u : 0u) | (color_scalar ? 4u : 0u) |
-         (beta_scalar ? 8u : 0u) | (image_step ? 16u : 0u) | (inject_add ? 32u : 0u);
+         (beta_scalar ? 8u : 0u) | (image_step ? 16u : 0u) | (inject_add ? 32u : 0u) |
+         (mono_texture ? 64u : 0u);
 }
 
 std::string ibfvs_vertex_source(const ShaderFeatures& features) {

@@ -527,6 +527,55 @@ TEST_F(RendererGLTest, FeaturesSwitchedLiveMatchAFreshRenderer) {
   EXPECT_EQ(c.read_output().pixels, d.read_output().pixels);
 }
 
+TEST_F(RendererGLTest, GreyTextureInOneChannelEqualsTheColourTexture) {
+  // With a grey background F_t is kept in one channel; a coloured background
+  // switches it to four, keeping its content. The same frames give the same
+  // values either way.
+  Scene s = sphere_scene("rotate:0,1,0", TangentMode::Project);
+  RenderSettings settings;
+  settings.width = settings.height = 128;
+  const ViewState view{s.camera.view(), s.camera.projection()};
+  IbfvsRenderer mono(settings), colour(settings);
+  EXPECT_EQ(mono.texture_channels(), 1);
+  RenderSettings tinted = settings;
+  tinted.background = {0.5f, 0.25f, 0.75f};
+  colour.update_settings(tinted);
+  EXPECT_EQ(colour.texture_channels(), 4);
+  colour.update_settings(settings);  // grey again: four channels until reset()
+  EXPECT_EQ(colour.texture_channels(), 4);
+  for (IbfvsRenderer* r : {&mono, &colour}) {
+    r->set_mesh(s.mesh, s.field);  // resets: back to one channel
+    EXPECT_EQ(r->texture_channels(), 1);
+  }
+  colour.update_settings(tinted);
+  colour.update_settings(settings);
+  ASSERT_EQ(colour.texture_channels(), 4);
+  for (int k = 0; k < 40; ++k) {
+    mono.render_frame(view, 0.01f);
+    colour.render_frame(view, 0.01f);
+  }
+  const ImageF a = mono.read_texture(), b = colour.read_texture();
+  float largest = 0.0f, spread = 0.0f;
+  for (std::size_t i = 0; i < a.pixels.size(); ++i) {
+    largest = std::max(largest, std::abs(a.pixels[i] - b.pixels[i]));
+    spread = std::max(spread, std::abs(a.pixels[i] - 0.5f));
+  }
+  const ImageU8 fa = mono.read_output(), fb = colour.read_output();
+  int largest_output = 0;
+  for (std::size_t i = 0; i < fa.pixels.size(); ++i)
+    largest_output = std::max(largest_output, std::abs(int(fa.pixels[i]) - int(fb.pixels[i])));
+  std::printf("one vs four channels: F_t within %.5f, F within %d/255\n", largest, largest_output);
+  EXPECT_LT(largest, 1e-3f);
+  EXPECT_GT(spread, 0.2f) << "the texture should hold noise, not only the background";
+  EXPECT_LE(largest_output, 1);
+
+  // Switching to colour keeps what F_t holds, spread to grey RGB.
+  const ImageF before = mono.read_texture();
+  mono.update_settings(tinted);
+  EXPECT_EQ(mono.texture_channels(), 4);
+  EXPECT_EQ(mono.read_texture().pixels, before.pixels);
+}
+
 // Correlation of the final texture with the texture before a camera orbit,
 // (a) at the same pixel (texture fixed in image space) and (b) at the pixel
 // where the same surface point was (texture fixed on the surface).

@@ -91,6 +91,7 @@ class VertexArray : public Object<delete_vertex_array> {
 enum class Format {
   RGBA8,    ///< output images
   RGBA16F,  ///< the texture image F_t (16-bit float per channel)
+  R16F,     ///< F_t while it is grey: one channel, a quarter of the sampling work
   RGBA32F,  ///< exact read-back in tests
   R32F,     ///< noise phases
   Depth24,  ///< depth renderbuffer

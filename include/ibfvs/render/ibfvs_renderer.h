@@ -132,10 +132,13 @@ class IbfvsRenderer {
   void render_frame(const ViewState& view, float dt);
 
   [[nodiscard]] int frame() const { return frame_; }
+  /// Channels F_t is stored in: 1 while it can only be grey, else 4.
+  [[nodiscard]] int texture_channels() const { return colour_texture_ ? 4 : 1; }
   [[nodiscard]] const RenderSettings& settings() const { return settings_; }
   /// The composed image F, RGBA8, rows bottom-up.
   [[nodiscard]] ImageU8 read_output() const;
-  /// The texture image F_t, RGBA float (values as stored in 16-bit float).
+  /// The texture image F_t, RGBA float (values as stored in 16-bit float; a
+  /// one-channel F_t is spread to grey RGB with alpha 1).
   [[nodiscard]] ImageF read_texture() const;
   /// Window depth of the last frame, one channel in [0, 1]; 1 where the
   /// surface does not cover the pixel (the projected surface Omega' of eq. 12).
@@ -166,6 +169,12 @@ class IbfvsRenderer {
   [[nodiscard]] shaders::ShaderFeatures features() const;
   Variant& program();     // the variant for the current features, compiled and up to date
   void apply_settings();  // after settings_ changed
+  // F_t in one channel (R16F) while it can only hold grey values (a grey
+  // background and grey noise), else RGBA16F; sampling one channel is
+  // cheaper on llvmpipe. Switching keeps the content when asked to.
+  void allocate_texture(bool colour);
+  void use_colour_texture();
+  bool colour_texture_ = true;
 
   RenderSettings settings_;
   std::array<Variant, shaders::ShaderFeatures::kVariantCount> variants_;

@@ -9,13 +9,14 @@ namespace ibfvs::shaders {
 /// parts it uses: llvmpipe executes both sides of a branch, so a feature
 /// switched off by a uniform would still cost its full price per pixel.
 struct ShaderFeatures {
-  static constexpr unsigned kVariantCount = 64;
+  static constexpr unsigned kVariantCount = 128;
   bool object_noise = false;   ///< G on a 3D lattice (else the image-space grid)
   bool surface_image = false;  ///< an equirectangular image as the surface colour
   bool color_scalar = false;   ///< colour by the per-vertex colour scalar
   bool beta_scalar = false;    ///< beta modulated by the per-vertex beta scalar
   bool image_step = false;     ///< image-space normalisation of the step
   bool inject_add = false;     ///< add noise (particles) instead of blending (eq. 10)
+  bool mono_texture = false;   ///< F_t is grey, stored in one channel
   /// A distinct small number per combination (fewer than kVariantCount).
   [[nodiscard]] unsigned key() const;
 };

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -125,7 +126,10 @@ int run_bench(const BenchOptions& o) {
     }
 
   gl::HeadlessContext context;
-  const std::string renderer_name = context.renderer();
+  std::string renderer_name = context.renderer();
+  const char* lp_threads = std::getenv("LP_NUM_THREADS");
+  if (lp_threads != nullptr && renderer_name.find("llvmpipe") != std::string::npos)
+    renderer_name += ", LP_NUM_THREADS=" + std::string(lp_threads);
   const std::string cpu =
       cpu_name() + ", " + std::to_string(std::thread::hardware_concurrency()) + " hardware threads";
   if (!o.quiet)

@@ -46,22 +46,31 @@ VideoWriter::VideoWriter(const std::filesystem::path& path, int width, int heigh
                      "or write PNG frames with --out frame%04d.png");
   // A dying ffmpeg must not kill us with SIGPIPE; fwrite reports the error.
   std::signal(SIGPIPE, SIG_IGN);
-  std::string filters = "vflip";  // GL rows are bottom-up
-  std::string codec;
-  const std::string ext = path.extension().string();
+  const std::string ext = lower_extension(path);
+  yuv420_ = ext != ".gif" && width % 2 == 0 && height % 2 == 0;
+  std::string input, filters, codec;
+  if (yuv420_) {
+    input = "-pix_fmt yuv420p";  // converted by feed(), rows top-down
+  } else {
+    input = "-pix_fmt rgba";
+    filters = "vflip";                                               // GL rows are bottom-up
+    if (ext != ".gif") filters += ",pad=ceil(iw/2)*2:ceil(ih/2)*2";  // yuv420p needs even sizes
+  }
+  // BT.601 limited range, said in the stream, so players do not guess.
+  const std::string colour =
+      "-colorspace smpte170m -color_primaries smpte170m -color_trc smpte170m -color_range tv";
   if (ext == ".webm") {
-    codec = "-c:v libvpx-vp9 -b:v 0 -crf 32 -pix_fmt yuv420p";
+    codec = "-c:v libvpx-vp9 -b:v 0 -crf 32 -pix_fmt yuv420p " + colour;
   } else if (ext != ".gif") {
-    // yuv420p needs even dimensions; crf 18 keeps the fine noise texture;
-    // ultrafast leaves the cores to rendering (300 frames at 1024^2 to MP4:
-    // 1.30x the time of no output, 1.59x with veryfast on 2 cores).
-    filters += ",pad=ceil(iw/2)*2:ceil(ih/2)*2";
-    codec = "-c:v libx264 -preset ultrafast -crf 18 -pix_fmt yuv420p";
+    // crf 18 keeps the fine noise texture; ultrafast leaves the cores to
+    // rendering (docs/performance.md has the cost against no output).
+    codec = "-c:v libx264 -preset ultrafast -crf 18 -pix_fmt yuv420p " + colour;
   }
   std::ostringstream cmd;
-  cmd << "ffmpeg -nostdin -y -loglevel error -f rawvideo -pix_fmt rgba -s " << width << "x"
-      << height << " -r " << fps << " -i - -vf " << shell_quote(filters) << " " << codec << " "
-      << shell_quote("file:" + path.string());  // "a:b.mp4" is a file, not a protocol
+  cmd << "ffmpeg -nostdin -y -loglevel error -f rawvideo " << input << " -s " << width << "x"
+      << height << " -r " << fps << " -i - ";
+  if (!filters.empty()) cmd << "-vf " << shell_quote(filters) << " ";
+  cmd << codec << " " << shell_quote("file:" + path.string());  // "a:b.mp4" is a file
   const std::string command = cmd.str();
   pipe_ = popen(command.c_str(), "w");
   if (!pipe_) throw InputError(path.string() + ": cannot start ffmpeg");
@@ -89,7 +98,12 @@ void VideoWriter::feed() {
       queue_.pop_front();
     }
     changed_.notify_all();  // room in the queue
-    if (std::fwrite(frame.pixels.data(), 1, frame.pixels.size(), pipe_) != frame.pixels.size()) {
+    std::vector<std::uint8_t>* bytes = &frame.pixels;
+    if (yuv420_) {
+      to_yuv420(frame, yuv_);
+      bytes = &yuv_;
+    }
+    if (std::fwrite(bytes->data(), 1, bytes->size(), pipe_) != bytes->size()) {
       std::lock_guard<std::mutex> lock(mutex_);
       error_ = path_.string() + ": ffmpeg stopped accepting frames (see its message above)";
       queue_.clear();

@@ -98,6 +98,42 @@ ImageU8 read_png(const std::filesystem::path& path) {
   return out;
 }
 
+void to_yuv420(const ImageU8& rgba, std::vector<std::uint8_t>& out) {
+  const int w = rgba.width, h = rgba.height;
+  if (rgba.channels != 4 || w % 2 != 0 || h % 2 != 0 || w < 2 || h < 2)
+    throw InputError("YUV 4:2:0 needs an RGBA image of even width and height");
+  const std::size_t luma = static_cast<std::size_t>(w) * h;
+  const std::size_t chroma = luma / 4;
+  out.resize(luma + 2 * chroma);
+  std::uint8_t* const y_plane = out.data();
+  std::uint8_t* const u_plane = y_plane + luma;
+  std::uint8_t* const v_plane = u_plane + chroma;
+  const auto row = [&](int top_down_y) {  // GL rows are bottom-up
+    return rgba.pixels.data() + static_cast<std::size_t>(h - 1 - top_down_y) * w * 4;
+  };
+  // Integer BT.601 with 8 fractional bits; shifts of negative sums round
+  // down, as the arithmetic shift of C++20 defines.
+  for (int y = 0; y < h; ++y) {
+    const std::uint8_t* p = row(y);
+    std::uint8_t* q = y_plane + static_cast<std::size_t>(y) * w;
+    for (int x = 0; x < w; ++x, p += 4)
+      q[x] = static_cast<std::uint8_t>(((66 * p[0] + 129 * p[1] + 25 * p[2] + 128) >> 8) + 16);
+  }
+  for (int y = 0; y < h / 2; ++y) {
+    const std::uint8_t* a = row(2 * y);
+    const std::uint8_t* b = row(2 * y + 1);
+    std::uint8_t* u = u_plane + static_cast<std::size_t>(y) * (w / 2);
+    std::uint8_t* v = v_plane + static_cast<std::size_t>(y) * (w / 2);
+    for (int x = 0; x < w / 2; ++x, a += 8, b += 8) {
+      const int r = a[0] + a[4] + b[0] + b[4];  // sums over the 2x2 block
+      const int g = a[1] + a[5] + b[1] + b[5];
+      const int bl = a[2] + a[6] + b[2] + b[6];
+      u[x] = static_cast<std::uint8_t>(((-38 * r - 74 * g + 112 * bl + 512) >> 10) + 128);
+      v[x] = static_cast<std::uint8_t>(((112 * r - 94 * g - 18 * bl + 512) >> 10) + 128);
+    }
+  }
+}
+
 ImageF to_float_channel(const ImageU8& image, int channel) {
   ImageF out(image.width, image.height, 1);
   for (std::size_t i = 0; i < out.pixels.size(); ++i)

@@ -49,6 +49,27 @@ TEST(Image, ErrorsNameThePath) {
   }
 }
 
+TEST(Image, Yuv420PlanesAreTopDownBt601LimitedRange) {
+  // 4x2, rows bottom-up: left 2x2 block red; right block white on top of black.
+  ImageU8 img(4, 2, 4);
+  const auto set = [&](int x, int y, std::uint8_t r, std::uint8_t g, std::uint8_t b) {
+    std::uint8_t* p = &img.pixels[(static_cast<std::size_t>(y) * 4 + x) * 4];
+    p[0] = r, p[1] = g, p[2] = b, p[3] = 255;
+  };
+  for (int y = 0; y < 2; ++y) set(0, y, 255, 0, 0), set(1, y, 255, 0, 0);
+  set(2, 1, 255, 255, 255), set(3, 1, 255, 255, 255);  // top row (GL row 1)
+  set(2, 0, 0, 0, 0), set(3, 0, 0, 0, 0);
+  std::vector<std::uint8_t> yuv;
+  to_yuv420(img, yuv);
+  // Y top row first; red is (82, 90, 240), white 235, black 16, grey chroma 128.
+  const std::vector<std::uint8_t> expected = {82,  82,  235, 235, 82, 82, 16, 16,  // Y
+                                              90,  128,                            // U
+                                              240, 128};                           // V
+  EXPECT_EQ(yuv, expected);
+  EXPECT_THROW(to_yuv420(ImageU8(3, 2, 4), yuv), InputError);
+  EXPECT_THROW(to_yuv420(ImageU8(4, 2, 3), yuv), InputError);
+}
+
 TEST(ImageAnalysis, AlignmentOfStripes) {
   // Stripes along x: all gradient across the flow (1, 0) -> A = 1; across it -> 0.
   ImageF img;

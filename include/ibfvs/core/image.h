@@ -53,6 +53,13 @@ void write_png16(const ImageF& image, const std::filesystem::path& path);
 /// Reads an 8-bit PNG (grey, RGB or RGBA) into bottom-up rows. Throws InputError.
 ImageU8 read_png(const std::filesystem::path& path);
 
+/// An RGBA image (even width and height, rows bottom-up) as the I420 bytes a
+/// video encoder takes, in `out` (resized): the Y plane, then U and V at
+/// half resolution, rows top-down; BT.601 limited range (as ffmpeg's default
+/// conversion, in 8-bit fixed point), each chroma sample from the mean of
+/// its 2x2 block. Throws InputError on odd sizes.
+void to_yuv420(const ImageU8& rgba, std::vector<std::uint8_t>& out);
+
 /// One channel of an 8-bit image as floats in [0, 1].
 ImageF to_float_channel(const ImageU8& image, int channel);
 

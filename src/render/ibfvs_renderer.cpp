@@ -84,7 +84,7 @@ IbfvsRenderer::IbfvsRenderer(const RenderSettings& settings) : settings_(setting
   grid_spike_width_ = grid_program_.location("u_spike_width");
   empty_vao_ = gl::VertexArray::create();
   apply_settings();
-  static_cast<void>(program());  // compile now: a shader error shows at construction
+  static_cast<void>(current_variant());  // compile now: a shader error shows at construction
   reset();
 }
 
@@ -120,7 +120,7 @@ shaders::ShaderFeatures IbfvsRenderer::features() const {
   return f;
 }
 
-IbfvsRenderer::Variant& IbfvsRenderer::program() {
+IbfvsRenderer::Variant& IbfvsRenderer::current_variant() {
   const shaders::ShaderFeatures f = features();
   Variant& v = variants_[f.key()];
   if (!v.program) {
@@ -334,7 +334,7 @@ void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
     // A closed mesh hides its back faces behind its front ones: culling them
     // halves llvmpipe's triangle setup and changes no pixel.
     gl::set_face_culling(cull_);
-    const Variant& v = program();
+    const Variant& v = current_variant();
     const gl::Program& p = v.program;
     p.use();
     p.set(v.u.view_projection, vp);

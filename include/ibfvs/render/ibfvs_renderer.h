@@ -167,8 +167,8 @@ class IbfvsRenderer {
     std::uint64_t applied = 0;  // settings_version_ last set
   };
   [[nodiscard]] shaders::ShaderFeatures features() const;
-  Variant& program();     // the variant for the current features, compiled and up to date
-  void apply_settings();  // after settings_ changed
+  Variant& current_variant();  // the variant for the current features, compiled and up to date
+  void apply_settings();       // after settings_ changed
   // F_t in one channel (R16F) while it can only hold grey values (a grey
   // background and grey noise), else RGBA16F; sampling one channel is
   // cheaper on llvmpipe. Switching keeps the content when asked to.

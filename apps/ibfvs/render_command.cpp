@@ -657,7 +657,11 @@ int run_render(const RenderOptions& o) {
     player.seek(static_cast<double>(k) / o.frames_per_step, renderer);
     if (k > 0 && o.orbit != 0.0f) camera.orbit(o.orbit);
     renderer.render_frame({camera.view(), camera.projection()}, dt);
-    if (kind == OutputKind::Video) video->write(renderer.read_output());
+    if (kind == OutputKind::Video) {
+      ImageU8 frame = video->spare();
+      renderer.read_output(frame);
+      video->write(std::move(frame));
+    }
     if (kind == OutputKind::PngSequence)
       write_png(renderer.read_output(), frame_path(out.string(), k));
     progress.update(k + 1);

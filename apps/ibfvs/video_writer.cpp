@@ -111,6 +111,8 @@ void VideoWriter::feed() {
       changed_.notify_all();
       return;
     }
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (spares_.size() < kQueued) spares_.push_back(std::move(frame));
   }
 }
 
@@ -125,6 +127,14 @@ void VideoWriter::write(ImageU8 frame) {
   queue_.push_back(std::move(frame));
   lock.unlock();
   changed_.notify_all();
+}
+
+ImageU8 VideoWriter::spare() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (spares_.empty()) return {};
+  ImageU8 frame = std::move(spares_.back());
+  spares_.pop_back();
+  return frame;
 }
 
 void VideoWriter::close() {

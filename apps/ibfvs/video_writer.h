@@ -35,6 +35,9 @@ class VideoWriter {
   /// thread; blocks only while kQueued frames are waiting. Throws InputError
   /// if ffmpeg has stopped.
   void write(ImageU8 frame);
+  /// A frame the writer thread is done with, to read the next one into
+  /// without allocating (empty when none is free yet).
+  [[nodiscard]] ImageU8 spare();
   /// True when frames travel as YUV 4:2:0.
   [[nodiscard]] bool yuv420() const { return yuv420_; }
   /// Writes what is queued, waits for ffmpeg; throws InputError if it failed.
@@ -51,6 +54,7 @@ class VideoWriter {
   std::mutex mutex_;
   std::condition_variable changed_;
   std::deque<ImageU8> queue_;
+  std::vector<ImageU8> spares_;    // written frames, for spare()
   std::vector<std::uint8_t> yuv_;  // the writer thread's I420 buffer
   bool closing_ = false;
   std::string error_;  // set by the writer thread

@@ -201,7 +201,11 @@ class Viewer {
   void render() {
     const Camera c = camera_.camera();
     renderer_->render_frame({c.view(), c.projection()}, scene_.dt);
-    if (video_) video_->write(renderer_->read_output());
+    if (video_) {
+      ImageU8 frame = video_->spare();
+      renderer_->read_output(frame);
+      video_->write(std::move(frame));
+    }
   }
 
   static std::string numbers(std::initializer_list<float> values) {

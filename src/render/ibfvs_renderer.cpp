@@ -395,9 +395,17 @@ void IbfvsRenderer::fill_texture_with_cell_colors(std::uint32_t seed) {
 }
 
 ImageU8 IbfvsRenderer::read_output() const {
-  ImageU8 image(settings_.width, settings_.height, 4);
-  framebuffer_[current_].read_rgba8(1, image.width, image.height, image.pixels);
+  ImageU8 image;
+  read_output(image);
   return image;
+}
+
+void IbfvsRenderer::read_output(ImageU8& image) const {
+  image.width = settings_.width;
+  image.height = settings_.height;
+  image.channels = 4;
+  image.pixels.resize(static_cast<std::size_t>(image.width) * image.height * 4);
+  framebuffer_[current_].read_rgba8(1, image.width, image.height, image.pixels);
 }
 
 ImageF IbfvsRenderer::read_texture() const {

@@ -137,6 +137,8 @@ class IbfvsRenderer {
   [[nodiscard]] const RenderSettings& settings() const { return settings_; }
   /// The composed image F, RGBA8, rows bottom-up.
   [[nodiscard]] ImageU8 read_output() const;
+  /// The same into `image`, reusing its memory (a video's frames, every frame).
+  void read_output(ImageU8& image) const;
   /// The texture image F_t, RGBA float (values as stored in 16-bit float; a
   /// one-channel F_t is spread to grey RGB with alpha 1).
   [[nodiscard]] ImageF read_texture() const;

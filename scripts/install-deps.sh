@@ -7,6 +7,7 @@ packages=(
   libopenmesh-dev libglm-dev libepoxy-dev libpng-dev libcli11-dev libeigen3-dev
   libmeshoptimizer-dev libnetcdf-dev libtomlplusplus-dev libtinygltf-dev
   libglfw3-dev libimgui-dev libstb-dev xvfb xauth
+  libavcodec-dev libavformat-dev libavutil-dev
   libegl-dev libegl-mesa0 libgl1-mesa-dri libgbm1
   libgtest-dev googletest libbenchmark-dev
   ffmpeg

@@ -66,10 +66,11 @@ void add_render_options(CLI::App& cmd, RenderOptions& o) {
       ->capture_default_str();
   cmd.add_option("--size", o.size, "Image size WxH in pixels")->capture_default_str();
   cmd.add_option("--frames", o.frames, "Number of frames to render")->capture_default_str();
-  cmd.add_option("--out", o.out,
-                 "Output: .mp4/.mkv/.webm/.mov/.gif video (needs the ffmpeg program), .png "
-                 "(last frame) or a %04d .png pattern (every frame). Default: <mesh>.mp4, "
-                 "ibfvs-demo.mp4 for the demo");
+  cmd.add_option(
+      "--out", o.out,
+      "Output: .mp4/.mkv/.mov/.avi (x264), .webm (VP9), .gif (needs the ffmpeg program), .png "
+      "(last frame) or a %04d .png pattern (every frame). Default: <mesh>.mp4, "
+      "ibfvs-demo.mp4 for the demo");
   cmd.add_option("--texture-out", o.texture_out,
                  "Also write the raw texture image F_t of the last frame as a 16-bit PNG");
   cmd.add_option("--alpha", o.alpha, "Blend weight of fresh noise (eq. 5/12), 0..1")

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <csignal>
 #include <cstdlib>
+#include <cstring>
+#include <exception>
 #include <sstream>
 #include <string>
 
@@ -38,42 +40,42 @@ bool is_video_path(const std::filesystem::path& path) {
          ext == ".gif";
 }
 
+namespace {
+
+// The image grown to an even size by repeating its last column and its top
+// row (rows bottom-up: the new row goes below the picture when shown top-down,
+// as ffmpeg's pad filter puts it).
+void pad_to_even(const ImageU8& in, ImageU8& out) {
+  out = ImageU8(in.width + in.width % 2, in.height + in.height % 2, 4);
+  const int shift = out.height - in.height;
+  for (int y = 0; y < out.height; ++y)
+    for (int x = 0; x < out.width; ++x) {
+      const int sx = std::min(x, in.width - 1), sy = std::max(y - shift, 0);
+      std::memcpy(&out.pixels[(static_cast<std::size_t>(y) * out.width + x) * 4],
+                  &in.pixels[(static_cast<std::size_t>(sy) * in.width + sx) * 4], 4);
+    }
+}
+
+}  // namespace
+
 VideoWriter::VideoWriter(const std::filesystem::path& path, int width, int height, double fps)
     : path_(path), width_(width), height_(height) {
-  if (!program_on_path("ffmpeg"))
-    throw InputError(path.string() +
-                     ": writing video needs the ffmpeg program (apt-get install ffmpeg); "
-                     "or write PNG frames with --out frame%04d.png");
-  // A dying ffmpeg must not kill us with SIGPIPE; fwrite reports the error.
-  std::signal(SIGPIPE, SIG_IGN);
-  const std::string ext = lower_extension(path);
-  yuv420_ = ext != ".gif" && width % 2 == 0 && height % 2 == 0;
-  std::string input, filters, codec;
-  if (yuv420_) {
-    input = "-pix_fmt yuv420p";  // converted by feed(), rows top-down
+  if (lower_extension(path) != ".gif") {
+    encoder_ = std::make_unique<VideoEncoder>(path, width + width % 2, height + height % 2, fps);
   } else {
-    input = "-pix_fmt rgba";
-    filters = "vflip";                                               // GL rows are bottom-up
-    if (ext != ".gif") filters += ",pad=ceil(iw/2)*2:ceil(ih/2)*2";  // yuv420p needs even sizes
+    if (!program_on_path("ffmpeg"))
+      throw InputError(path.string() +
+                       ": writing a GIF needs the ffmpeg program (apt-get install ffmpeg); "
+                       "or write MP4, or PNG frames with --out frame%04d.png");
+    // A dying ffmpeg must not kill us with SIGPIPE; fwrite reports the error.
+    std::signal(SIGPIPE, SIG_IGN);
+    std::ostringstream cmd;
+    cmd << "ffmpeg -nostdin -y -loglevel error -f rawvideo -pix_fmt rgba -s " << width << "x"
+        << height << " -r " << fps << " -i - -vf vflip "  // GL rows are bottom-up
+        << shell_quote("file:" + path.string());          // "a:b.gif" is a file
+    pipe_ = popen(cmd.str().c_str(), "w");
+    if (!pipe_) throw InputError(path.string() + ": cannot start ffmpeg");
   }
-  // BT.601 limited range, said in the stream, so players do not guess.
-  const std::string colour =
-      "-colorspace smpte170m -color_primaries smpte170m -color_trc smpte170m -color_range tv";
-  if (ext == ".webm") {
-    codec = "-c:v libvpx-vp9 -b:v 0 -crf 32 -pix_fmt yuv420p " + colour;
-  } else if (ext != ".gif") {
-    // crf 18 keeps the fine noise texture; ultrafast leaves the cores to
-    // rendering (docs/performance.md has the cost against no output).
-    codec = "-c:v libx264 -preset ultrafast -crf 18 -pix_fmt yuv420p " + colour;
-  }
-  std::ostringstream cmd;
-  cmd << "ffmpeg -nostdin -y -loglevel error -f rawvideo " << input << " -s " << width << "x"
-      << height << " -r " << fps << " -i - ";
-  if (!filters.empty()) cmd << "-vf " << shell_quote(filters) << " ";
-  cmd << codec << " " << shell_quote("file:" + path.string());  // "a:b.mp4" is a file
-  const std::string command = cmd.str();
-  pipe_ = popen(command.c_str(), "w");
-  if (!pipe_) throw InputError(path.string() + ": cannot start ffmpeg");
   writer_ = std::thread(&VideoWriter::feed, this);
 }
 
@@ -88,36 +90,53 @@ VideoWriter::~VideoWriter() {
 }
 
 void VideoWriter::feed() {
+  ImageU8 padded;
   for (;;) {
     ImageU8 frame;
     {
       std::unique_lock<std::mutex> lock(mutex_);
       changed_.wait(lock, [&] { return !queue_.empty() || closing_; });
-      if (queue_.empty()) return;  // closing, all written
+      if (queue_.empty()) break;  // closing, all written
       frame = std::move(queue_.front());
       queue_.pop_front();
     }
     changed_.notify_all();  // room in the queue
-    std::vector<std::uint8_t>* bytes = &frame.pixels;
-    if (yuv420_) {
-      to_yuv420(frame, yuv_);
-      bytes = &yuv_;
+    std::string failure;
+    if (encoder_) {
+      try {
+        const bool odd = frame.width % 2 != 0 || frame.height % 2 != 0;
+        if (odd) pad_to_even(frame, padded);
+        to_yuv420(odd ? padded : frame, yuv_);
+        encoder_->encode(yuv_);
+      } catch (const std::exception& e) {
+        failure = e.what();
+      }
+    } else if (std::fwrite(frame.pixels.data(), 1, frame.pixels.size(), pipe_) !=
+               frame.pixels.size()) {
+      failure = path_.string() + ": ffmpeg stopped accepting frames (see its message above)";
     }
-    if (std::fwrite(bytes->data(), 1, bytes->size(), pipe_) != bytes->size()) {
-      std::lock_guard<std::mutex> lock(mutex_);
-      error_ = path_.string() + ": ffmpeg stopped accepting frames (see its message above)";
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (!failure.empty()) {
+      error_ = failure;
       queue_.clear();
       closing_ = true;
       changed_.notify_all();
       return;
     }
-    std::lock_guard<std::mutex> lock(mutex_);
     if (spares_.size() < kQueued) spares_.push_back(std::move(frame));
+  }
+  if (encoder_) {
+    try {
+      encoder_->finish();
+    } catch (const std::exception& e) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      error_ = e.what();
+    }
   }
 }
 
 void VideoWriter::write(ImageU8 frame) {
-  if (!pipe_) throw InputError(path_.string() + ": video already closed");
+  if (closed_) throw InputError(path_.string() + ": video already closed");
   if (frame.width != width_ || frame.height != height_ || frame.channels != 4)
     throw InputError(path_.string() + ": frame size changed");
   std::unique_lock<std::mutex> lock(mutex_);
@@ -138,15 +157,19 @@ ImageU8 VideoWriter::spare() {
 }
 
 void VideoWriter::close() {
-  if (!pipe_) return;
+  if (closed_) return;
+  closed_ = true;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     closing_ = true;
   }
   changed_.notify_all();
   if (writer_.joinable()) writer_.join();
-  const int status = pclose(pipe_);
-  pipe_ = nullptr;
+  int status = 0;
+  if (pipe_) {
+    status = pclose(pipe_);
+    pipe_ = nullptr;
+  }
   if (!error_.empty()) throw InputError(error_);
   if (status == -1 || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
     throw InputError(path_.string() + ": ffmpeg failed to write the video");

@@ -1,22 +1,23 @@
 #pragma once
-// Video output through the ffmpeg program: raw frames go down a pipe, and
-// ffmpeg encodes in its own process, beside the rendering. A thread of ours
-// feeds the pipe, so the render loop only hands frames over (issue 7: video
-// must not be the bottleneck). For encoders that take YUV 4:2:0 (MP4, MKV,
-// MOV, AVI, WebM) and even image sizes the writer thread converts each frame
-// (to_yuv420, about 4 times cheaper than ffmpeg's conversion here) and pipes
-// 1.5 bytes per pixel instead of 4. GIF and odd sizes go as RGBA.
+// Video output beside the rendering: the render loop hands frames to a
+// writer thread of ours (issue 7: video must not be the bottleneck), which
+// converts them to YUV 4:2:0 (to_yuv420) and encodes them in-process with
+// FFmpeg's libraries (VideoEncoder: x264 for MP4/MKV/MOV/AVI, VP9 for WebM;
+// odd sizes padded by one column or row). GIF goes to the ffmpeg program
+// through a pipe, which makes the palette.
 
 #include <condition_variable>
 #include <cstdio>
 #include <deque>
 #include <filesystem>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "ibfvs/core/image.h"
+#include "ibfvs/video_encoder.h"
 
 namespace ibfvs::app {
 
@@ -25,7 +26,8 @@ bool is_video_path(const std::filesystem::path& path);
 
 class VideoWriter {
  public:
-  /// Starts ffmpeg. Throws InputError when ffmpeg is missing or cannot start.
+  /// Opens the encoder (or, for GIF, starts ffmpeg). Throws InputError when
+  /// that fails, naming the path.
   VideoWriter(const std::filesystem::path& path, int width, int height, double fps);
   ~VideoWriter();
   VideoWriter(const VideoWriter&) = delete;
@@ -33,14 +35,12 @@ class VideoWriter {
 
   /// Queues one RGBA8 frame (rows bottom-up, as read back) for the writer
   /// thread; blocks only while kQueued frames are waiting. Throws InputError
-  /// if ffmpeg has stopped.
+  /// if encoding has failed.
   void write(ImageU8 frame);
   /// A frame the writer thread is done with, to read the next one into
   /// without allocating (empty when none is free yet).
   [[nodiscard]] ImageU8 spare();
-  /// True when frames travel as YUV 4:2:0.
-  [[nodiscard]] bool yuv420() const { return yuv420_; }
-  /// Writes what is queued, waits for ffmpeg; throws InputError if it failed.
+  /// Writes what is queued and finishes the file; throws InputError if that failed.
   void close();
 
  private:
@@ -48,9 +48,10 @@ class VideoWriter {
   void feed();  // the writer thread
 
   std::filesystem::path path_;
-  std::FILE* pipe_ = nullptr;
+  std::unique_ptr<VideoEncoder> encoder_;  // all but GIF
+  std::FILE* pipe_ = nullptr;              // GIF: the ffmpeg program
   int width_, height_;
-  bool yuv420_ = false;
+  bool closed_ = false;
   std::mutex mutex_;
   std::condition_variable changed_;
   std::deque<ImageU8> queue_;

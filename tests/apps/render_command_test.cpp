@@ -64,10 +64,27 @@ TEST_F(RenderCommand, RendersVideo) {
   EXPECT_EQ(bytes.substr(4, 4), "ftyp");
 }
 
-// The frames ffmpeg encodes are the frames rendered: the last one decoded
-// from the MP4 matches the PNG of the same render (colours, orientation,
-// plane order), for an even size (converted to YUV by ibfvs) and an odd one
-// (RGBA, converted by ffmpeg).
+TEST_F(RenderCommand, VideoContainers) {
+  // x264 in MP4, MKV and MOV, VP9 in WebM (in-process), GIF through the
+  // ffmpeg program; each decodes back to its frames, and nothing but our
+  // own lines reaches the terminal.
+  for (const char* name : {"c.mp4", "c.mkv", "c.mov", "c.webm", "c.gif"}) {
+    const Result r =
+        run(std::string("render --mesh torus --size 48x32 --frames 5 -q --out ") + name);
+    ASSERT_EQ(r.status, 0) << name << "\n" << r.err;
+    EXPECT_TRUE(r.err.empty()) << name << "\n" << r.err;
+    const std::string count =
+        "ffprobe -v error -count_frames -select_streams v:0 -show_entries "
+        "stream=nb_read_frames,width -of csv=p=0 '" +
+        (dir_ / name).string() + "' > '" + (dir_ / "probe.txt").string() + "'";
+    ASSERT_EQ(std::system(count.c_str()), 0) << count;
+    EXPECT_EQ(test::read_file(dir_ / "probe.txt"), "48,5\n") << name;
+  }
+}
+
+// The frames encoded are the frames rendered: the last one decoded from the
+// MP4 matches the PNG of the same render (colours, orientation, plane order),
+// for an even size and an odd one (padded by a column and a row).
 TEST_F(RenderCommand, VideoFramesMatchTheRenderedImage) {
   const std::string common =
       "render --mesh torus --frames 12 --color-by y --color-map viridis --background "

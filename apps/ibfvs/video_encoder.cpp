@@ -19,6 +19,17 @@ namespace ibfvs::app {
 
 VideoEncoder::VideoEncoder(const std::filesystem::path& path, int width, int height, double fps)
     : path_(path), width_(width), height_(height) {
+  try {
+    open(fps);
+  } catch (...) {
+    release();  // the destructor does not run for a constructor that throws
+    throw;
+  }
+}
+
+void VideoEncoder::open(double fps) {
+  const std::filesystem::path& path = path_;
+  const int width = width_, height = height_;
   if (width < 2 || height < 2 || width % 2 != 0 || height % 2 != 0)
     throw InputError(path.string() + ": the encoder needs an even width and height");
   av_log_set_level(AV_LOG_ERROR);  // x264's statistics are not ours to print
@@ -78,12 +89,17 @@ VideoEncoder::VideoEncoder(const std::filesystem::path& path, int width, int hei
 }
 
 VideoEncoder::~VideoEncoder() {
+  release();
+}
+
+void VideoEncoder::release() {
   av_packet_free(&packet_);
   av_frame_free(&frame_);
   avcodec_free_context(&codec_);
   if (format_ != nullptr) {
     if ((format_->oformat->flags & AVFMT_NOFILE) == 0) avio_closep(&format_->pb);
     avformat_free_context(format_);
+    format_ = nullptr;
   }
 }
 

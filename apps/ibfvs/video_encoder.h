@@ -31,7 +31,9 @@ class VideoEncoder {
   void finish();
 
  private:
-  void drain();  // writes every packet the encoder has ready
+  void open(double fps);  // the constructor's work
+  void release();         // frees whatever is allocated
+  void drain();           // writes every packet the encoder has ready
   [[noreturn]] void fail(const char* what, int code) const;
 
   std::filesystem::path path_;

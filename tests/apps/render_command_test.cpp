@@ -80,6 +80,10 @@ TEST_F(RenderCommand, VideoContainers) {
     ASSERT_EQ(std::system(count.c_str()), 0) << count;
     EXPECT_EQ(test::read_file(dir_ / "probe.txt"), "48,5\n") << name;
   }
+  // A file the encoder cannot open: one clear line naming it, exit 1.
+  std::filesystem::create_directory(dir_ / "taken.mp4");
+  expect_error("render --mesh torus --size 48x32 --frames 2 --out taken.mp4",
+               "taken.mp4: cannot open for writing");
 }
 
 // The frames encoded are the frames rendered: the last one decoded from the

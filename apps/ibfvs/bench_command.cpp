@@ -12,13 +12,13 @@
 #include <CLI/CLI.hpp>
 
 #include "ibfvs/core/camera.h"
+#include "ibfvs/core/data_paths.h"
 #include "ibfvs/core/displacement.h"
 #include "ibfvs/core/error.h"
+#include "ibfvs/core/scene_prep.h"
 #include "ibfvs/core/vector_field.h"
-#include "ibfvs/data_paths.h"
 #include "ibfvs/gl/context.h"
-#include "ibfvs/mesh_loading.h"
-#include "ibfvs/render/ibfvs_renderer.h"
+#include "ibfvs/render/session.h"
 
 namespace ibfvs::app {
 namespace {
@@ -143,24 +143,24 @@ int run_bench(const BenchOptions& o) {
   std::vector<BenchCell> cells;
   using clock = std::chrono::steady_clock;
   for (const int level : o.subdivide) {
-    const LoadedMesh loaded = load_mesh(mesh_path, level);
-    const TriMesh& mesh = loaded.mesh;
-    const std::vector<glm::vec3> field =
-        evaluate_field(mesh, FieldSpec::parse("rotate:0,1,0"), TangentMode::Project);
     for (const auto& [w, h] : sizes) {
-      RenderSettings settings;
-      settings.width = w;
-      settings.height = h;
-      IbfvsRenderer renderer(settings);
-      renderer.set_mesh(mesh, field);
+      // The scene of the paper's Table 1: the cow in a rotation about +Y,
+      // 3 pixels per frame, through the same session as ibfvs render.
+      Scene scene;
+      scene.mesh = mesh_path;
+      scene.subdivide = level;
+      scene.field = FieldSpec::parse("rotate:0,1,0");
+      scene.width = w;
+      scene.height = h;
+      Session session(prepare_scene(scene));
+      IbfvsRenderer& renderer = session.renderer();
+      const TriMesh& mesh = *session.scene().mesh;
       for (const bool dynamic : {false, true}) {
-        Camera camera(mesh_bounds(mesh), CameraParams{},
+        Camera camera(mesh_bounds(mesh), session.scene().camera,
                       static_cast<float>(w) / static_cast<float>(h));
-        const float dt =
-            dt_for_pixel_step(mesh.positions, field, camera.view_projection(), w, h, 3.0f);
         const auto frame = [&] {
           if (dynamic) camera.orbit(o.orbit);
-          renderer.render_frame({camera.view(), camera.projection()}, dt);
+          session.render(camera);
           renderer.finish();
         };
         renderer.reset();

@@ -11,7 +11,7 @@
 #include "ibfvs/core/error.h"
 #include "ibfvs/core/file_names.h"
 #include "ibfvs/core/mesh_io.h"
-#include "ibfvs/mesh_loading.h"
+#include "ibfvs/core/mesh_source.h"
 
 namespace ibfvs::app {
 namespace fs = std::filesystem;
@@ -56,7 +56,11 @@ int run_geometry(const GeometryOptions& o) {
     return std::chrono::duration<double>(b - a).count();
   };
   const auto t0 = clock::now();
-  LoadedMesh loaded = load_mesh(o.mesh, o.subdivide);  // read, subdivide, cache order
+  // Read and subdivide; no GPU vertex order, so that written per-vertex data
+  // lines up with the input's vertices (subdivision makes new ones anyway).
+  LoadedMesh loaded = load_mesh(o.mesh, o.subdivide, false);
+  for (const std::string& w : loaded.warnings)
+    std::fprintf(stderr, "ibfvs: warning: %s\n", w.c_str());
   TriMesh& mesh = loaded.mesh;
   const auto t1 = clock::now();
   compute_vertex_normals(mesh);
@@ -76,7 +80,7 @@ int run_geometry(const GeometryOptions& o) {
       shape += ", " + std::to_string(top.nonmanifold_edges) + " non-manifold edges";
     std::printf(
         "%s: %zu vertices, %zu triangles%s; %s. kmin from %.4g to %.4g (1st-99th percentile "
-        "%.4g..%.4g), kmax from %.4g to %.4g (%.4g..%.4g)%s. Read, subdivision and cache order "
+        "%.4g..%.4g), kmax from %.4g to %.4g (%.4g..%.4g)%s. Read and subdivision "
         "%.3f s; normals and curvature %.3f s%s.\n",
         o.mesh.c_str(), mesh.vertex_count(), mesh.triangle_count(),
         o.subdivide ? (" after " + std::to_string(o.subdivide) + " Loop subdivisions").c_str() : "",

@@ -4,7 +4,6 @@
 #include <malloc.h>
 #include <stdlib.h>
 
-#include <algorithm>
 #include <cstdio>
 #include <exception>
 #include <memory>
@@ -17,8 +16,6 @@
 #include "ibfvs/bench_command.h"
 #include "ibfvs/geometry_command.h"
 #include "ibfvs/render_command.h"
-#include "ibfvs/scene.h"
-#include "ibfvs/styles.h"
 #include "ibfvs/view_command.h"
 
 int main(int argc, char** argv) {
@@ -37,10 +34,10 @@ int main(int argc, char** argv) {
   CLI::App app{"ibfvs: image based flow visualization for curved surfaces"};
   app.require_subcommand(1, 1);
   app.set_version_flag("--version", IBFVS_VERSION);
-  auto render_options = std::make_unique<ibfvs::app::RenderOptions>();
+  auto render_options = std::make_unique<ibfvs::app::SceneOptions>();
   CLI::App* render = app.add_subcommand(
       "render", "Render IBFVS texture on a mesh headless (EGL) to a video or PNG");
-  ibfvs::app::add_render_options(*render, *render_options);
+  ibfvs::app::add_scene_options(*render, *render_options);
   auto view_options = std::make_unique<ibfvs::app::ViewOptions>();
   CLI::App* view = app.add_subcommand(
       "view",
@@ -63,42 +60,8 @@ int main(int argc, char** argv) {
     std::fputs(app.help().c_str(), stderr);
     return 1;
   }
-  // `ibfvs render SCENE.toml [options]`: the scene's settings go first, so the
-  // command line's own options override them.
-  std::vector<std::string> args(argv + 1, argv + argc);
-  const bool renders = !args.empty() && (args[0] == "render" || args[0] == "view");
-  if (args.size() >= 2 && renders && ibfvs::app::is_scene_path(args[1])) {
-    try {
-      std::vector<std::string> scene = ibfvs::app::scene_arguments(args[1]);
-      args.erase(args.begin() + 1);
-      args.insert(args.begin() + 1, scene.begin(), scene.end());
-    } catch (const std::exception& e) {
-      std::fprintf(stderr, "ibfvs: error: %s\n", e.what());
-      return 1;
-    }
-  }
-  // `--style NAME` (given or from the scene): its defaults go before all else.
-  if (renders) {
-    std::string style;
-    for (std::size_t i = 1; i < args.size(); ++i) {
-      if (args[i] == "--style" && i + 1 < args.size()) style = args[i + 1];
-      if (args[i].rfind("--style=", 0) == 0) style = args[i].substr(8);
-    }
-    if (!style.empty()) {
-      try {
-        const std::vector<std::string> defaults = ibfvs::app::style_arguments(style);
-        args.insert(args.begin() + 1, defaults.begin(), defaults.end());
-      } catch (const std::exception& e) {
-        std::fprintf(stderr, "ibfvs: error: %s\n", e.what());
-        return 1;
-      }
-    }
-  }
-  if (!args.empty() && args[0] == "view")  // to save the state as a scene later
-    view_options->arguments.assign(args.begin() + 1, args.end());
-  std::reverse(args.begin(), args.end());  // CLI11 takes them last-first
   try {
-    app.parse(args);
+    app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help
     // One line in the same form as every other error.
@@ -117,12 +80,13 @@ int main(int argc, char** argv) {
     return 1;
   }
   try {
-    if (*render) return ibfvs::app::run_render(*render_options);
+    if (*render)
+      return ibfvs::app::run_render(ibfvs::app::scene_from_command_line(*render_options));
     if (*geometry) return ibfvs::app::run_geometry(*geometry_options);
     if (*view) return ibfvs::app::run_view(*view_options);
     if (*bench) return ibfvs::app::run_bench(*bench_options);
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "ibfvs: error: %s\n", e.what());
+    std::fprintf(stderr, "ibfvs: error: %s\n", ibfvs::app::error_line(e).c_str());
     return 1;
   }
   return 0;

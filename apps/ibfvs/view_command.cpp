@@ -8,6 +8,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <sstream>
 
 #include <epoxy/gl.h>
@@ -25,10 +26,12 @@
 #include "ibfvs/core/image.h"
 #include "ibfvs/core/noise.h"
 #include "ibfvs/core/potential_flow.h"
+#include "ibfvs/core/scene.h"
+#include "ibfvs/core/scene_prep.h"
+#include "ibfvs/core/text.h"
 #include "ibfvs/core/vector_field.h"
 #include "ibfvs/gl/window.h"
-#include "ibfvs/scene.h"
-#include "ibfvs/styles.h"
+#include "ibfvs/render/session.h"
 #include "ibfvs/video_writer.h"
 #include "ibfvs/viewer_state.h"
 
@@ -75,18 +78,16 @@ class Keys {
 // The window, the engine and the interaction state, one frame at a time.
 class Viewer {
  public:
-  Viewer(const ViewOptions& options, PreparedScene scene)
+  Viewer(const ViewOptions& options, Scene desc, PreparedScene prepared)
       : options_(options),
-        render_(options.render),
-        args_(render_arguments_of(options.arguments)),
-        scene_(std::move(scene)),
-        window_(scene_.width, scene_.height, "ibfvs view", options.vsync),
-        camera_(mesh_bounds(*scene_.mesh), scene_.camera,
-                static_cast<float>(scene_.width) / static_cast<float>(scene_.height)),
-        drag_mode_(parse_drag_mode(options.drag)),
+        desc_(std::move(desc)),
+        window_(prepared.width, prepared.height, "ibfvs view", options.vsync),
+        session_(std::make_unique<Session>(std::move(prepared))),
+        camera_(mesh_bounds(*scene().mesh), scene().camera,
+                static_cast<float>(scene().width) / static_cast<float>(scene().height)),
+        drag_mode_(parse_enum<DragMode>(options.drag)),
         show_panel_(!options.no_panel) {
     if (!options.script.empty()) script_ = read_script(options.script);
-    make_renderer();
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
     ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini next to the user's files
@@ -118,15 +119,15 @@ class Viewer {
       handle_keys(keys);
       handle_mouse();
       if (!paused_) {
-        if (scene_.step_count > 1) {
-          time_ += 1.0 / render_.frames_per_step;
-          player_->seek(time_, *renderer_);
+        if (scene().step_count > 1) {
+          time_ += 1.0 / desc_.frames_per_step;
+          session_->seek(time_);
         }
         render();
       }
       int w = 0, h = 0;
       window_.framebuffer_size(w, h);
-      renderer_->present(w, h);
+      renderer().present(w, h);
       draw_interface();
       if (!window_shot_.empty()) {
         write_png(window_.read_pixels(), window_shot_);
@@ -141,8 +142,9 @@ class Viewer {
       if (seconds > 0.5) {
         char title[256];
         std::snprintf(title, sizeof title, "ibfvs view - %s - %.1f fps - drag: %s%s",
-                      scene_.mesh_name.c_str(), frames_since_title / seconds,
-                      to_string(drag_mode_).c_str(), renderer_->locked() ? " - locked" : "");
+                      scene().mesh_name.c_str(), frames_since_title / seconds,
+                      std::string(enum_name(drag_mode_)).c_str(),
+                      renderer().locked() ? " - locked" : "");
         window_.set_title(title);
         fps_ = frames_since_title / seconds;
         frames_since_title = 0;
@@ -151,22 +153,19 @@ class Viewer {
     }
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-    if (!render_.quiet)
+    if (!desc_.quiet)
       std::printf("ibfvs: viewed %s for %d frames at %.1f fps (%dx%d) on %s\n",
-                  scene_.mesh_name.c_str(), frames_shown, frames_shown / std::max(seconds, 1e-9),
-                  scene_.width, scene_.height, window_.renderer().c_str());
+                  scene().mesh_name.c_str(), frames_shown, frames_shown / std::max(seconds, 1e-9),
+                  scene().width, scene().height, window_.renderer().c_str());
     return 0;
   }
 
  private:
   const ViewOptions& options_;
-  RenderOptions render_;           // the render options in force (styles and loads change them)
-  std::vector<std::string> args_;  // the same as arguments, for reloading and saving
-  PreparedScene scene_;
+  Scene desc_;  // the scene in force, typed: panel, script and loads edit it; save writes it
   gl::WindowContext window_;
+  std::unique_ptr<Session> session_;  // renderer, field player and frame count
   ViewerCamera camera_;
-  std::unique_ptr<IbfvsRenderer> renderer_;
-  std::unique_ptr<FieldPlayer> player_;
   DragMode drag_mode_;
   bool show_panel_ = true, show_help_ = false, paused_ = false;
   bool dragging_ = false, locked_by_drag_ = false;
@@ -182,65 +181,44 @@ class Viewer {
     int frames_left = 0;
   } script_drag_;
   std::string save_path_ = "view.toml";
-  std::string window_shot_;       // a window capture due after this frame's interface
-  float step_px_ = render_.step;  // --step, changed by `set step`
-  std::string message_;           // the last error or note, shown in the panel
+  std::string window_shot_;  // a window capture due after this frame's interface
+  std::string message_;      // the last error or note, shown in the panel
   std::string load_path_;
   int selected_element_ = -1;
   bool elements_edited_ = false;
   std::unique_ptr<VideoWriter> video_;
   int snapshot_size_[2] = {2048, 2048};
 
-  void make_renderer() {
-    player_.reset();
-    renderer_ = std::make_unique<IbfvsRenderer>(scene_.settings);
-    load_scene(*renderer_, scene_, render_);
-    player_ = std::make_unique<FieldPlayer>(scene_, *renderer_);
-  }
+  PreparedScene& scene() { return session_->scene(); }
+  IbfvsRenderer& renderer() { return session_->renderer(); }
 
   void render() {
     const Camera c = camera_.camera();
-    renderer_->render_frame({c.view(), c.projection()}, scene_.dt);
+    session_->render(c);
     if (video_) {
       ImageU8 frame = video_->spare();
-      renderer_->read_output(frame);
+      renderer().read_output(frame);
       video_->write(std::move(frame));
     }
   }
 
-  static std::string numbers(std::initializer_list<float> values) {
-    std::string out;
-    char one[32];
-    for (const float v : values) {
-      std::snprintf(one, sizeof one, "%s%.6g", out.empty() ? "" : ",", v);
-      out += one;
-    }
-    return out;
-  }
-
-  // Parses render arguments as `ibfvs render` does and, when the scene they
-  // describe prepares without error, replaces the current one (styles, loading
-  // a mesh or a scene). Errors go to the panel; the old scene stays.
-  bool reload(const std::vector<std::string>& args) {
+  // Prepares `desc` and, when that succeeds, replaces the current scene
+  // (styles, loading a mesh or a scene, settings that change the mesh or the
+  // field). Errors go to the panel; the old scene stays.
+  bool reload(const Scene& desc) {
     try {
-      CLI::App parser;
-      RenderOptions options;
-      add_render_options(parser, options);
-      std::vector<std::string> reversed(args.rbegin(), args.rend());
-      parser.parse(reversed);
-      PreparedScene scene = prepare_scene(options);
-      render_ = options;
-      args_ = args;
-      scene_ = std::move(scene);
-      camera_ = ViewerCamera(mesh_bounds(*scene_.mesh), scene_.camera,
-                             static_cast<float>(scene_.width) / static_cast<float>(scene_.height));
-      step_px_ = render_.step;
-      overrides_.clear();
+      PreparedScene prepared = prepare_scene(desc);
+      for (const std::string& w : prepared.warnings)
+        std::fprintf(stderr, "ibfvs: warning: %s\n", w.c_str());
+      session_ = std::make_unique<Session>(std::move(prepared));
+      desc_ = desc;
+      camera_ =
+          ViewerCamera(mesh_bounds(*scene().mesh), scene().camera,
+                       static_cast<float>(scene().width) / static_cast<float>(scene().height));
       elements_edited_ = false;
       selected_element_ = -1;
       time_ = 0.0;
-      make_renderer();
-      message_ = "loaded " + scene_.mesh_name;
+      message_ = "loaded " + scene().mesh_name;
       return true;
     } catch (const std::exception& e) {
       message_ = std::string("error: ") + e.what();
@@ -250,37 +228,41 @@ class Viewer {
   }
 
   void apply_style(const std::string& name) {
-    std::vector<std::string> args = args_;
-    const std::vector<std::string> style = style_arguments(name);
-    args.insert(args.end(), style.begin(), style.end());  // the preset wins
-    if (reload(args)) message_ = "style " + name;
+    Scene desc = desc_;
+    ibfvs::apply_style(desc, parse_enum<Style>(name));  // the preset wins
+    if (reload(desc)) message_ = "style " + name;
   }
 
   void load(const std::string& path) {
-    if (is_scene_path(path)) {
-      try {
-        reload(scene_arguments(path));
-      } catch (const std::exception& e) {
-        message_ = std::string("error: ") + e.what();
+    try {
+      if (is_scene_path(path)) {
+        reload(read_scene(path));
+        return;
       }
+    } catch (const std::exception& e) {
+      message_ = std::string("error: ") + e.what();
       return;
     }
-    std::vector<std::string> args = args_;
-    args.insert(args.end(), {"--mesh", path});
-    reload(args);
+    Scene desc = desc_;
+    desc.mesh = path;
+    desc.field_steps.clear();
+    reload(desc);
   }
 
   // Flow elements changed: the field is evaluated again and uploaded.
   void elements_changed() {
-    FieldSpec& spec = scene_.field_spec;
+    FieldSpec& spec = scene().field_spec;
     if (spec.kind != FieldKind::Elements) {
       spec = FieldSpec::parse("elements");
       message_ = "the field is now the flow elements";
     }
     try {
       for (const FlowElement& e : spec.elements) e.validate();
-      scene_.field = evaluate_field(*scene_.mesh, spec, parse_tangent_mode(render_.tangent));
-      renderer_->set_field(scene_.field);
+      session_->set_field(evaluate_field(*scene().mesh, spec, desc_.tangent));
+      // The typed scene follows, so that saving keeps the edited elements.
+      desc_.field = spec;
+      desc_.field->elements.clear();
+      desc_.elements = spec.elements;
       elements_edited_ = true;
       update_dt();
     } catch (const std::exception& e) {
@@ -290,17 +272,18 @@ class Viewer {
 
   // The surface point under the cursor (window coordinates), if any.
   std::optional<glm::vec3> surface_point(glm::vec2 cursor) {
-    const ImageF depth = renderer_->read_depth();
+    const ImageF depth = renderer().read_depth();
     int ww = 0, wh = 0;
     glfwGetWindowSize(window_.handle(), &ww, &wh);
-    const int px = static_cast<int>(cursor.x * scene_.width / std::max(ww, 1));
-    const int py = scene_.height - 1 - static_cast<int>(cursor.y * scene_.height / std::max(wh, 1));
-    if (px < 0 || py < 0 || px >= scene_.width || py >= scene_.height) return std::nullopt;
-    const float z = depth.pixels[static_cast<std::size_t>(py) * scene_.width + px];
+    const int px = static_cast<int>(cursor.x * scene().width / std::max(ww, 1));
+    const int py =
+        scene().height - 1 - static_cast<int>(cursor.y * scene().height / std::max(wh, 1));
+    if (px < 0 || py < 0 || px >= scene().width || py >= scene().height) return std::nullopt;
+    const float z = depth.pixels[static_cast<std::size_t>(py) * scene().width + px];
     if (z >= 1.0f) return std::nullopt;  // background
     const Camera c = camera_.camera();
-    const glm::vec4 ndc(2.0f * (px + 0.5f) / scene_.width - 1.0f,
-                        2.0f * (py + 0.5f) / scene_.height - 1.0f, 2.0f * z - 1.0f, 1.0f);
+    const glm::vec4 ndc(2.0f * (px + 0.5f) / scene().width - 1.0f,
+                        2.0f * (py + 0.5f) / scene().height - 1.0f, 2.0f * z - 1.0f, 1.0f);
     const glm::vec4 world = glm::inverse(c.view_projection()) * ndc;
     return glm::vec3(world) / world.w;
   }
@@ -309,19 +292,18 @@ class Viewer {
   // that size runs `frames` frames with the current camera and parameters
   // (the texture needs about 22 to form, section 3.7) and writes its image.
   void snapshot(int width, int height, const std::string& file, int frames = 60) {
-    RenderSettings s = renderer_->settings();
-    s.width = width;
-    s.height = height;
-    PreparedScene big = scene_;
-    big.settings = s;
-    IbfvsRenderer r(s);
-    load_scene(r, big, render_);
+    PreparedScene big = scene();
+    big.settings = renderer().settings();
+    big.settings.width = big.width = width;
+    big.settings.height = big.height = height;
+    Session offscreen(std::move(big));
     ViewerCamera cam = camera_;
     cam.set_aspect(static_cast<float>(width) / static_cast<float>(height));
     const Camera c = cam.camera();
-    const float dt = dt_for(c, width, height);  // the same pixels per frame as the window
-    for (int k = 0; k < frames; ++k) r.render_frame({c.view(), c.projection()}, dt);
-    write_png(r.read_output(), file);
+    offscreen.set_dt(dt_for(c, width, height));  // the same pixels per frame as the window
+    offscreen.seek(time_);
+    for (int k = 0; k < frames; ++k) offscreen.render(c);
+    write_png(offscreen.read_output(), file);
     message_ = "wrote " + file;
     std::printf("ibfvs: wrote %s (%dx%d)\n", file.c_str(), width, height);
   }
@@ -335,7 +317,7 @@ class Viewer {
     }
     const std::string name = numbered_name(".mp4");
     try {
-      video_ = std::make_unique<VideoWriter>(name, scene_.width, scene_.height, 30.0);
+      video_ = std::make_unique<VideoWriter>(name, scene().width, scene().height, 30.0);
       message_ = std::string("recording ") + name;
     } catch (const std::exception& e) {
       message_ = std::string("error: ") + e.what();
@@ -345,35 +327,35 @@ class Viewer {
   // Section 3.7: what the texture does while the user drags.
   void begin_drag() {
     dragging_ = true;
-    if (drag_mode_ == DragMode::Freeze && !renderer_->locked()) {
-      renderer_->lock();
+    if (drag_mode_ == DragMode::Freeze && !renderer().locked()) {
+      renderer().lock();
       locked_by_drag_ = true;
     }
-    RenderSettings s = renderer_->settings();
+    RenderSettings s = renderer().settings();
     s.advect_view = drag_mode_ == DragMode::Previous ? AdvectView::Previous : AdvectView::Current;
-    renderer_->update_settings(s);
+    renderer().update_settings(s);
   }
 
   void drag_by(glm::vec2 pixels, bool pan) {
     if (pan)
-      camera_.pan(pixels, scene_.height);
+      camera_.pan(pixels, scene().height);
     else
       camera_.rotate(pixels);
     if (drag_mode_ == DragMode::Translate) {
       // The paper's option: move F_t and G with the pointer (exact for a pan).
-      renderer_->shift_image(pixels);
+      renderer().shift_image(pixels);
     }
   }
 
   void end_drag() {
     dragging_ = false;
     if (locked_by_drag_) {
-      renderer_->unlock();
+      renderer().unlock();
       locked_by_drag_ = false;
     }
-    RenderSettings s = renderer_->settings();
-    s.advect_view = scene_.settings.advect_view;
-    renderer_->update_settings(s);
+    RenderSettings s = renderer().settings();
+    s.advect_view = scene().settings.advect_view;
+    renderer().update_settings(s);
   }
 
   void zoom(float steps) {
@@ -384,15 +366,15 @@ class Viewer {
   // The fastest motion back to --step pixels a frame, after a zoom (which
   // would stretch it) or a new field (as render sets dt).
   void update_dt() {
-    if (render_.dt > 0.0f) return;  // the user's own dt stays
-    const float dt = dt_for(camera_.camera(), scene_.width, scene_.height);
-    if (dt > 0.0f) scene_.dt = dt;
+    if (desc_.dt > 0.0f) return;  // the user's own dt stays
+    const float dt = dt_for(camera_.camera(), scene().width, scene().height);
+    if (dt > 0.0f) session_->set_dt(dt);
   }
 
-  // dt that moves the fastest vertex step_px_ pixels in a width x height image.
+  // dt that moves the fastest vertex step pixels in a width x height image.
   float dt_for(const Camera& c, int width, int height) const {
-    return dt_for_pixel_step(scene_.mesh->positions, scene_.field, c.view_projection(), width,
-                             height, step_px_);
+    return dt_for_pixel_step(session_->scene().mesh->positions, session_->scene().field,
+                             c.view_projection(), width, height, desc_.step);
   }
 
   // ibfvs-view-NNNN.EXT in the current folder, numbered on from the last one.
@@ -414,7 +396,7 @@ class Viewer {
     const bool shift = glfwGetKey(w, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS;
     const bool ctrl = glfwGetKey(w, GLFW_KEY_LEFT_CONTROL) == GLFW_PRESS ||
                       glfwGetKey(w, GLFW_KEY_RIGHT_CONTROL) == GLFW_PRESS;
-    std::vector<FlowElement>& elements = scene_.field_spec.elements;
+    std::vector<FlowElement>& elements = scene().field_spec.elements;
     if (ctrl && left && !over_panel && !dragging_ && selected_element_ >= 0 &&
         selected_element_ < static_cast<int>(elements.size())) {
       // Ctrl + drag: the selected element follows the surface under the pointer.
@@ -453,7 +435,9 @@ class Viewer {
     if (keys.pressed(GLFW_KEY_SPACE)) paused_ = !paused_;
     if (keys.pressed(GLFW_KEY_L)) toggle_lock();
     if (keys.pressed(GLFW_KEY_M))
-      drag_mode_ = static_cast<DragMode>((static_cast<int>(drag_mode_) + 1) % 4);
+      drag_mode_ =
+          enum_entries<DragMode>()[(enum_index(drag_mode_) + 1) % enum_entries<DragMode>().size()]
+              .value;
     if (keys.pressed(GLFW_KEY_R)) camera_.reset();
     if (keys.pressed(GLFW_KEY_S)) {
       const std::string name = numbered_name(".png");
@@ -464,89 +448,86 @@ class Viewer {
   }
 
   void toggle_lock() {
-    if (renderer_->locked())
-      renderer_->unlock();
+    if (renderer().locked())
+      renderer().unlock();
     else
-      renderer_->lock();
+      renderer().lock();
   }
 
   void screenshot(const std::string& file) {
-    write_png(renderer_->read_output(), file);
+    write_png(renderer().read_output(), file);
     std::printf("ibfvs: wrote %s\n", file.c_str());
   }
 
-  // A parameter by its option name, as the script's `set` and the panel use.
-  void set(const std::string& name, const std::string& value) {
-    RenderSettings s = renderer_->settings();
-    const float v = parse_numbers(name == "background" || name == "surface-color" ? "0" : value,
-                                  "set " + name)[0];
-    if (name == "alpha") {
-      s.alpha = v;
-    } else if (name == "beta") {
-      s.beta = v;
-    } else if (name == "vg") {
-      s.noise.rate = v;
-    } else if (name == "profile") {
-      s.noise.profile = parse_noise_profile(value);
-    } else if (name == "background" || name == "surface-color") {
-      (name == "background" ? s.background : s.surface_color) = parse_vec3(value, "set " + name);
-    } else if (name == "step") {
-      if (!(v > 0.0f)) throw InputError("set step: must be a positive number of pixels");
-      scene_.dt *= v / step_px_;
-      step_px_ = v;
-      overrides_[name] = value;
-      return;
+  // Any scene key, as the script's `set` uses it: texture settings change
+  // live, the step rescales dt, anything else prepares the scene again.
+  void set(const std::string& key, const std::string& value) {
+    Scene desc = desc_;
+    apply_setting(desc, key, value);
+    static const std::set<std::string, std::less<>> live = {
+        "alpha",         "beta",        "vg",          "profile",    "background",
+        "surface_color", "color_map",   "color_range", "beta_range", "advect_view",
+        "inject",        "spike_width", "noise_space"};
+    if (key == "step") {
+      session_->set_dt(session_->dt() * desc.step / desc_.step);
+      desc_ = desc;
+    } else if (live.count(key)) {
+      apply_live(desc);
     } else {
-      throw InputError("set: unknown parameter '" + name +
-                       "' (alpha, beta, vg, profile, background, surface-color, step)");
+      if (!reload(desc)) throw InputError(message_);
     }
-    s.validate();
-    renderer_->update_settings(s);
-    scene_.settings = s;
-    overrides_[name] = value;
   }
 
-  std::map<std::string, std::string> overrides_;
+  // Texture settings of `desc` that the renderer takes without a rebuild.
+  void apply_live(const Scene& desc) {
+    RenderSettings s = renderer().settings();
+    s.alpha = desc.alpha;
+    s.beta = desc.beta;
+    s.noise.rate = desc.vg;
+    s.noise.profile = desc.profile;
+    s.noise.spike_width = desc.spike_width;
+    s.background = desc.background;
+    s.surface_color = desc.surface_color;
+    s.color_map = desc.color_map;
+    s.inject = desc.inject;
+    s.advect_view = desc.advect_view;
+    if (desc.color_range && !desc.color_range->percentile)
+      s.color_range = {desc.color_range->lo, desc.color_range->hi};
+    if (desc.beta_range && !desc.beta_range->percentile)
+      s.beta_range = {desc.beta_range->lo, desc.beta_range->hi};
+    if ((desc.noise_space == NoiseSpace::Object) != s.object_noise) {
+      s.object_noise = desc.noise_space == NoiseSpace::Object;
+      // s pixels at the distance of the mesh centre, as prepare_scene does.
+      const Camera c = camera_.camera();
+      s.object_cell = s.noise.scale * 2.0f * c.distance_world() *
+                      std::tan(glm::radians(c.params().fov_deg) * 0.5f) /
+                      static_cast<float>(scene().height);
+    }
+    s.validate();
+    renderer().update_settings(s);
+    scene().settings = s;
+    desc_ = desc;
+  }
 
-  // The render options as given, then every live change, then the camera and
-  // the frame count: `ibfvs render SCENE.toml` gives this frame.
+  // The typed scene in force, with the camera, size and frame count of now:
+  // `ibfvs render SAVED.toml` gives this frame.
   void save_scene(const std::string& file) {
-    std::vector<std::string> args;
-    for (std::size_t i = 0; i < args_.size(); ++i) {
-      // Edited elements replace the field and element options given.
-      const std::string name = args_[i].substr(0, args_[i].find('='));
-      if (elements_edited_ && (name == "--element" || name == "--field")) {
-        if (args_[i].find('=') == std::string::npos) ++i;
-        continue;
-      }
-      args.push_back(args_[i]);
-    }
-    if (elements_edited_) {
-      const glm::vec3 u = scene_.field_spec.value;
-      args.insert(args.end(), {"--field", "elements:" + numbers({u.x, u.y, u.z})});
-      for (const FlowElement& e : scene_.field_spec.elements)
-        args.insert(args.end(),
-                    {"--element", numbers({e.a.x, e.a.y, e.a.z, e.b.x, e.b.y, e.b.z, e.rotational,
-                                           e.radial, e.tangential, e.core})});
-    }
-    for (const auto& [name, value] : overrides_) {
-      args.push_back("--" + name);
-      args.push_back(value);
-    }
+    Scene desc = desc_;
     const CameraParams& p = camera_.params();
     const float diagonal = std::max(camera_.bounds().diagonal(), 1e-6f);
-    char camera[128];
-    std::snprintf(camera, sizeof camera, "%.6g,%.6g,%.6g", p.azimuth_deg, p.elevation_deg,
-                  p.distance > 0.0f ? camera_.camera().distance_world() / diagonal : 0.0f);
-    args.insert(args.end(),
-                {"--camera", camera, "--look-at", numbers({p.target.x, p.target.y, p.target.z}),
-                 "--frames", std::to_string(renderer_->frame())});
-    args.insert(args.end(),
-                {"--size", std::to_string(scene_.width) + "x" + std::to_string(scene_.height)});
+    desc.camera.azimuth_deg = p.azimuth_deg;
+    desc.camera.elevation_deg = p.elevation_deg;
+    desc.camera.distance = p.distance > 0.0f ? camera_.camera().distance_world() / diagonal : 0.0f;
+    desc.camera.target = p.target;
+    desc.frames = std::max(renderer().frame(), 1);
+    desc.width = scene().width;
+    desc.height = scene().height;
+    if (desc.lock_at == Scene::kLockAuto) desc.lock_at = scene().lock_at;
+    desc.style.reset();
     std::ofstream out(file);
-    out << scene_toml(args);
+    out << scene_toml(desc);
     if (!out) throw InputError(file + ": cannot write the scene");
-    std::printf("ibfvs: saved %s (frame %d)\n", file.c_str(), renderer_->frame());
+    std::printf("ibfvs: saved %s (frame %d)\n", file.c_str(), renderer().frame());
   }
 
   void run_script() {
@@ -554,9 +535,9 @@ class Viewer {
       drag_by(script_drag_.per_frame, false);
       if (--script_drag_.frames_left == 0) end_drag();
     }
-    while (next_action_ < script_.size() && script_[next_action_].frame <= renderer_->frame()) {
+    while (next_action_ < script_.size() && script_[next_action_].frame <= renderer().frame()) {
       const ScriptAction& a = script_[next_action_++];
-      const auto number = [&](std::size_t i) { return parse_numbers(a.args[i], a.verb)[0]; };
+      const auto number = [&](std::size_t i) { return parse_numbers(a.args[i])[0]; };
       if (a.verb == "drag") {
         begin_drag();
         script_drag_.frames_left = static_cast<int>(number(2));
@@ -565,15 +546,15 @@ class Viewer {
       } else if (a.verb == "zoom") {
         zoom(number(0));
       } else if (a.verb == "pan") {
-        camera_.pan({number(0), number(1)}, scene_.height);
+        camera_.pan({number(0), number(1)}, scene().height);
       } else if (a.verb == "set") {
         set(a.args[0], a.args[1]);
       } else if (a.verb == "mode") {
-        drag_mode_ = parse_drag_mode(a.args[0]);
+        drag_mode_ = parse_enum<DragMode>(a.args[0]);
       } else if (a.verb == "lock") {
-        renderer_->lock();
+        renderer().lock();
       } else if (a.verb == "unlock") {
-        renderer_->unlock();
+        renderer().unlock();
       } else if (a.verb == "screenshot") {
         screenshot(a.args[0]);
       } else if (a.verb == "style") {
@@ -581,14 +562,14 @@ class Viewer {
       } else if (a.verb == "load") {
         load(a.args[0]);
       } else if (a.verb == "element") {
-        std::vector<FlowElement> kept = scene_.field_spec.elements;
+        std::vector<FlowElement> kept = scene().field_spec.elements;
         kept.push_back(FlowElement::parse(a.args[0]));
-        if (scene_.field_spec.kind != FieldKind::Elements)
-          scene_.field_spec = FieldSpec::parse("elements");
-        scene_.field_spec.elements = kept;
+        if (scene().field_spec.kind != FieldKind::Elements)
+          scene().field_spec = FieldSpec::parse("elements");
+        scene().field_spec.elements = kept;
         elements_changed();
       } else if (a.verb == "snapshot") {
-        const std::vector<float> n = parse_numbers(a.args[0], "snapshot", 2, "W,H");
+        const std::vector<float> n = parse_numbers(a.args[0], 2, "W,H");
         const glm::vec2 size(n[0], n[1]);
         if (!(size.x >= 1 && size.y >= 1 && size.x <= 16384 && size.y <= 16384))
           throw InputError("snapshot: the size must be within 1..16384 pixels");
@@ -600,7 +581,7 @@ class Viewer {
       } else if (a.verb == "help") {
         show_help_ = !show_help_;
       } else if (a.verb == "texture") {
-        write_png16(renderer_->read_texture().select_channels(0, 3), a.args[0]);
+        write_png16(renderer().read_texture().select_channels(0, 3), a.args[0]);
       } else if (a.verb == "save") {
         save_scene(a.args[0]);
       } else if (a.verb == "quit") {
@@ -628,64 +609,51 @@ class Viewer {
   }
 
   void draw_panel() {
-    ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowBgAlpha(0.75f);
-    ImGui::Begin("ibfvs", &show_panel_, ImGuiWindowFlags_AlwaysAutoResize);
-    ImGui::Text("%.1f fps, frame %d, %zu triangles", fps_, renderer_->frame(),
-                scene_.mesh->triangle_count());
-    RenderSettings s = renderer_->settings();
+    // A narrow panel at the left edge, collapsed sections: at the default
+    // 512x512 window it covers the left third at most, and the mesh (centred)
+    // stays visible.
+    const ImVec2 display = ImGui::GetIO().DisplaySize;
+    ImGui::SetNextWindowPos(ImVec2(4, 4), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(std::min(260.0f, 0.34f * display.x), 0),
+                             ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSizeConstraints(ImVec2(120, 0), ImVec2(display.x * 0.5f, display.y - 8));
+    ImGui::SetNextWindowBgAlpha(0.6f);
+    ImGui::Begin("ibfvs", &show_panel_);
+    ImGui::PushItemWidth(-90);
+    ImGui::Text("%.1f fps, frame %d, %zu triangles", fps_, renderer().frame(),
+                scene().mesh->triangle_count());
+    Scene d = desc_;
     bool changed = false;
-    changed |= ImGui::SliderFloat("alpha", &s.alpha, 0.0f, 1.0f);
-    changed |= ImGui::SliderFloat("beta", &s.beta, 0.0f, 1.0f);
-    changed |= ImGui::SliderFloat("v_g", &s.noise.rate, 0.0f, 0.2f);
-    int profile = static_cast<int>(s.noise.profile);
-    const char* profiles[] = {"square", "sawtooth", "sine", "spike"};
-    if (ImGui::Combo("profile", &profile, profiles, 4)) {
-      s.noise.profile = parse_noise_profile(profiles[profile]);
-      changed = true;
-    }
-    changed |= ImGui::ColorEdit3("background", &s.background.x);
-    changed |= ImGui::ColorEdit3("surface", &s.surface_color.x);
-    if (changed) {
-      char colour[96];
-      overrides_["alpha"] = std::to_string(s.alpha);
-      overrides_["beta"] = std::to_string(s.beta);
-      overrides_["vg"] = std::to_string(s.noise.rate);
-      overrides_["profile"] = profiles[static_cast<int>(s.noise.profile)];
-      std::snprintf(colour, sizeof colour, "%g,%g,%g", s.background.r, s.background.g,
-                    s.background.b);
-      overrides_["background"] = colour;
-      std::snprintf(colour, sizeof colour, "%g,%g,%g", s.surface_color.r, s.surface_color.g,
-                    s.surface_color.b);
-      overrides_["surface-color"] = colour;
-      renderer_->update_settings(s);
-      scene_.settings = s;
-    }
-    int mode = static_cast<int>(drag_mode_);
-    const char* modes[] = {"plain (a)", "translate (b)", "freeze (c)", "previous (d)"};
-    if (ImGui::Combo("drag", &mode, modes, 4)) drag_mode_ = static_cast<DragMode>(mode);
-    bool locked = renderer_->locked();
+    changed |= ImGui::SliderFloat("alpha", &d.alpha, 0.0f, 1.0f);
+    changed |= ImGui::SliderFloat("beta", &d.beta, 0.0f, 1.0f);
+    changed |= ImGui::SliderFloat("v_g", &d.vg, 0.0f, 0.2f);
+    changed |= enum_combo("profile", d.profile);
+    changed |= ImGui::ColorEdit3("background", &d.background.x);
+    changed |= ImGui::ColorEdit3("surface", &d.surface_color.x);
+    if (changed) apply_live(d);
+    enum_combo("drag", drag_mode_);
+    bool locked = renderer().locked();
     if (ImGui::Checkbox("lock texture", &locked)) toggle_lock();
     ImGui::SameLine();
     ImGui::Checkbox("pause", &paused_);
     if (ImGui::Button("reset camera")) camera_.reset();
     ImGui::SameLine();
-    if (ImGui::Button("restart texture")) renderer_->reset();
-    if (scene_.step_count > 1) {
+    if (ImGui::Button("restart texture")) renderer().reset();
+    if (scene().step_count > 1) {
       // Unsteady data (months on the globe): play with pause, step, slide.
       float t = static_cast<float>(time_);
       if (ImGui::SliderFloat("time step", &t, 0.0f,
-                             static_cast<float>(scene_.step_count) - 0.01f)) {
+                             static_cast<float>(scene().step_count) - 0.01f)) {
         time_ = t;
-        player_->seek(time_, *renderer_);
+        session_->seek(time_);
       }
-      if (ImGui::Button("<")) time_ = std::floor(time_) - 1.0 + scene_.step_count;
+      if (ImGui::Button("<")) time_ = std::floor(time_) - 1.0 + scene().step_count;
       ImGui::SameLine();
       if (ImGui::Button(">")) time_ = std::floor(time_) + 1.0;
       ImGui::SameLine();
-      ImGui::Text("step %d of %zu", static_cast<int>(time_) % static_cast<int>(scene_.step_count),
-                  scene_.step_count);
-      player_->seek(time_, *renderer_);
+      ImGui::Text("step %d of %zu", static_cast<int>(time_) % static_cast<int>(scene().step_count),
+                  scene().step_count);
+      session_->seek(time_);
     }
     if (ImGui::CollapsingHeader("More parameters")) draw_more_parameters();
     if (ImGui::CollapsingHeader("Styles and files")) draw_styles_and_files();
@@ -716,74 +684,79 @@ class Viewer {
     }
     ImGui::SameLine();
     if (ImGui::Button("help (h)")) show_help_ = !show_help_;
+    ImGui::PopItemWidth();
     ImGui::End();
+  }
+
+  // A combo box over an enum's name table; true when the choice changed.
+  template <class E>
+  static bool enum_combo(const char* label, E& value) {
+    const std::vector<EnumName<E>> entries = enum_entries<E>();
+    int index = enum_index(value);
+    const std::string preview(index >= 0 ? entries[static_cast<std::size_t>(index)].name : "?");
+    bool changed = false;
+    if (ImGui::BeginCombo(label, preview.c_str())) {
+      for (std::size_t i = 0; i < entries.size(); ++i) {
+        const std::string name(entries[i].name);
+        if (ImGui::Selectable(name.c_str(), static_cast<int>(i) == index)) {
+          changed = entries[i].value != value;
+          value = entries[i].value;
+        }
+        if (ImGui::IsItemHovered())
+          ImGui::SetTooltip("%s", std::string(entries[i].description).c_str());
+      }
+      ImGui::EndCombo();
+    }
+    return changed;
   }
 
   // s, step, noise space, tangent mode, colour map and ranges.
   void draw_more_parameters() {
-    RenderSettings s = renderer_->settings();
-    float scale = s.noise.scale;
-    if (ImGui::SliderFloat("s (noise scale)", &scale, 1.0f, 16.0f) && scale != s.noise.scale) {
-      scene_.settings.noise.scale = scale;
-      overrides_["scale"] = std::to_string(scale);
-      make_renderer();  // a new grid: the texture starts again
+    Scene d = desc_;
+    if (ImGui::SliderFloat("s (noise scale)", &d.scale, 1.0f, 16.0f) && d.scale != desc_.scale) {
+      // A new grid: the texture starts again.
+      desc_.scale = d.scale;
+      scene().settings = renderer().settings();
+      scene().settings.noise.scale = d.scale;
+      session_->rebuild();
       return;
     }
-    float step = step_px_;
-    if (ImGui::SliderFloat("step (px/frame)", &step, 0.25f, 8.0f) && step > 0.0f)
-      set("step", std::to_string(step));
-    int space = s.object_noise ? 1 : 0;
-    const char* spaces[] = {"image (paper)", "object (3.6)"};
-    if (ImGui::Combo("noise space", &space, spaces, 2)) {
-      s.object_noise = space == 1;
-      // s pixels at the distance of the mesh centre, as render does.
-      const Camera c = camera_.camera();
-      s.object_cell = s.noise.scale * 2.0f * c.distance_world() *
-                      std::tan(glm::radians(c.params().fov_deg) * 0.5f) /
-                      static_cast<float>(scene_.height);
-      overrides_["noise-space"] = space == 1 ? "object" : "image";
-      renderer_->update_settings(s);
-      scene_.settings = s;
-    }
-    int tangent = render_.tangent == "3d" ? 1 : 0;
-    const char* tangents[] = {"project", "3d"};
-    if (ImGui::Combo("tangent", &tangent, tangents, 2)) {
-      render_.tangent = tangents[tangent];
-      overrides_["tangent"] = render_.tangent;
+    if (ImGui::SliderFloat("step (px/frame)", &d.step, 0.25f, 8.0f) && d.step > 0.0f)
+      set("step", format_number(d.step));
+    if (enum_combo("noise space", d.noise_space)) apply_live(d);
+    if (enum_combo("tangent", d.tangent)) {
       try {
-        scene_.field =
-            evaluate_field(*scene_.mesh, scene_.field_spec, parse_tangent_mode(render_.tangent));
-        renderer_->set_field(scene_.field);
+        session_->set_field(evaluate_field(*scene().mesh, scene().field_spec, d.tangent));
+        desc_.tangent = d.tangent;
       } catch (const std::exception& e) {
         message_ = std::string("error: ") + e.what();
       }
     }
+    RenderSettings s = renderer().settings();
     if (s.use_color) {
-      int map = static_cast<int>(s.color_map);
-      const char* maps[] = {"viridis", "coolwarm", "grey", "bronze"};
-      bool changed = ImGui::Combo("colour map", &map, maps, 4);
-      changed |= ImGui::DragFloat2("colour range", &s.color_range.x, 0.01f);
-      if (changed) {
-        s.color_map = parse_color_map(maps[map]);
-        overrides_["color-map"] = maps[map];
-        overrides_["color-range"] = numbers({s.color_range.x, s.color_range.y});
-        renderer_->update_settings(s);
-        scene_.settings = s;
+      bool changed = enum_combo("colour map", d.color_map);
+      if (ImGui::DragFloat2("colour range", &s.color_range.x, 0.01f) &&
+          s.color_range.y > s.color_range.x) {
+        d.color_range = ScalarRange{false, s.color_range.x, s.color_range.y};
+        changed = true;
       }
+      if (changed) apply_live(d);
     }
-    if (s.use_beta && ImGui::DragFloat2("beta range", &s.beta_range.x, 0.01f)) {
-      overrides_["beta-range"] = numbers({s.beta_range.x, s.beta_range.y});
-      renderer_->update_settings(s);
-      scene_.settings = s;
+    if (s.use_beta && ImGui::DragFloat2("beta range", &s.beta_range.x, 0.01f) &&
+        s.beta_range.y > s.beta_range.x) {
+      d.beta_range = ScalarRange{false, s.beta_range.x, s.beta_range.y};
+      apply_live(d);
     }
   }
 
   void draw_styles_and_files() {
-    for (const char* name : {"flow", "particles", "principal", "bronze", "eroded", "topology"}) {
-      if (ImGui::Button(name)) apply_style(name);
-      ImGui::SameLine();
+    int n = 0;
+    for (const EnumName<Style>& style : enum_entries<Style>()) {
+      const std::string name(style.name);
+      if (n++ % 3 != 0) ImGui::SameLine();
+      if (ImGui::Button(name.c_str())) apply_style(name);
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", std::string(style.description).c_str());
     }
-    ImGui::NewLine();
     char path[512];
     std::snprintf(path, sizeof path, "%s", load_path_.c_str());
     if (ImGui::InputText("mesh or scene", path, sizeof path)) load_path_ = path;
@@ -792,7 +765,7 @@ class Viewer {
 
   // Add, select, move (ctrl + drag on the surface) and shape flow elements.
   void draw_elements() {
-    std::vector<FlowElement>& elements = scene_.field_spec.elements;
+    std::vector<FlowElement>& elements = scene().field_spec.elements;
     bool changed = false;
     for (std::size_t i = 0; i < elements.size(); ++i) {
       char label[32];
@@ -842,44 +815,36 @@ class Viewer {
 }  // namespace
 
 void add_view_options(CLI::App& cmd, ViewOptions& o) {
-  add_render_options(cmd, o.render);
+  add_scene_options(cmd, o.scene);
   cmd.add_option("--drag", o.drag,
-                 "What the texture does while you drag (paper 3.7): plain (fixed on the screen), "
-                 "translate (F_t and G move with the pointer), freeze (locked until release), "
-                 "previous (advected with the last frame's view: stays on the surface)")
+                 "What the texture does while you drag (paper 3.7): " + enum_name_list<DragMode>() +
+                     "; plain: fixed on the screen, translate: F_t and G move with the pointer, "
+                     "freeze: locked until release, previous: advected with the last frame's "
+                     "view, stays on the surface")
       ->capture_default_str();
   cmd.add_flag("--vsync", o.vsync, "Wait for the display's refresh (default: as fast as it goes)");
   cmd.add_flag("--no-panel", o.no_panel, "Start with the parameter panel hidden (p shows it)");
   cmd.add_option("--script", o.script,
-                 "FILE of timed actions (FRAME VERB ARGS per line: drag, zoom, pan, set, mode, "
-                 "lock, unlock, screenshot, window, texture, save, style, load, element, record, "
-                 "snapshot, help, quit), for tests and demos");
-}
-
-std::vector<std::string> render_arguments_of(const std::vector<std::string>& arguments) {
-  std::vector<std::string> out;
-  for (std::size_t i = 0; i < arguments.size(); ++i) {
-    const std::string& a = arguments[i];
-    const std::string name = a.substr(0, a.find('='));
-    if (name == "--vsync" || name == "--no-panel") continue;
-    if (name == "--drag" || name == "--script") {
-      if (a.find('=') == std::string::npos) ++i;  // and its value
-      continue;
-    }
-    out.push_back(a);
-  }
-  return out;
+                 "FILE of timed actions (FRAME VERB ARGS per line; verbs: " + script_verb_names() +
+                     "), for tests and demos");
 }
 
 int run_view(const ViewOptions& o) {
-  parse_drag_mode(o.drag);
+  try {
+    parse_enum<DragMode>(o.drag);
+  } catch (const InputError& e) {
+    throw InputError(std::string("--drag: ") + e.what());
+  }
   if (!o.script.empty()) read_script(o.script);  // errors before any window
+  Scene desc = scene_from_command_line(o.scene);
   if (!gl::display_available())
     throw InputError(
         "no display: DISPLAY and WAYLAND_DISPLAY are unset, so ibfvs view cannot open a "
         "window; use ibfvs render for pictures and videos without one");
-  PreparedScene scene = prepare_scene(o.render);
-  Viewer viewer(o, std::move(scene));
+  PreparedScene prepared = prepare_scene(desc);
+  for (const std::string& w : prepared.warnings)
+    std::fprintf(stderr, "ibfvs: warning: %s\n", w.c_str());
+  Viewer viewer(o, std::move(desc), std::move(prepared));
   return viewer.run();
 }
 

@@ -14,12 +14,11 @@ class App;
 namespace ibfvs::app {
 
 struct ViewOptions {
-  RenderOptions render;                ///< mesh, field, texture, colour, camera: as for render
-  std::string drag = "previous";       ///< what the texture does while dragging (DragMode)
-  bool vsync = false;                  ///< wait for the display's refresh
-  bool no_panel = false;               ///< hide the ImGui panel (and the help) at the start
-  std::string script;                  ///< timed actions (viewer_state.h), for tests and demos
-  std::vector<std::string> arguments;  ///< the render options as given, for saving a scene
+  SceneOptions scene;             ///< mesh, field, texture, colour, camera: as for render
+  std::string drag = "previous";  ///< what the texture does while dragging (DragMode)
+  bool vsync = false;             ///< wait for the display's refresh
+  bool no_panel = false;          ///< hide the ImGui panel (and the help) at the start
+  std::string script;             ///< timed actions (viewer_state.h), for tests and demos
 };
 
 /// Registers the view subcommand's options: every render option plus its own.
@@ -28,8 +27,5 @@ void add_view_options(CLI::App& command, ViewOptions& options);
 /// Opens the window and runs until it is closed (or the script quits).
 /// Returns the exit status. Without a display it throws InputError saying so.
 int run_view(const ViewOptions& options);
-
-/// The view-only options in `arguments` removed, leaving render options.
-std::vector<std::string> render_arguments_of(const std::vector<std::string>& arguments);
 
 }  // namespace ibfvs::app

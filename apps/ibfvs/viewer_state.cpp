@@ -10,31 +10,10 @@
 #include <glm/trigonometric.hpp>
 
 #include "ibfvs/core/error.h"
-#include "ibfvs/core/vector_field.h"
+#include "ibfvs/core/scene.h"
+#include "ibfvs/core/text.h"
 
 namespace ibfvs::app {
-
-DragMode parse_drag_mode(const std::string& text) {
-  if (text == "plain") return DragMode::Plain;
-  if (text == "translate") return DragMode::Translate;
-  if (text == "freeze") return DragMode::Freeze;
-  if (text == "previous") return DragMode::Previous;
-  throw InputError("--drag: expected plain, translate, freeze or previous, got '" + text + "'");
-}
-
-std::string to_string(DragMode mode) {
-  switch (mode) {
-    case DragMode::Plain:
-      return "plain";
-    case DragMode::Translate:
-      return "translate";
-    case DragMode::Freeze:
-      return "freeze";
-    case DragMode::Previous:
-      return "previous";
-  }
-  return "?";
-}
 
 ViewerCamera::ViewerCamera(const Bounds& bounds, const CameraParams& start, float aspect)
     : bounds_(bounds), start_(start), params_(start), aspect_(aspect) {
@@ -75,15 +54,45 @@ void ViewerCamera::reset() {
   params_ = start_;
 }
 
+const std::vector<ScriptVerb>& script_verbs() {
+  static const std::vector<ScriptVerb> verbs = {
+      {"drag", 3, "DX DY FRAMES: a mouse drag spread over FRAMES frames, through the drag mode"},
+      {"zoom", 1, "STEPS: mouse-wheel steps"},
+      {"pan", 2, "DX DY: pan by pixels"},
+      {"set", 2, "KEY VALUE: any scene key (alpha, step, color_map, mesh, ...)"},
+      {"mode", 1, "the drag mode: " + enum_name_list<DragMode>()},
+      {"lock", 0, "lock the texture (3.7)"},
+      {"unlock", 0, "resume the animation"},
+      {"screenshot", 1, "FILE.png: the image"},
+      {"window", 1, "FILE.png: the window with the panel"},
+      {"texture", 1, "FILE.png: F_t, 16 bits"},
+      {"save", 1, "SCENE.toml: the current state as a scene"},
+      {"style", 1, "a style: " + enum_name_list<Style>()},
+      {"load", 1, "MESH or SCENE.toml"},
+      {"element", 1, "AX,AY,AZ,BX,BY,BZ,ROT,RAD,TAN[,CORE]: add a flow element"},
+      {"record", 0, "start or stop recording an MP4"},
+      {"snapshot", 2, "W,H FILE.png: the current state rendered offscreen at that size"},
+      {"help", 0, "show or hide the help"},
+      {"quit", 0, "close the window"},
+  };
+  return verbs;
+}
+
+const ScriptVerb* find_script_verb(std::string_view name) {
+  for (const ScriptVerb& v : script_verbs())
+    if (v.name == name) return &v;
+  return nullptr;
+}
+
+std::string script_verb_names() {
+  std::string out;
+  for (const ScriptVerb& v : script_verbs()) out += (out.empty() ? "" : ", ") + v.name;
+  return out;
+}
+
 std::vector<ScriptAction> read_script(const std::filesystem::path& path) {
   std::ifstream in(path);
   if (!in) throw InputError(path.string() + ": cannot open the script");
-  // Verb -> number of arguments.
-  static const std::map<std::string, int> arity = {
-      {"drag", 3},    {"zoom", 1},   {"pan", 2},        {"set", 2},     {"mode", 1},
-      {"lock", 0},    {"unlock", 0}, {"screenshot", 1}, {"texture", 1}, {"save", 1},
-      {"quit", 0},    {"window", 1}, {"help", 0},       {"style", 1},   {"load", 1},
-      {"element", 1}, {"record", 0}, {"snapshot", 2}};
   std::vector<ScriptAction> actions;
   int line_number = 0;
   for (std::string line; std::getline(in, line);) {
@@ -95,35 +104,37 @@ std::vector<ScriptAction> read_script(const std::filesystem::path& path) {
     if (!(words >> frame_text)) continue;
     ScriptAction a;
     try {
-      a.frame = parse_int(frame_text, where + ": the frame", 0, 100000000);
+      a.frame = static_cast<int>(parse_integer(frame_text, 0, 100000000));
     } catch (const InputError& e) {
-      throw InputError(e.what());
+      throw InputError(where + ": the frame " + e.what());
     }
     if (!(words >> a.verb)) throw InputError(where + ": a frame needs an action");
-    const auto it = arity.find(a.verb);
-    if (it == arity.end())
-      throw InputError(where + ": unknown action '" + a.verb +
-                       "' (drag, zoom, pan, set, mode, lock, unlock, screenshot, window, texture, "
-                       "save, style, load, element, record, snapshot, help, quit)");
+    const ScriptVerb* verb = find_script_verb(a.verb);
+    if (!verb)
+      throw InputError(where + ": unknown action '" + a.verb + "' (" + script_verb_names() + ")");
     for (std::string w; words >> w;) a.args.push_back(w);
-    if (static_cast<int>(a.args.size()) != it->second)
-      throw InputError(where + ": '" + a.verb + "' takes " + std::to_string(it->second) +
+    if (a.args.size() != verb->arguments)
+      throw InputError(where + ": '" + a.verb + "' takes " + std::to_string(verb->arguments) +
                        " argument(s), got " + std::to_string(a.args.size()));
     if (!actions.empty() && a.frame < actions.back().frame)
       throw InputError(where + ": frames must not decrease");
-    if (a.verb == "drag") {
-      parse_numbers(a.args[0] + "," + a.args[1], where + ": drag");
-      parse_int(a.args[2], where + ": drag frames", 1, 100000);
-    } else if (a.verb == "zoom") {
-      parse_numbers(a.args[0], where + ": zoom", 1);
-    } else if (a.verb == "pan") {
-      parse_numbers(a.args[0] + "," + a.args[1], where + ": pan", 2);
-    } else if (a.verb == "mode") {
-      try {
-        parse_drag_mode(a.args[0]);
-      } catch (const InputError& e) {
-        throw InputError(where + ": " + e.what());
+    try {
+      if (a.verb == "drag") {
+        parse_numbers(a.args[0] + "," + a.args[1], 2);
+        parse_integer(a.args[2], 1, 100000);
+      } else if (a.verb == "zoom") {
+        parse_numbers(a.args[0], 1);
+      } else if (a.verb == "pan") {
+        parse_numbers(a.args[0] + "," + a.args[1], 2);
+      } else if (a.verb == "mode") {
+        parse_enum<DragMode>(a.args[0]);
+      } else if (a.verb == "style") {
+        parse_enum<Style>(a.args[0]);
+      } else if (a.verb == "set" && !find_scene_key(a.args[0])) {
+        throw InputError("unknown setting '" + a.args[0] + "'");
       }
+    } catch (const InputError& e) {
+      throw InputError(where + ": " + a.verb + ": " + e.what());
     }
     actions.push_back(std::move(a));
   }

@@ -5,12 +5,14 @@
 
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <glm/vec2.hpp>
 
 #include "ibfvs/core/camera.h"
 #include "ibfvs/core/mesh.h"
+#include "ibfvs/core/names.h"
 
 namespace ibfvs::app {
 
@@ -21,8 +23,19 @@ enum class DragMode {
   Freeze,     ///< (c) lock the texture during the drag, resume on release
   Previous,   ///< (d) ours: advect with the previous frame's transform (the default)
 };
-DragMode parse_drag_mode(const std::string& text);  ///< plain|translate|freeze|previous
-std::string to_string(DragMode mode);
+}  // namespace ibfvs::app
+
+template <>
+struct ibfvs::EnumNames<ibfvs::app::DragMode> {
+  static constexpr EnumName<app::DragMode> table[] = {
+      {app::DragMode::Plain, "plain", "the texture stays fixed on the screen (a)"},
+      {app::DragMode::Translate, "translate", "F_t and G move with the pointer (b)"},
+      {app::DragMode::Freeze, "freeze", "locked until release (c)"},
+      {app::DragMode::Previous, "previous", "advected with the last frame's view (d, ours)"},
+  };
+};
+
+namespace ibfvs::app {
 
 /// Orbit camera driven by the mouse: rotate, zoom, pan, reset.
 class ViewerCamera {
@@ -59,16 +72,18 @@ struct ScriptAction {
   std::vector<std::string> args;
 };
 
+/// A verb of the viewer's scripts: the one list that reading, help and docs use.
+struct ScriptVerb {
+  std::string name;
+  std::size_t arguments;
+  std::string help;
+};
+const std::vector<ScriptVerb>& script_verbs();
+const ScriptVerb* find_script_verb(std::string_view name);  ///< nullptr when unknown
+std::string script_verb_names();                            ///< "drag, zoom, ..."
+
 /// Reads a script: one action per line, `FRAME VERB ARGS...`, '#' comments,
-/// frames not decreasing. Verbs and their arguments:
-///   drag DX DY FRAMES    a mouse drag of DX, DY pixels spread over FRAMES frames
-///                        (button down, move, release), through the drag mode
-///   zoom STEPS | pan DX DY | set NAME VALUE | mode plain|translate|freeze|previous
-///   lock | unlock | screenshot FILE.png (the image) | window FILE.png (with the panel)
-///   texture FILE.png (F_t, 16 bits) | save SCENE.toml | style NAME | load MESH|SCENE
-///   element AX,AY,AZ,BX,BY,BZ,ROT,RAD,TAN[,CORE] (adds one) | record (toggles MP4)
-///   snapshot W,H FILE.png (the current state rendered offscreen at that size)
-///   help | quit
+/// frames not decreasing; verbs and their arguments as script_verbs() lists.
 /// Throws InputError naming the file and line.
 std::vector<ScriptAction> read_script(const std::filesystem::path& path);
 

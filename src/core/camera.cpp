@@ -13,9 +13,9 @@ namespace ibfvs {
 Camera::Camera(const Bounds& bounds, const CameraParams& params, float aspect)
     : bounds_(bounds), params_(params), aspect_(aspect) {
   if (!(params.fov_deg > 0.0f && params.fov_deg < 180.0f))
-    throw InputError("--fov: the field of view must be between 0 and 180 degrees");
+    throw SettingError("fov", "the field of view must be between 0 and 180 degrees");
   if (!(params.distance >= 0.0f) || !std::isfinite(params.distance))
-    throw InputError("--camera: the distance must be a positive number of diagonals");
+    throw SettingError("camera", "the distance must be a positive number of diagonals");
   if (!(aspect > 0.0f)) throw InputError("camera: the aspect ratio must be positive");
 }
 
@@ -31,22 +31,42 @@ float Camera::distance_world() const {
   return 1.03f * radius / std::sin(std::min(half_v, half_h));
 }
 
+namespace {
+
+// The rotation that takes +Y to `up` (the identity for +Y), so that azimuth
+// and elevation keep their meaning about any vertical.
+glm::mat3 up_frame(const glm::vec3& up) {
+  const float len = glm::length(up);
+  const glm::vec3 u = len > 0.0f ? up / len : glm::vec3(0, 1, 0);
+  const float c = u.y;
+  if (c > 0.999999f) return glm::mat3(1.0f);
+  if (c < -0.999999f)
+    return glm::mat3(glm::vec3(1, 0, 0), glm::vec3(0, -1, 0), glm::vec3(0, 0, -1));
+  const glm::vec3 axis = glm::normalize(glm::cross(glm::vec3(0, 1, 0), u));
+  return glm::mat3(glm::rotate(glm::mat4(1.0f), std::acos(c), axis));
+}
+
+}  // namespace
+
 glm::vec3 Camera::eye() const {
   const float az = glm::radians(params_.azimuth_deg);
   const float el = glm::radians(params_.elevation_deg);
   const glm::vec3 dir(std::sin(az) * std::cos(el), std::sin(el), std::cos(az) * std::cos(el));
-  return bounds_.centre() + params_.target + distance_world() * dir;
+  return bounds_.centre() + params_.target + distance_world() * (up_frame(params_.up) * dir);
 }
 
 glm::mat4 Camera::view() const {
   const glm::vec3 eye_pos = eye();
   const glm::vec3 look_at = bounds_.centre() + params_.target;
   const glm::vec3 forward = glm::normalize(look_at - eye_pos);
-  // Looking straight up or down: +Y is degenerate, take the azimuth direction.
-  glm::vec3 up(0, 1, 0);
+  // Looking straight up or down: the vertical is degenerate, take the
+  // azimuth direction.
+  const glm::mat3 frame = up_frame(params_.up);
+  glm::vec3 up = frame[1];
   if (std::abs(glm::dot(forward, up)) > 0.999f) {
     const float az = glm::radians(params_.azimuth_deg);
-    up = glm::vec3(-std::sin(az), 0, -std::cos(az)) * (forward.y < 0 ? 1.0f : -1.0f);
+    up = frame * glm::vec3(-std::sin(az), 0, -std::cos(az)) *
+         (glm::dot(forward, frame[1]) < 0 ? 1.0f : -1.0f);
   }
   return glm::lookAt(eye_pos, look_at, up);
 }

@@ -16,29 +16,6 @@ namespace {
 
 }  // namespace
 
-ColorMap parse_color_map(std::string_view text) {
-  if (text == "viridis") return ColorMap::Viridis;
-  if (text == "coolwarm" || text == "diverging") return ColorMap::CoolWarm;
-  if (text == "grey" || text == "gray") return ColorMap::Grey;
-  if (text == "bronze") return ColorMap::Bronze;
-  throw InputError("--color-map: expected viridis, coolwarm (diverging), grey or bronze, got '" +
-                   std::string(text) + "'");
-}
-
-std::string to_string(ColorMap map) {
-  switch (map) {
-    case ColorMap::Viridis:
-      return "viridis";
-    case ColorMap::CoolWarm:
-      return "coolwarm";
-    case ColorMap::Grey:
-      return "grey";
-    case ColorMap::Bronze:
-      return "bronze";
-  }
-  return "?";
-}
-
 glm::vec3 color_map(ColorMap map, float t) {
   t = std::isfinite(t) ? std::clamp(t, 0.0f, 1.0f) : 0.0f;
   if (map == ColorMap::Grey) return glm::vec3(t);

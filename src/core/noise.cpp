@@ -8,29 +8,6 @@
 
 namespace ibfvs {
 
-NoiseProfile parse_noise_profile(std::string_view text) {
-  if (text == "square") return NoiseProfile::Square;
-  if (text == "sawtooth") return NoiseProfile::Sawtooth;
-  if (text == "sine") return NoiseProfile::Sine;
-  if (text == "spike") return NoiseProfile::Spike;
-  throw InputError("--profile: expected square, sawtooth, sine or spike, got '" +
-                   std::string(text) + "'");
-}
-
-std::string to_string(NoiseProfile profile) {
-  switch (profile) {
-    case NoiseProfile::Square:
-      return "square";
-    case NoiseProfile::Sawtooth:
-      return "sawtooth";
-    case NoiseProfile::Sine:
-      return "sine";
-    case NoiseProfile::Spike:
-      return "spike";
-  }
-  return "square";
-}
-
 float noise_profile_value(NoiseProfile profile, float t, float spike_width) {
   const float f = t - std::floor(t);
   switch (profile) {
@@ -58,7 +35,7 @@ float hash_uniform(std::uint32_t seed, std::uint64_t index) {
 
 NoiseGrid::NoiseGrid(int width, int height, const NoiseParams& params) : params_(params) {
   if (!(params.scale > 0.0f) || !std::isfinite(params.scale))
-    throw InputError("--scale: the noise scale must be a positive number of pixels");
+    throw SettingError("scale", "the noise scale must be a positive number of pixels");
   if (width <= 0 || height <= 0) throw InputError("noise grid: image size must be positive");
   columns_ = static_cast<int>(std::floor(static_cast<float>(width) / params.scale)) + 2;
   rows_ = static_cast<int>(std::floor(static_cast<float>(height) / params.scale)) + 2;

@@ -8,16 +8,15 @@
 #include <glm/geometric.hpp>
 
 #include "ibfvs/core/error.h"
-#include "ibfvs/core/vector_field.h"
+#include "ibfvs/core/text.h"
 
 namespace ibfvs {
 
-FlowElement FlowElement::parse(std::string_view text, std::string_view what) {
+FlowElement FlowElement::parse(std::string_view text) {
   const std::string s(text);
-  const std::vector<float> v = parse_numbers(text, what);
+  const std::vector<float> v = parse_numbers(text);
   if (v.size() != 9 && v.size() != 10)
-    throw InputError(std::string(what) +
-                     ": expected AX,AY,AZ,BX,BY,BZ,ROTATIONAL,RADIAL,TANGENTIAL[,CORE], got '" + s +
+    throw InputError("expected AX,AY,AZ,BX,BY,BZ,ROTATIONAL,RADIAL,TANGENTIAL[,CORE], got '" + s +
                      "'");
   FlowElement e;
   e.a = {v[0], v[1], v[2]};
@@ -29,9 +28,16 @@ FlowElement FlowElement::parse(std::string_view text, std::string_view what) {
   try {
     e.validate();
   } catch (const InputError& err) {
-    throw InputError(std::string(what) + ": " + err.what() + " in '" + s + "'");
+    throw InputError(std::string(err.what()) + " in '" + s + "'");
   }
   return e;
+}
+
+std::string FlowElement::to_string() const {
+  std::string out = format_vec3(a) + "," + format_vec3(b) + "," + format_number(rotational) + "," +
+                    format_number(radial) + "," + format_number(tangential);
+  if (core != 0.0f) out += "," + format_number(core);
+  return out;
 }
 
 void FlowElement::validate() const {

@@ -69,7 +69,7 @@ std::vector<glm::vec3> subdivided_points(const TriMesh& mesh, const std::vector<
 }  // namespace
 
 TriMesh loop_subdivide(const TriMesh& mesh, int levels) {
-  if (levels < 0 || levels > 8) throw InputError("--subdivide: levels must be between 0 and 8");
+  if (levels < 0 || levels > 8) throw SettingError("subdivide", "levels must be between 0 and 8");
   if (levels == 0) return mesh;
   TriMesh out;
   out.positions = subdivided_points(mesh, mesh.positions, levels, &out.triangles);
@@ -91,7 +91,7 @@ TriMesh loop_subdivide(const TriMesh& mesh, int levels) {
       for (std::size_t i = 0; i < result.size(); ++i) values[i] = result[i][static_cast<int>(c)];
     }
   }
-  if (out.triangles.empty()) throw InputError("--subdivide: OpenMesh could not build the mesh");
+  if (out.triangles.empty()) throw SettingError("subdivide", "OpenMesh could not build the mesh");
   compute_vertex_normals(out);
   return out;
 }

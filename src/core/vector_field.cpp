@@ -8,83 +8,26 @@
 #include "ibfvs/core/curvature.h"
 #include "ibfvs/core/error.h"
 #include "ibfvs/core/lonlat_grid.h"
+#include "ibfvs/core/text.h"
 
 namespace ibfvs {
-
-std::vector<std::string> split_colons(std::string_view text) {
-  const std::string s(text);
-  std::vector<std::string> parts;
-  std::size_t start = 0;
-  for (std::size_t colon; (colon = s.find(':', start)) != std::string::npos; start = colon + 1)
-    parts.push_back(s.substr(start, colon - start));
-  parts.push_back(s.substr(start));
-  return parts;
-}
-
-std::vector<float> parse_numbers(std::string_view text, std::string_view what, std::size_t count,
-                                 std::string_view expected) {
-  const std::string s(text);
-  std::vector<float> out;
-  for (std::size_t start = 0;;) {
-    const std::size_t comma = std::min(s.find(',', start), s.size());
-    const std::string part = s.substr(start, comma - start);
-    std::size_t used = 0;
-    float v = 0.0f;
-    try {
-      v = std::stof(part, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used == 0 || used != part.size() || !std::isfinite(v))
-      throw InputError(std::string(what) + ": '" + part + "' is not a finite number in '" + s +
-                       "'");
-    out.push_back(v);
-    if (comma == s.size()) break;
-    start = comma + 1;
-  }
-  if (count > 0 && out.size() != count)
-    throw InputError(
-        std::string(what) + ": expected " +
-        (expected.empty() ? std::to_string(count) + " numbers" : std::string(expected)) +
-        ", got '" + s + "'");
-  return out;
-}
-
-int parse_int(std::string_view text, std::string_view what, int lo, int hi) {
-  const std::string s(text);
-  std::size_t used = 0;
-  int v = 0;
-  try {
-    v = std::stoi(s, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != s.size() || v < lo || v > hi)
-    throw InputError(std::string(what) + ": '" + s + "' must be a whole number in " +
-                     std::to_string(lo) + ".." + std::to_string(hi));
-  return v;
-}
-
-glm::vec3 parse_vec3(std::string_view text, std::string_view what) {
-  const std::vector<float> v = parse_numbers(text, what, 3, "three numbers X,Y,Z");
-  return {v[0], v[1], v[2]};
-}
 
 namespace {
 
 // The optional parts of principal: and gradient: (a vector and one flag word).
 void parse_options(const std::string& s, const std::vector<std::string>& parts, const char* flag,
-                   bool& flag_value, glm::vec3& vector) {
+                   bool& flag_value, glm::vec3& vector, bool& vector_given) {
   for (std::size_t i = 2; i < parts.size(); ++i) {
     if (parts[i] == flag) {
       flag_value = true;
     } else if (parts[i].find(',') != std::string::npos) {
-      vector = parse_vec3(parts[i], "--field");
+      vector = parse_vec3(parts[i]);
+      vector_given = true;
       if (glm::length(vector) == 0.0f)
-        throw InputError("--field: the vector in '" + s + "' must not be zero");
+        throw InputError("the vector in '" + s + "' must not be zero");
     } else {
-      throw InputError("--field: unknown part '" + parts[i] + "' in '" + s +
-                       "' (expected X,Y,Z or " + flag + ")");
+      throw InputError("unknown part '" + parts[i] + "' in '" + s + "' (expected X,Y,Z or " + flag +
+                       ")");
     }
   }
 }
@@ -101,14 +44,14 @@ FieldSpec FieldSpec::parse(std::string_view text) {
   const std::vector<std::string> parts = split_colons(s);
   if (parts[0] == "elements") {
     spec.kind = FieldKind::Elements;
-    spec.value = parts.size() > 1 ? parse_vec3(parts[1], "--field elements") : glm::vec3(0.0f);
-    if (parts.size() > 2) throw InputError("--field: expected elements[:X,Y,Z], got '" + s + "'");
+    spec.value = parts.size() > 1 ? parse_vec3(parts[1]) : glm::vec3(0.0f);
+    if (parts.size() > 2) throw InputError("expected elements[:X,Y,Z], got '" + s + "'");
     return spec;
   }
   if (parts[0] == "principal") {
     spec.kind = FieldKind::Principal;
     if (parts.size() < 2 || (parts[1] != "min" && parts[1] != "max"))
-      throw InputError("--field: expected principal:min or principal:max, got '" + s + "'");
+      throw InputError("expected principal:min or principal:max, got '" + s + "'");
     spec.use_max = parts[1] == "max";
     spec.value = glm::vec3(0, 1, 0);
     std::vector<std::string> rest;
@@ -117,41 +60,68 @@ FieldSpec FieldSpec::parse(std::string_view text) {
         rest.push_back(part);
         continue;
       }
-      spec.smooth = parse_int(std::string_view(part).substr(7), "--field " + s, 0, 1000);
+      try {
+        spec.smooth = static_cast<int>(parse_integer(std::string_view(part).substr(7), 0, 1000));
+      } catch (const InputError& e) {
+        throw InputError("smooth in '" + s + "': " + e.what());
+      }
     }
-    parse_options(s, rest, "rot90", spec.rotate90, spec.value);
+    parse_options(s, rest, "rot90", spec.rotate90, spec.value, spec.vector_given);
     return spec;
   }
   if (parts[0] == "wind") {
     spec.kind = FieldKind::Wind;
     if (parts.size() != 2 && parts.size() != 4)
-      throw InputError("--field: expected wind:FILE or wind:FILE:UVAR:VVAR, got '" + s + "'");
+      throw InputError("expected wind:FILE or wind:FILE:UVAR:VVAR, got '" + s + "'");
     spec.path = parts[1];
     if (parts.size() == 4) spec.east = parts[2], spec.north = parts[3];
     if (spec.path.empty() || spec.east.empty() || spec.north.empty())
-      throw InputError("--field: empty file or variable name in '" + s + "'");
+      throw InputError("empty file or variable name in '" + s + "'");
     return spec;
   }
   if (parts[0] == "gradient") {
     spec.kind = FieldKind::Gradient;
     if (parts.size() < 2 || (parts[1] != "down" && parts[1] != "up"))
-      throw InputError("--field: expected gradient:down or gradient:up, got '" + s + "'");
+      throw InputError("expected gradient:down or gradient:up, got '" + s + "'");
     spec.downhill = parts[1] == "down";
     spec.value = glm::vec3(0, 1, 0);
-    parse_options(s, parts, "normalize", spec.normalize, spec.value);
+    parse_options(s, parts, "normalize", spec.normalize, spec.value, spec.vector_given);
     return spec;
   }
   const std::size_t colon = s.find(':');
   const std::string name = s.substr(0, colon);
   if (colon == std::string::npos || (name != "uniform" && name != "rotate"))
-    throw InputError("--field: unknown field '" + s +
+    throw InputError("unknown field '" + s +
                      "' (expected file, uniform:X,Y,Z, rotate:X,Y,Z, elements, "
                      "principal:min|max, gradient:down|up or wind:FILE)");
   spec.kind = name == "uniform" ? FieldKind::Uniform : FieldKind::Rotate;
-  spec.value = parse_vec3(std::string_view(s).substr(colon + 1), "--field " + name);
+  spec.value = parse_vec3(std::string_view(s).substr(colon + 1));
   if (spec.kind == FieldKind::Rotate && glm::length(spec.value) == 0.0f)
-    throw InputError("--field rotate: the axis must not be zero");
+    throw InputError("the rotation axis must not be zero");
   return spec;
+}
+
+std::string FieldSpec::text() const {
+  const std::string v = format_vec3(value);
+  switch (kind) {
+    case FieldKind::File:
+      return "file";
+    case FieldKind::Uniform:
+      return "uniform:" + v;
+    case FieldKind::Rotate:
+      return "rotate:" + v;
+    case FieldKind::Elements:
+      return value == glm::vec3(0.0f) ? "elements" : "elements:" + v;
+    case FieldKind::Principal:
+      return std::string("principal:") + (use_max ? "max" : "min") + (vector_given ? ":" + v : "") +
+             (rotate90 ? ":rot90" : "") + (smooth > 0 ? ":smooth=" + std::to_string(smooth) : "");
+    case FieldKind::Gradient:
+      return std::string("gradient:") + (downhill ? "down" : "up") + (vector_given ? ":" + v : "") +
+             (normalize ? ":normalize" : "");
+    case FieldKind::Wind:
+      return "wind:" + path + (east != "UWND" || north != "VWND" ? ":" + east + ":" + north : "");
+  }
+  return "file";
 }
 
 std::string FieldSpec::to_string() const {
@@ -191,12 +161,6 @@ std::string FieldSpec::to_string() const {
   return out.str();
 }
 
-TangentMode parse_tangent_mode(std::string_view text) {
-  if (text == "project") return TangentMode::Project;
-  if (text == "3d") return TangentMode::Full3D;
-  throw InputError("--tangent: expected project or 3d, got '" + std::string(text) + "'");
-}
-
 std::vector<glm::vec3> evaluate_field(const TriMesh& mesh, const FieldSpec& spec, TangentMode mode,
                                       FieldReport* report_out) {
   FieldReport report;
@@ -206,7 +170,7 @@ std::vector<glm::vec3> evaluate_field(const TriMesh& mesh, const FieldSpec& spec
     case FieldKind::File:
       if (mesh.vectors.size() != n)
         throw InputError(
-            "--field file: the mesh has no per-vertex vectors (PLY vertex properties vx vy vz)");
+            "file: the mesh has no per-vertex vectors (PLY vertex properties vx vy vz)");
       v = mesh.vectors;
       break;
     case FieldKind::Uniform:

@@ -331,4 +331,32 @@ void finish() {
   glFinish();
 }
 
+SavedState::SavedState() {
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw_framebuffer_);
+  glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &read_framebuffer_);
+  glGetIntegerv(GL_CURRENT_PROGRAM, &program_);
+  glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &vertex_array_);
+  glGetIntegerv(GL_TEXTURE_BINDING_2D, &texture_);
+  glGetIntegerv(GL_VIEWPORT, viewport_);
+  depth_test_ = glIsEnabled(GL_DEPTH_TEST) == GL_TRUE;
+  cull_face_ = glIsEnabled(GL_CULL_FACE) == GL_TRUE;
+}
+
+SavedState::~SavedState() {
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(draw_framebuffer_));
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(read_framebuffer_));
+  glUseProgram(static_cast<GLuint>(program_));
+  glBindVertexArray(static_cast<GLuint>(vertex_array_));
+  glBindTexture(GL_TEXTURE_2D, static_cast<GLuint>(texture_));
+  glViewport(viewport_[0], viewport_[1], viewport_[2], viewport_[3]);
+  if (depth_test_)
+    glEnable(GL_DEPTH_TEST);
+  else
+    glDisable(GL_DEPTH_TEST);
+  if (cull_face_)
+    glEnable(GL_CULL_FACE);
+  else
+    glDisable(GL_CULL_FACE);
+}
+
 }  // namespace ibfvs::gl

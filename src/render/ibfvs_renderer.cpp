@@ -17,48 +17,11 @@ std::span<const std::byte> bytes_of(std::span<const T> v) {
   return std::as_bytes(v);
 }
 
-bool in_unit(float v) {
-  return v >= 0.0f && v <= 1.0f;
-}
-
 bool grey(const glm::vec3& c) {
   return c.r == c.g && c.g == c.b;
 }
 
 }  // namespace
-
-AdvectView parse_advect_view(std::string_view text) {
-  if (text == "current") return AdvectView::Current;
-  if (text == "previous") return AdvectView::Previous;
-  throw InputError("--advect-view: expected current or previous, got '" + std::string(text) + "'");
-}
-
-void RenderSettings::validate() const {
-  if (width < 1 || height < 1 || width > 16384 || height > 16384)
-    throw InputError("--size: width and height must be between 1 and 16384 pixels");
-  if (!in_unit(alpha)) throw InputError("--alpha: must be between 0 and 1");
-  if (!in_unit(beta)) throw InputError("--beta: must be between 0 and 1");
-  if (!(image_step >= 0.0f) || !std::isfinite(image_step))
-    throw InputError("--step: the image-space step must be a finite number of pixels >= 0");
-  if (object_noise && (!(object_cell > 0.0f) || !std::isfinite(object_cell)))
-    throw InputError("--noise-space object: the cell size must be positive");
-  if (!(noise.scale >= 1.0f) || !std::isfinite(noise.scale))
-    throw InputError("--scale: the noise scale must be at least 1 pixel");
-  if (!std::isfinite(noise.rate)) throw InputError("--vg: must be a finite number");
-  if (!(noise.spike_width > 0.0f && noise.spike_width <= 1.0f))
-    throw InputError("--spike-width: must be in (0, 1]");
-  for (int c = 0; c < 3; ++c) {
-    if (!in_unit(background[c])) throw InputError("--background: components must be in [0, 1]");
-    if (!in_unit(surface_color[c]))
-      throw InputError("--surface-color: components must be in [0, 1]");
-  }
-  const auto check_range = [](glm::vec2 r, const char* option) {
-    if (!std::isfinite(r.x) || !std::isfinite(r.y) || !(r.y > r.x))
-      throw InputError(std::string(option) + ": needs two finite numbers LO,HI with LO < HI");
-  };
-  check_range(color_range, "--color-range");
-  check_range(beta_range, "--beta-range");
-}
 
 IbfvsRenderer::IbfvsRenderer(const RenderSettings& settings) : settings_(settings) {
   settings_.validate();

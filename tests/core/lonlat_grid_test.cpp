@@ -121,7 +121,7 @@ TEST(LonLatGrid, BadFilesAndNamesAreClearErrors) {
                        read_lonlat_grid(dir / "odd.nc", "V"));
       },
       "mismatched dimensions");
-  expect([&] { FieldSpec::parse("wind:"); }, "--field");
+  expect([&] { FieldSpec::parse("wind:"); }, "empty file or variable name in 'wind:'");
 }
 
 TEST(LonLatGrid, GlobeIsAUnitGeodesicSphere) {

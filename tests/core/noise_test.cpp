@@ -33,9 +33,9 @@ TEST(Noise, Profiles) {
   EXPECT_NEAR(noise_profile_value(NoiseProfile::Sine, -0.25f, 0.1f), 0.0f, 1e-6f);
   EXPECT_EQ(noise_profile_value(NoiseProfile::Spike, 3.05f, 0.1f), 1.0f);
   EXPECT_EQ(noise_profile_value(NoiseProfile::Spike, 3.15f, 0.1f), 0.0f);
-  EXPECT_EQ(parse_noise_profile("spike"), NoiseProfile::Spike);
-  EXPECT_EQ(to_string(NoiseProfile::Sawtooth), "sawtooth");
-  EXPECT_THROW(parse_noise_profile("triangle"), InputError);
+  EXPECT_EQ(parse_enum<NoiseProfile>("spike"), NoiseProfile::Spike);
+  EXPECT_EQ(enum_name(NoiseProfile::Sawtooth), "sawtooth");
+  EXPECT_THROW(parse_enum<NoiseProfile>("triangle"), InputError);
 }
 
 TEST(Noise, GridIsBilinearBetweenGridPoints) {

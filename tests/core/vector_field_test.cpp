@@ -19,8 +19,8 @@ TEST(VectorField, ParsesSpecs) {
   for (const char* bad : {"", "swirl:1,2,3", "uniform", "uniform:1,2", "uniform:1,2,3,4",
                           "uniform:a,b,c", "uniform:1,nan,0", "rotate:0,0,0", "uniform:1,,2"})
     EXPECT_THROW(FieldSpec::parse(bad), InputError) << bad;
-  EXPECT_EQ(parse_tangent_mode("3d"), TangentMode::Full3D);
-  EXPECT_THROW(parse_tangent_mode("flat"), InputError);
+  EXPECT_EQ(parse_enum<TangentMode>("3d"), TangentMode::Full3D);
+  EXPECT_THROW(parse_enum<TangentMode>("flat"), InputError);
 }
 
 TEST(VectorField, RotationAboutTheBoxCentre) {

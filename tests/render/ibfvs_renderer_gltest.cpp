@@ -188,7 +188,7 @@ TEST_F(RendererGLTest, EqualsTheCpuReferenceOnAFlatSquare) {
         test::difference(r.read_texture().select_channels(0, 1).pixels, ref.texture().pixels);
     const double max_diff = d.max, mean_diff = d.mean;
     std::printf("GPU vs CPU reference (%s, 50 frames): max %.4f mean %.5f\n",
-                to_string(profile).c_str(), max_diff, mean_diff);
+                std::string(enum_name(profile)).c_str(), max_diff, mean_diff);
     // Sawtooth jumps from 1 to 0: a grid value at the jump may fall on either
     // side in GPU and CPU arithmetic, so its few pixels may differ more.
     EXPECT_LT(mean_diff, 0.003);

@@ -13,12 +13,14 @@ namespace ibfvs {
 /// Camera settings. The default looks at the centre of the bounding box from
 /// +Z with +Y up and fits the whole mesh in the image.
 struct CameraParams {
-  float azimuth_deg = 0.0f;    ///< rotation about +Y; 90 looks from +X
-  float elevation_deg = 0.0f;  ///< above the XZ plane; 90 looks down from +Y
-  float distance = 0.0f;       ///< in bounding-box diagonals; 0 fits the mesh
-  bool orthographic = false;   ///< orthographic instead of perspective
-  float fov_deg = 30.0f;       ///< vertical field of view (perspective)
-  glm::vec3 target{0.0f};      ///< look-at point minus the box centre (panning), world units
+  float azimuth_deg = 0.0f;        ///< rotation about +Y; 90 looks from +X
+  float elevation_deg = 0.0f;      ///< above the XZ plane; 90 looks down from +Y
+  float distance = 0.0f;           ///< in bounding-box diagonals; 0 fits the mesh
+  bool orthographic = false;       ///< orthographic instead of perspective
+  float fov_deg = 30.0f;           ///< vertical field of view (perspective)
+  glm::vec3 target{0.0f};          ///< look-at point minus the box centre (panning), world units
+  glm::vec3 up{0.0f, 1.0f, 0.0f};  ///< the vertical: azimuth turns about it, elevation rises
+                                   ///< along it (+Y by default; +Z for a terrain in z = h(x, y))
 };
 
 /// Position and projection for one frame.

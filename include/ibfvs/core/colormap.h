@@ -11,6 +11,7 @@
 #include <glm/vec3.hpp>
 
 #include "ibfvs/core/mesh.h"
+#include "ibfvs/core/names.h"
 
 namespace ibfvs {
 
@@ -22,9 +23,17 @@ enum class ColorMap {
   Bronze,    ///< dark patina to polished bronze (our palette, for the bronze style)
 };
 
-/// viridis, coolwarm (or diverging), grey, bronze; throws InputError.
-ColorMap parse_color_map(std::string_view text);
-std::string to_string(ColorMap map);
+template <>
+struct EnumNames<ColorMap> {
+  static constexpr EnumName<ColorMap> table[] = {
+      {ColorMap::Viridis, "viridis", "sequential, perceptually uniform"},
+      {ColorMap::CoolWarm, "coolwarm", "diverging, blue - grey - red"},
+      {ColorMap::CoolWarm, "diverging", ""},
+      {ColorMap::Grey, "grey", "black to white"},
+      {ColorMap::Grey, "gray", ""},
+      {ColorMap::Bronze, "bronze", "dark patina to polished bronze"},
+  };
+};
 
 /// The colour at t in [0, 1] (clamped), interpolated linearly in the table.
 glm::vec3 color_map(ColorMap map, float t);

@@ -4,6 +4,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace ibfvs {
 
@@ -12,6 +13,20 @@ namespace ibfvs {
 class InputError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
+};
+
+/// A setting with an impossible value. `key()` names the setting as scenes
+/// do ("color_range"); front ends show it their own way (the command line as
+/// its flag, --color-range), so the library never names a flag.
+class SettingError : public InputError {
+ public:
+  SettingError(std::string key, const std::string& problem)
+      : InputError(key + ": " + problem), key_(std::move(key)), problem_(problem) {}
+  [[nodiscard]] const std::string& key() const { return key_; }
+  [[nodiscard]] const std::string& problem() const { return problem_; }
+
+ private:
+  std::string key_, problem_;
 };
 
 /// A failure of the graphics system (no context, a shader that does not

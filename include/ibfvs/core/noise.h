@@ -9,6 +9,8 @@
 #include <string_view>
 #include <vector>
 
+#include "ibfvs/core/names.h"
+
 namespace ibfvs {
 
 /// The periodic time profile w(t), period 1.
@@ -19,8 +21,15 @@ enum class NoiseProfile {
   Spike,     ///< 1 during the first `spike_width` of the period, else 0 (particles)
 };
 
-NoiseProfile parse_noise_profile(std::string_view text);  ///< throws InputError
-std::string to_string(NoiseProfile profile);
+template <>
+struct EnumNames<NoiseProfile> {
+  static constexpr EnumName<NoiseProfile> table[] = {
+      {NoiseProfile::Square, "square", "on for half the period"},
+      {NoiseProfile::Sawtooth, "sawtooth", "rising through the period"},
+      {NoiseProfile::Sine, "sine", "smooth"},
+      {NoiseProfile::Spike, "spike", "on for spike_width of the period: particles"},
+  };
+};
 
 /// Parameters of G.
 struct NoiseParams {

@@ -13,6 +13,7 @@
 // the core radius c: inside it the rotational and radial speeds grow linearly
 // to their value at c, and the tangential speed stays at its value at c.
 
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -28,9 +29,11 @@ struct FlowElement {
   float tangential = 0.0f;        ///< along a -> b
   float core = 0.0f;              ///< core radius; 0: 5% of the segment length
 
-  /// Parses "AX,AY,AZ,BX,BY,BZ,ROT,RAD,TAN[,CORE]". Throws InputError naming
-  /// `what` for a wrong count, a non-finite number or a zero-length segment.
-  static FlowElement parse(std::string_view text, std::string_view what = "--element");
+  /// Parses "AX,AY,AZ,BX,BY,BZ,ROT,RAD,TAN[,CORE]". Throws InputError for a
+  /// wrong count, a non-finite number or a zero-length segment.
+  static FlowElement parse(std::string_view text);
+  /// The text parse() reads back.
+  [[nodiscard]] std::string to_string() const;
   /// Throws InputError for a zero-length segment or a negative core.
   void validate() const;
   /// The velocity this element induces at r.

@@ -35,7 +35,7 @@ TriMesh make_height_field(float (*f)(float, float), float half, int n);
 /// h(s, t) = sum_ij B_i(s) B_j(t) P_ij on a control grid of heights P
 /// (row-major, `columns` x `rows`, at least 4 x 4), meshed with `resolution` x
 /// `resolution` cells. The height is along +Y, the camera's up (the default
-/// camera sees it edge-on, `--camera 0,90,0` from above), over x in [-1, 1]
+/// camera sees it edge-on, camera 0,90,0 from above), over x in [-1, 1]
 /// (s) and z in [1, -1] (t), and is kept as the scalar "height". Throws InputError for a grid
 /// smaller than 4 x 4 or a size mismatch.
 TriMesh make_bspline_height_field(const std::vector<float>& controls, int columns, int rows,

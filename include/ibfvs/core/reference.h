@@ -8,6 +8,7 @@
 #include <glm/vec2.hpp>
 
 #include "ibfvs/core/image.h"
+#include "ibfvs/core/names.h"
 #include "ibfvs/core/noise.h"
 
 namespace ibfvs {
@@ -16,6 +17,14 @@ namespace ibfvs {
 enum class InjectMode {
   Blend,  ///< F_t = (1 - alpha) F_t(p_{k-1}) + alpha G (equation 10)
   Add,    ///< F_t = min(1, (1 - alpha) F_t(p_{k-1}) + G): bright particles (section 4.2)
+};
+
+template <>
+struct EnumNames<InjectMode> {
+  static constexpr EnumName<InjectMode> table[] = {
+      {InjectMode::Blend, "blend", "eq. 10"},
+      {InjectMode::Add, "add", "added ink: bright particles with the spike profile (4.2)"},
+  };
 };
 
 /// For every pixel: whether the surface covers it, and where (in pixels) its

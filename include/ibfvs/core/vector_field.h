@@ -12,6 +12,7 @@
 #include <glm/vec3.hpp>
 
 #include "ibfvs/core/mesh.h"
+#include "ibfvs/core/names.h"
 #include "ibfvs/core/potential_flow.h"
 
 namespace ibfvs {
@@ -27,7 +28,7 @@ enum class FieldKind {
   Wind,       ///< eastward and northward components from a netCDF lon/lat grid
 };
 
-/// A parsed `--field` value:
+/// A parsed field spec (the scene key field):
 ///   file                                   PLY vertex properties vx vy vz
 ///   uniform:X,Y,Z                          a constant vector
 ///   rotate:X,Y,Z                           rotation about the axis through the box centre
@@ -52,15 +53,20 @@ struct FieldSpec {
   int smooth = 0;                     ///< principal: rounds of line-field smoothing
   bool downhill = true;               ///< gradient: descent (true) or ascent
   bool normalize = false;             ///< gradient: unit vectors where the slope is not zero
-  std::vector<FlowElement> elements;  ///< elements: the flow elements (from --element)
+  std::vector<FlowElement> elements;  ///< elements: the flow elements (the scene key element)
   std::string path;                   ///< wind: the netCDF file
   std::string east = "UWND";          ///< wind: eastward component variable
   std::string north = "VWND";         ///< wind: northward component variable
   std::size_t time = 0;               ///< wind: time index, from 0
+  bool vector_given = false;          ///< principal, gradient: the text gave X,Y,Z (else +Y, or the
+                                      ///< scene's height axis)
 
   /// Parses the textual form; throws InputError naming the text.
   static FieldSpec parse(std::string_view text);
+  /// For messages: the text form plus the elements' count and the time index.
   [[nodiscard]] std::string to_string() const;
+  /// The text form that parse() reads back (elements and time are kept apart).
+  [[nodiscard]] std::string text() const;
 };
 
 /// How vectors with a normal component are used (section 3.8).
@@ -69,8 +75,13 @@ enum class TangentMode {
   Full3D,   ///< as given: "a wire mesh with little hairs aligned with the 3D flow"
 };
 
-/// Parses "project" or "3d"; throws InputError.
-TangentMode parse_tangent_mode(std::string_view text);
+template <>
+struct EnumNames<TangentMode> {
+  static constexpr EnumName<TangentMode> table[] = {
+      {TangentMode::Project, "project", "v - (v.n) n, the flow on the surface"},
+      {TangentMode::Full3D, "3d", "the vectors as given (3.8)"},
+  };
+};
 
 /// What evaluate_field repaired.
 struct FieldReport {
@@ -84,20 +95,5 @@ struct FieldReport {
 /// when every vector is non-finite.
 std::vector<glm::vec3> evaluate_field(const TriMesh& mesh, const FieldSpec& spec, TangentMode mode,
                                       FieldReport* report = nullptr);
-
-/// Parses "X,Y,Z" (three finite numbers). `what` names the option in errors.
-glm::vec3 parse_vec3(std::string_view text, std::string_view what);
-
-/// Splits "a:b:c" at its colons (the form of --field and generated --mesh specs).
-std::vector<std::string> split_colons(std::string_view text);
-
-/// Parses comma-separated finite numbers. Throws InputError naming `what` for
-/// a part that is not a finite number, or when `count` > 0 and the number of
-/// parts differs (`expected` then describes the form, e.g. "X,Y,Z").
-std::vector<float> parse_numbers(std::string_view text, std::string_view what,
-                                 std::size_t count = 0, std::string_view expected = "");
-
-/// Parses a whole number in [lo, hi]. Throws InputError naming `what` otherwise.
-int parse_int(std::string_view text, std::string_view what, int lo, int hi);
 
 }  // namespace ibfvs

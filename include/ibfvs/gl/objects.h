@@ -177,4 +177,22 @@ void draw_triangles(std::size_t index_count, bool index32);
 void draw_attributeless_triangle(const VertexArray& vao);
 void finish();
 
+/// Saves the bindings a host application may rely on (draw and read
+/// framebuffers, viewport, program, vertex array, active texture unit's 2D
+/// texture, depth test, face culling) and restores them when it goes out of
+/// scope: drawing inside somebody else's context (ParaView's) leaves it as
+/// it was.
+class SavedState {
+ public:
+  SavedState();
+  ~SavedState();
+  SavedState(const SavedState&) = delete;
+  SavedState& operator=(const SavedState&) = delete;
+
+ private:
+  int draw_framebuffer_ = 0, read_framebuffer_ = 0, program_ = 0, vertex_array_ = 0;
+  int texture_ = 0, viewport_[4] = {0, 0, 0, 0};
+  bool depth_test_ = false, cull_face_ = false;
+};
+
 }  // namespace ibfvs::gl

@@ -1,12 +1,14 @@
 #pragma once
-// Loading a mesh for a command: the file (warnings printed), or the demo, then
-// Loop subdivision and the one-time preparation for the GPU.
+// Where a scene's mesh comes from: a file, a generated surface named by a spec
+// (landscape, relief, globe, torus, cylinder), or the demo; then Loop
+// subdivision and the one-time vertex order for the GPU.
 
 #include <string>
+#include <vector>
 
 #include "ibfvs/core/mesh.h"
 
-namespace ibfvs::app {
+namespace ibfvs {
 
 struct LoadedMesh {
   TriMesh mesh;
@@ -14,10 +16,11 @@ struct LoadedMesh {
   bool demo = false;                 ///< no path was given
   bool generated_landscape = false;  ///< made by `landscape[:SEED[:CONTROLS[:RESOLUTION]]]`
   std::size_t file_vertices = 0;     ///< vertex count as read, before subdivision
-  std::vector<unsigned> vertex_order;  ///< new index of each vertex after subdivision (GPU order)
+  std::vector<unsigned> vertex_order;  ///< new index of each vertex (GPU order); empty: unchanged
+  std::vector<std::string> warnings;   ///< what the reader repaired, or the demo's fallback
 };
 
-/// Reads `path` (printing the reader's warnings), or with an empty path the
+/// Reads `path` (the reader's warnings in `warnings`), or with an empty path the
 /// demo: the fetched bunny, else the cow, else a procedural torus (saying so).
 /// `landscape[:SEED[:CONTROLS[:RESOLUTION]]]`, when no such file exists, is a
 /// B-spline height field over [-1, 1]^2 on a random CONTROLS x CONTROLS grid
@@ -34,8 +37,9 @@ struct LoadedMesh {
 /// `cylinder[:RADIUS,LENGTH[,COUNT]]` is COUNT open cylinders along X stacked
 /// along Y (default one, radius 0.3, length 3). Both are for the paper's
 /// figures 3 and 4 and carry exact normals.
-/// Then subdivides `subdivide` times and orders the mesh for the GPU's vertex
-/// cache (optimize_for_gpu). Throws InputError naming the file.
-LoadedMesh load_mesh(const std::string& path, int subdivide);
+/// Then subdivides `subdivide` times and, with `gpu_order`, orders the mesh for
+/// the GPU's vertex cache (optimize_for_gpu). Throws InputError naming the
+/// file, or SettingError("mesh", ...) for a malformed spec.
+LoadedMesh load_mesh(const std::string& path, int subdivide, bool gpu_order = true);
 
-}  // namespace ibfvs::app
+}  // namespace ibfvs

@@ -1,4 +1,4 @@
-#include "ibfvs/mesh_loading.h"
+#include "ibfvs/core/mesh_source.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,22 +11,40 @@
 #include <string>
 #include <vector>
 
+#include "ibfvs/core/data_paths.h"
 #include "ibfvs/core/error.h"
 #include "ibfvs/core/gpu_prep.h"
 #include "ibfvs/core/lonlat_grid.h"
 #include "ibfvs/core/mesh_io.h"
 #include "ibfvs/core/procedural.h"
 #include "ibfvs/core/subdivision.h"
-#include "ibfvs/core/vector_field.h"
-#include "ibfvs/data_paths.h"
+#include "ibfvs/core/text.h"
 
-namespace ibfvs::app {
+namespace ibfvs {
 namespace fs = std::filesystem;
 
 namespace {
 
+// Errors about a generated-mesh spec name the setting "mesh" and the spec.
+[[noreturn]] void bad_spec(const std::string& spec, const std::string& problem) {
+  throw SettingError("mesh", spec + ": " + problem);
+}
+
 int parse_int(const std::string& text, const std::string& spec, int lo, int hi) {
-  return ibfvs::parse_int(text, "--mesh " + spec, lo, hi);
+  try {
+    return static_cast<int>(parse_integer(text, lo, hi));
+  } catch (const InputError& e) {
+    bad_spec(spec, e.what());
+  }
+}
+
+std::vector<float> numbers(const std::string& text, const std::string& spec, std::size_t count = 0,
+                           std::string_view form = "") {
+  try {
+    return parse_numbers(text, count, form);
+  } catch (const InputError& e) {
+    bad_spec(spec, e.what());
+  }
 }
 
 // relief:FILE:VAR:LON0,LON1,LAT0,LAT1[:SCALE[:RESOLUTION]]: a height field of
@@ -36,12 +54,11 @@ int parse_int(const std::string& text, const std::string& spec, int lo, int hi) 
 TriMesh make_relief(const std::string& spec) {
   const std::vector<std::string> parts = split_colons(spec);
   if (parts.size() < 4 || parts.size() > 6)
-    throw InputError("--mesh " + spec +
-                     ": expected relief:FILE:VAR:LON0,LON1,LAT0,LAT1[:SCALE[:RESOLUTION]]");
-  const std::vector<float> box = parse_numbers(parts[3], "--mesh " + spec, 4);
+    bad_spec(spec, "expected relief:FILE:VAR:LON0,LON1,LAT0,LAT1[:SCALE[:RESOLUTION]]");
+  const std::vector<float> box = numbers(parts[3], spec, 4);
   const float lon0 = box[0], lon1 = box[1], lat0 = box[2], lat1 = box[3];
   if (!(lon1 > lon0) || !(lat1 > lat0) || lat0 < -90 || lat1 > 90 || lon1 - lon0 > 360)
-    throw InputError("--mesh " + spec + ": the box needs LON0 < LON1 and -90 <= LAT0 < LAT1 <= 90");
+    bad_spec(spec, "the box needs LON0 < LON1 and -90 <= LAT0 < LAT1 <= 90");
   const LonLatGrid grid = read_lonlat_grid(parts[1], parts[2], 0);
   const int res = parts.size() > 5 ? parse_int(parts[5], spec, 1, 4096) : 256;
   const float span = std::max(lon1 - lon0, lat1 - lat0);
@@ -64,7 +81,7 @@ TriMesh make_relief(const std::string& spec) {
       used = 0;
     }
     if (used == 0 || used != parts[4].size() || !std::isfinite(scale))
-      throw InputError("--mesh " + spec + ": the scale '" + parts[4] + "' is not a number");
+      bad_spec(spec, "the scale '" + parts[4] + "' is not a number");
   }
   TriMesh m;
   std::vector<float>& relief = m.scalars[parts[2]];
@@ -89,12 +106,11 @@ TriMesh make_relief(const std::string& spec) {
 TriMesh make_landscape(const std::string& spec) {
   const std::vector<std::string> parts = split_colons(spec);
   if (parts[0] != "landscape" || parts.size() > 4)
-    throw InputError("--mesh " + spec + ": expected landscape[:SEED[:CONTROLS[:RESOLUTION]]]");
+    bad_spec(spec, "expected landscape[:SEED[:CONTROLS[:RESOLUTION]]]");
   // landscape:FILE[:RESOLUTION]: the control heights given, one row per line.
   std::error_code ec;
   if (parts.size() > 1 && fs::is_regular_file(parts[1], ec)) {
-    if (parts.size() > 3)
-      throw InputError("--mesh " + spec + ": expected landscape:FILE[:RESOLUTION]");
+    if (parts.size() > 3) bad_spec(spec, "expected landscape:FILE[:RESOLUTION]");
     std::ifstream in(parts[1]);
     std::vector<float> controls;
     int columns = -1, rows = 0;
@@ -140,13 +156,10 @@ TriMesh make_landscape(const std::string& spec) {
 // radius R and tube radius r (default 1, 0.4), 160 x 64 cells.
 TriMesh make_torus_spec(const std::string& spec) {
   const std::vector<std::string> parts = split_colons(spec);
-  if (parts[0] != "torus" || parts.size() > 2)
-    throw InputError("--mesh " + spec + ": expected torus[:R,r]");
-  const std::vector<float> radii = parts.size() > 1
-                                       ? parse_numbers(parts[1], "--mesh " + spec, 2, "R,r")
-                                       : std::vector<float>{1.0f, 0.4f};
-  if (!(radii[1] > 0) || !(radii[0] > radii[1]))
-    throw InputError("--mesh " + spec + ": the radii need R > r > 0");
+  if (parts[0] != "torus" || parts.size() > 2) bad_spec(spec, "expected torus[:R,r]");
+  const std::vector<float> radii =
+      parts.size() > 1 ? numbers(parts[1], spec, 2, "R,r") : std::vector<float>{1.0f, 0.4f};
+  if (!(radii[1] > 0) || !(radii[0] > radii[1])) bad_spec(spec, "the radii need R > r > 0");
   return make_torus(radii[0], radii[1], 160, 64);
 }
 
@@ -155,17 +168,17 @@ TriMesh make_torus_spec(const std::string& spec) {
 TriMesh make_cylinders_spec(const std::string& spec) {
   const std::vector<std::string> parts = split_colons(spec);
   if (parts[0] != "cylinder" || parts.size() > 2)
-    throw InputError("--mesh " + spec + ": expected cylinder[:RADIUS,LENGTH[,COUNT]]");
+    bad_spec(spec, "expected cylinder[:RADIUS,LENGTH[,COUNT]]");
   std::vector<float> p = {0.3f, 3.0f, 1.0f};
   if (parts.size() > 1) {
-    const std::vector<float> given = parse_numbers(parts[1], "--mesh " + spec);
+    const std::vector<float> given = numbers(parts[1], spec);
     if (given.size() < 2 || given.size() > 3)
-      throw InputError("--mesh " + spec + ": expected cylinder[:RADIUS,LENGTH[,COUNT]]");
+      bad_spec(spec, "expected cylinder[:RADIUS,LENGTH[,COUNT]]");
     std::copy(given.begin(), given.end(), p.begin());
   }
   const float r = p[0], length = p[1];
   if (!(r > 0) || !(length > 0) || p[2] < 1 || p[2] > 16 || p[2] != std::floor(p[2]))
-    throw InputError("--mesh " + spec + ": needs RADIUS > 0, LENGTH > 0 and COUNT in 1..16");
+    bad_spec(spec, "needs RADIUS > 0, LENGTH > 0 and COUNT in 1..16");
   const int count = static_cast<int>(p[2]);
   constexpr int kSegments = 128;
   const int rings = std::clamp(
@@ -190,7 +203,7 @@ TriMesh make_cylinders_spec(const std::string& spec) {
 
 }  // namespace
 
-LoadedMesh load_mesh(const std::string& path, int subdivide) {
+LoadedMesh load_mesh(const std::string& path, int subdivide, bool gpu_order) {
   LoadedMesh out;
   out.demo = path.empty();
   if (out.demo) {
@@ -200,17 +213,15 @@ LoadedMesh load_mesh(const std::string& path, int subdivide) {
       out.mesh = read_mesh(*demo);
       out.name = demo->filename().string();
     } else {
-      std::fprintf(stderr,
-                   "ibfvs: the fetched meshes are missing (%s); using a procedural torus "
-                   "instead. Run scripts/fetch_data.sh for the bunny.\n",
-                   (data_dir() / "meshes").c_str());
+      out.warnings.push_back("the fetched meshes are missing (" + (data_dir() / "meshes").string() +
+                             "); using a procedural torus instead. Run scripts/fetch_data.sh "
+                             "for the bunny.");
       out.mesh = make_torus(1.0f, 0.4f, 160, 64);
       out.name = "procedural torus";
     }
   } else if (path.rfind("globe", 0) == 0 && !fs::exists(path)) {
     const std::size_t colon = path.find(':');
-    if (path.substr(0, colon) != "globe")
-      throw InputError("--mesh " + path + ": expected globe[:LEVEL]");
+    if (path.substr(0, colon) != "globe") bad_spec(path, "expected globe[:LEVEL]");
     const int level =
         colon == std::string::npos ? 6 : parse_int(path.substr(colon + 1), path, 0, 8);
     out.mesh = make_globe(level);
@@ -232,8 +243,7 @@ LoadedMesh load_mesh(const std::string& path, int subdivide) {
   } else {
     MeshReadReport report;
     out.mesh = read_mesh(path, &report);
-    for (const std::string& w : report.warnings)
-      std::fprintf(stderr, "ibfvs: warning: %s\n", w.c_str());
+    out.warnings = report.warnings;
     out.name = path;
   }
   out.file_vertices = out.mesh.vertex_count();
@@ -244,8 +254,8 @@ LoadedMesh load_mesh(const std::string& path, int subdivide) {
       throw InputError(out.name + ": " + e.what());
     }
   }
-  out.vertex_order = optimize_for_gpu(out.mesh);
+  if (gpu_order) out.vertex_order = optimize_for_gpu(out.mesh);
   return out;
 }
 
-}  // namespace ibfvs::app
+}  // namespace ibfvs

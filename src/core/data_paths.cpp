@@ -1,8 +1,8 @@
-#include "ibfvs/data_paths.h"
+#include "ibfvs/core/data_paths.h"
 
 #include <cstdlib>
 
-namespace ibfvs::app {
+namespace ibfvs {
 
 std::filesystem::path data_dir() {
   if (const char* env = std::getenv("IBFVS_DATA_DIR"); env && *env) return env;
@@ -19,4 +19,4 @@ std::optional<std::filesystem::path> find_data_file(const std::filesystem::path&
   return std::nullopt;
 }
 
-}  // namespace ibfvs::app
+}  // namespace ibfvs

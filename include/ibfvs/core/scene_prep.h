@@ -1,0 +1,55 @@
+#pragma once
+// Scene preparation: everything a run needs before a GL context exists, read
+// once. The mesh (read or generated, subdivided, ordered for the GPU), netCDF
+// scalars, normals and curvature when something needs them, displacement, the
+// field (and the steps of an unsteady one), the colour and beta scalars with
+// their ranges, the camera, dt from the step in pixels, the surface image.
+
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "ibfvs/core/camera.h"
+#include "ibfvs/core/image.h"
+#include "ibfvs/core/mesh.h"
+#include "ibfvs/core/render_settings.h"
+#include "ibfvs/core/scene.h"
+#include "ibfvs/core/vector_field.h"
+
+namespace ibfvs {
+
+struct PreparedScene {
+  Scene scene;  ///< as given
+  int width = 512, height = 512;
+  int frames = 150;                 ///< resolved (frames 0: the automatic lock's frame + 60)
+  int lock_at = Scene::kLockNever;  ///< resolved (kLockAuto becomes a frame)
+  RenderSettings settings;
+  std::shared_ptr<const TriMesh> mesh;
+  std::string mesh_name;         ///< what messages call it: the file name, spec or demo
+  bool demo = false;             ///< no mesh given: the built-in demo
+  FieldSpec field_spec;          ///< the field in force (with the elements)
+  std::vector<glm::vec3> field;  ///< per vertex, at the first time step
+  std::size_t step_count = 1;    ///< > 1: an unsteady field with this many steps
+  std::function<std::vector<glm::vec3>(std::size_t)> step_field;  ///< the field at a step
+  std::vector<float> color_scalar, beta_scalar;
+  CameraParams camera;
+  std::optional<CameraParams> lock_camera;
+  float dt = 0.0f;                    ///< world units per frame
+  float max_px = 0.0f;                ///< pixels per frame of the fastest vertex
+  ImageU8 surface_image;              ///< read once; empty: none
+  std::vector<std::string> warnings;  ///< repaired input, slow settings: for the front end to show
+};
+
+/// Checks the scene and prepares it. Throws InputError naming the file, or
+/// SettingError naming the key whose value is wrong.
+PreparedScene prepare_scene(const Scene& scene);
+
+/// The mesh's thinnest bounding-box axis (+X, +Y or +Z): the height axis of a
+/// terrain.
+glm::vec3 thinnest_axis(const TriMesh& mesh);
+
+}  // namespace ibfvs

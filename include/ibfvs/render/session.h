@@ -1,0 +1,77 @@
+#pragma once
+// A session: one prepared scene on the GPU. It owns the renderer, the player
+// of an unsteady field, the camera and the frame count, and steps the
+// animation the way `ibfvs render` does (lock at the scene's frame, then the
+// lock camera; orbit; the time steps). `ibfvs render`, `ibfvs view`, `ibfvs
+// bench`, Python and ParaView all drive one.
+//
+// It needs a current OpenGL 4.5 context for its whole life and never makes
+// one: ibfvs's own (gl::HeadlessContext, the viewer's window) or the host's
+// (ParaView's render window). It leaves the host's framebuffer binding and
+// viewport as it found them after each frame.
+
+#include <memory>
+#include <optional>
+
+#include "ibfvs/core/camera.h"
+#include "ibfvs/core/image.h"
+#include "ibfvs/core/scene_prep.h"
+#include "ibfvs/render/ibfvs_renderer.h"
+
+namespace ibfvs {
+
+class Session {
+ public:
+  /// Uploads the mesh, field, scalars and surface image and initialises F_t
+  /// (the scene's init). Throws GraphicsError without a current context.
+  explicit Session(PreparedScene scene);
+  ~Session();
+  Session(const Session&) = delete;
+  Session& operator=(const Session&) = delete;
+
+  /// The next frame of the scene's own run: at frame lock_at the texture
+  /// locks and the camera becomes the lock camera; after frame 0 the camera
+  /// orbits by the scene's orbit; an unsteady field advances by
+  /// 1/frames_per_step step per frame.
+  void advance();
+  /// One frame seen by `camera` at the current time (the viewer's way:
+  /// it moves the camera and the time itself).
+  void render(const Camera& camera);
+  /// Moves an unsteady field to time t, in steps (looping); nothing for a steady one.
+  void seek(double t);
+
+  /// Frames rendered so far.
+  [[nodiscard]] int frame() const { return frame_; }
+  [[nodiscard]] const PreparedScene& scene() const { return scene_; }
+  [[nodiscard]] PreparedScene& scene() { return scene_; }
+  [[nodiscard]] IbfvsRenderer& renderer() { return *renderer_; }
+  [[nodiscard]] const IbfvsRenderer& renderer() const { return *renderer_; }
+  /// The camera advance() uses (the scene's, orbiting; the lock camera once locked).
+  [[nodiscard]] Camera& camera() { return camera_; }
+  /// World units per frame; the viewer changes it as the camera zooms.
+  [[nodiscard]] float dt() const { return dt_; }
+  void set_dt(float dt) { dt_ = dt; }
+
+  /// Replaces the field (same vertex count), keeping the texture.
+  void set_field(std::vector<glm::vec3> field);
+  /// A new renderer with the scene's current settings (size or noise scale
+  /// changed); the texture starts afresh.
+  void rebuild();
+
+  /// The displayed image F, RGBA, rows bottom-up.
+  [[nodiscard]] ImageU8 read_output() const { return renderer_->read_output(); }
+
+ private:
+  class FieldPlayer;
+  void load();
+
+  PreparedScene scene_;
+  std::unique_ptr<IbfvsRenderer> renderer_;
+  std::unique_ptr<FieldPlayer> player_;
+  Camera camera_;
+  std::optional<Camera> lock_camera_;
+  float dt_ = 0.0f;
+  int frame_ = 0;
+};
+
+}  // namespace ibfvs

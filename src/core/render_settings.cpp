@@ -1,0 +1,44 @@
+#include "ibfvs/core/render_settings.h"
+
+#include <cmath>
+#include <string>
+
+#include "ibfvs/core/error.h"
+
+namespace ibfvs {
+namespace {
+
+bool in_unit(float v) {
+  return v >= 0.0f && v <= 1.0f;
+}
+
+}  // namespace
+
+void RenderSettings::validate() const {
+  if (width < 1 || height < 1 || width > 16384 || height > 16384)
+    throw SettingError("size", "width and height must be between 1 and 16384 pixels");
+  if (!in_unit(alpha)) throw SettingError("alpha", "must be between 0 and 1");
+  if (!in_unit(beta)) throw SettingError("beta", "must be between 0 and 1");
+  if (!(image_step >= 0.0f) || !std::isfinite(image_step))
+    throw SettingError("step", "the image-space step must be a finite number of pixels >= 0");
+  if (object_noise && (!(object_cell > 0.0f) || !std::isfinite(object_cell)))
+    throw SettingError("noise_space", "object: the cell size must be positive");
+  if (!(noise.scale >= 1.0f) || !std::isfinite(noise.scale))
+    throw SettingError("scale", "the noise scale must be at least 1 pixel");
+  if (!std::isfinite(noise.rate)) throw SettingError("vg", "must be a finite number");
+  if (!(noise.spike_width > 0.0f && noise.spike_width <= 1.0f))
+    throw SettingError("spike_width", "must be in (0, 1]");
+  for (int c = 0; c < 3; ++c) {
+    if (!in_unit(background[c])) throw SettingError("background", "components must be in [0, 1]");
+    if (!in_unit(surface_color[c]))
+      throw SettingError("surface_color", "components must be in [0, 1]");
+  }
+  const auto check_range = [](glm::vec2 r, const char* option) {
+    if (!std::isfinite(r.x) || !std::isfinite(r.y) || !(r.y > r.x))
+      throw SettingError(option, "needs two finite numbers LO,HI with LO < HI");
+  };
+  check_range(color_range, "color_range");
+  check_range(beta_range, "beta_range");
+}
+
+}  // namespace ibfvs

@@ -1,0 +1,305 @@
+#include "ibfvs/core/scene_prep.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include <glm/trigonometric.hpp>
+
+#include "ibfvs/core/colormap.h"
+#include "ibfvs/core/curvature.h"
+#include "ibfvs/core/displacement.h"
+#include "ibfvs/core/error.h"
+#include "ibfvs/core/gpu_prep.h"
+#include "ibfvs/core/lonlat_grid.h"
+#include "ibfvs/core/mesh_io.h"
+#include "ibfvs/core/mesh_source.h"
+
+namespace ibfvs {
+namespace fs = std::filesystem;
+
+namespace {
+
+// Runs `f`, turning a plain InputError into a SettingError of `key`.
+template <class F>
+auto for_key(const char* key, F&& f) {
+  try {
+    return f();
+  } catch (const SettingError&) {
+    throw;
+  } catch (const InputError& e) {
+    throw SettingError(key, e.what());
+  }
+}
+
+bool wants_curvature(const std::string& name) {
+  const std::string n = !name.empty() && name[0] == '-' ? name.substr(1) : name;
+  return n == "kmin" || n == "kmax";
+}
+
+// Checks that need no file.
+void check(const Scene& s) {
+  if (s.image_normalize && s.dt > 0.0f)
+    throw SettingError("image_normalize", "moves every point step pixels; it takes no dt");
+  if (!s.elements.empty() && s.field && s.field->kind != FieldKind::Elements)
+    throw SettingError("element",
+                       "needs field elements (or no field), got field " + s.field->text());
+  if (!s.field_steps.empty() && s.subdivide > 0)
+    throw SettingError("field_step", "cannot be combined with subdivide");
+  if (!s.field_steps.empty() && s.field && s.field->kind != FieldKind::File)
+    throw SettingError("field_step",
+                       "needs field file (or no field), got field " + s.field->text());
+  if (s.time.last > s.time.first && (!s.field || s.field->kind != FieldKind::Wind))
+    throw SettingError("time", "a range A:B needs field wind:...");
+  if (s.frames == 0 && s.lock_at != Scene::kLockAuto)
+    throw SettingError("frames", "0 (automatic) needs lock_at auto");
+}
+
+}  // namespace
+
+glm::vec3 thinnest_axis(const TriMesh& mesh) {
+  const Bounds b = mesh_bounds(mesh);
+  const glm::vec3 e = b.max - b.min;
+  const int axis = e.x <= e.y && e.x <= e.z ? 0 : e.y <= e.z ? 1 : 2;
+  glm::vec3 up(0.0f);
+  up[axis] = 1.0f;
+  return up;
+}
+
+PreparedScene prepare_scene(const Scene& s) {
+  check(s);
+  PreparedScene p;
+  p.scene = s;
+  p.width = s.width;
+  p.height = s.height;
+  p.frames = s.frames;
+  p.lock_at = s.lock_at;
+
+  RenderSettings& settings = p.settings;
+  settings.width = s.width;
+  settings.height = s.height;
+  settings.alpha = s.alpha;
+  settings.beta = s.beta;
+  settings.image_step = s.image_normalize ? s.step : 0.0f;
+  settings.noise.scale = s.scale;
+  settings.noise.profile = s.profile;
+  settings.noise.rate = s.vg;
+  settings.noise.seed = s.seed;
+  settings.noise.spike_width = s.spike_width;
+  settings.inject = s.inject;
+  settings.background = s.background;
+  settings.surface_color = s.surface_color;
+  settings.advect_view = s.advect_view;
+  settings.object_noise = s.noise_space == NoiseSpace::Object;
+  settings.color_map = s.color_map;
+  settings.validate();
+
+  std::optional<FieldSpec> field_spec = s.field;
+  if (!field_spec && !s.elements.empty()) field_spec = FieldSpec::parse("elements");
+  if (field_spec) {
+    for (const FlowElement& e : s.elements) field_spec->elements.push_back(e);
+    field_spec->time = s.time.first;
+  }
+
+  // ---- mesh
+  LoadedMesh loaded = for_key("mesh", [&] { return load_mesh(s.mesh, s.subdivide); });
+  for (const std::string& w : loaded.warnings) p.warnings.push_back(w);
+  auto mesh_ptr = std::make_shared<TriMesh>(std::move(loaded.mesh));
+  TriMesh& mesh = *mesh_ptr;
+  p.demo = loaded.demo;
+  p.mesh_name = loaded.demo ? loaded.name : fs::path(s.mesh).filename().string();
+  // Messages about the mesh's data name the file as given.
+  const std::string mesh_label = loaded.demo ? p.mesh_name : s.mesh;
+
+  // ---- the height axis
+  const glm::vec3 up = s.up_auto ? thinnest_axis(mesh) : s.up.value_or(glm::vec3(0, 1, 0));
+  p.camera = s.camera;
+  p.camera.up = up;
+  if (field_spec && field_spec->kind == FieldKind::Gradient && !field_spec->vector_given)
+    field_spec->value = up;
+  std::optional<FieldSpec> default_field = s.default_field;
+  if (default_field && default_field->kind == FieldKind::Gradient && !default_field->vector_given)
+    default_field->value = up;
+  if (s.lock_camera)
+    p.lock_camera = CameraParams{s.lock_camera->x,
+                                 s.lock_camera->y,
+                                 s.lock_camera->z,
+                                 s.camera.orthographic,
+                                 s.camera.fov_deg,
+                                 glm::vec3(0.0f),
+                                 up};
+
+  // ---- scalars sampled from netCDF grids
+  for (const GridScalar& g : s.scalars) {
+    LonLatGrid grid = read_lonlat_grid(g.path, g.variable, 0);
+    if (grid.time_steps > 1) grid = read_lonlat_grid(g.path, g.variable, s.time.first);
+    mesh.scalars[g.name] = lonlat_scalars(mesh, grid);
+  }
+
+  // ---- curvature, once, when the field or a scalar needs it
+  {
+    const bool principal =
+        (field_spec && field_spec->kind == FieldKind::Principal) ||
+        (!field_spec && default_field && default_field->kind == FieldKind::Principal);
+    if ((principal || wants_curvature(s.color_by) || wants_curvature(s.beta_by) ||
+         (s.displace && wants_curvature(s.displace->scalar))) &&
+        !mesh.scalars.count("kmax"))
+      store_curvature(mesh, compute_curvature(mesh), false);
+  }
+
+  // ---- displacement along the normals (the vertical scale of a relief)
+  if (s.displace) {
+    if (!std::isfinite(s.displace->factor))
+      throw SettingError("displace", "the factor must be a finite number");
+    std::vector<float> amount;
+    try {
+      amount = vertex_scalar(mesh, {}, s.displace->scalar);
+    } catch (const InputError& e) {
+      throw SettingError("displace", mesh_label + ": " + e.what());
+    }
+    for (std::size_t i = 0; i < mesh.vertex_count(); ++i)
+      if (std::isfinite(amount[i]))
+        mesh.positions[i] += s.displace->factor * amount[i] * mesh.normals[i];
+    compute_vertex_normals(mesh);
+  }
+
+  // ---- field
+  if (!field_spec) {
+    field_spec = mesh.vectors.size() == mesh.positions.size() ? FieldSpec::parse("file")
+                 : default_field                              ? *default_field
+                 : loaded.generated_landscape ? [&] {
+                     FieldSpec g = FieldSpec::parse("gradient:down");
+                     g.value = up;
+                     return g;
+                   }()
+                                              : FieldSpec::parse("rotate:0,1,0");
+  }
+  const TangentMode tangent = s.tangent;
+  if (!s.field_steps.empty()) {
+    // An unsteady field: its steps, evaluated when the animation reaches them.
+    p.step_count = s.field_steps.size();
+    p.step_field = [files = s.field_steps, expected = loaded.file_vertices,
+                    order = loaded.vertex_order,
+                    mesh_ptr = std::shared_ptr<const TriMesh>(mesh_ptr), tangent](std::size_t k) {
+      const std::string& file = files[k];
+      const TriMesh step = read_mesh(file);
+      if (step.vertex_count() != expected)
+        throw SettingError("field_step", file + ": " + std::to_string(step.vertex_count()) +
+                                             " vertices, the mesh has " + std::to_string(expected));
+      if (step.vectors.empty()) throw SettingError("field_step", file + ": has no vx vy vz");
+      TriMesh on_mesh;
+      on_mesh.positions = mesh_ptr->positions;
+      on_mesh.normals = mesh_ptr->normals;
+      on_mesh.triangles = mesh_ptr->triangles;
+      on_mesh.vectors = order.empty() ? step.vectors : remap_vertex_data(step.vectors, order);
+      return evaluate_field(on_mesh, FieldSpec::parse("file"), tangent);
+    };
+  } else if (s.time.last > s.time.first) {
+    p.step_count = s.time.last - s.time.first + 1;
+    read_lonlat_grid(field_spec->path, field_spec->east, s.time.last);  // the range exists
+    p.step_field = [spec = *field_spec, first = s.time.first,
+                    mesh_ptr = std::shared_ptr<const TriMesh>(mesh_ptr), tangent](std::size_t k) {
+      FieldSpec at = spec;
+      at.time = first + k;
+      return evaluate_field(*mesh_ptr, at, tangent);
+    };
+  }
+  FieldReport field_report;
+  try {
+    p.field =
+        p.step_field ? p.step_field(0) : evaluate_field(mesh, *field_spec, tangent, &field_report);
+  } catch (const SettingError&) {
+    throw;
+  } catch (const InputError& e) {
+    throw SettingError("field", mesh_label + ": " + e.what());
+  }
+  if (field_report.non_finite_zeroed > 0)
+    p.warnings.push_back(mesh_label + ": " + std::to_string(field_report.non_finite_zeroed) +
+                         " vectors were NaN or infinite and are set to zero");
+
+  // ---- camera and dt
+  const Bounds bounds = mesh_bounds(mesh);
+  const float aspect = static_cast<float>(s.width) / static_cast<float>(s.height);
+  const Camera camera(bounds, p.camera, aspect);
+  // Pixels per unit of dt at the fastest vertex: sets dt from step, and says
+  // how far the fastest vertex moves with a given dt.
+  const float speed =
+      max_pixel_speed(mesh.positions, p.field, camera.view_projection(), s.width, s.height);
+  p.dt = s.dt > 0.0f ? s.dt : (speed > 0.0f ? s.step / speed : 0.0f);
+  p.max_px = s.image_normalize && speed > 0.0f ? s.step : speed * p.dt;
+  if (speed == 0.0f)
+    p.warnings.push_back(
+        "the field does not move any vertex in the image (zero after projection?); the texture "
+        "will stand still");
+  char text[200];
+  if (p.max_px > settings.noise.scale) {
+    std::snprintf(text, sizeof text,
+                  "the largest displacement is %.1f pixels per frame, more than the noise scale "
+                  "%.1f: expect broken streaks (lower step or dt)",
+                  p.max_px, settings.noise.scale);
+    p.warnings.push_back(text);
+  }
+
+  // ---- the automatic lock: once the texture has had time to cross the mesh
+  // as seen (the colours of figure 7 travel from the summits to the basin
+  // borders at max_px pixels per frame at most; a path is at most the
+  // diagonal of the mesh's image), plus a fifth for slower slopes.
+  if (s.lock_at == Scene::kLockAuto) {
+    glm::vec2 lo(1e30f), hi(-1e30f);
+    for (const glm::vec3& r : mesh.positions) {
+      const glm::vec2 px = project_to_pixels(camera.view_projection(), r, s.width, s.height);
+      lo = glm::min(lo, px);
+      hi = glm::max(hi, px);
+    }
+    lo = glm::max(lo, glm::vec2(0.0f));
+    hi = glm::min(hi, glm::vec2(static_cast<float>(s.width), static_cast<float>(s.height)));
+    const float extent = glm::length(glm::max(hi - lo, glm::vec2(0.0f)));
+    p.lock_at = p.max_px > 0.0f ? static_cast<int>(std::ceil(1.2f * extent / p.max_px)) : 0;
+    p.lock_at = std::clamp(p.lock_at, 1, 100000);
+    if (s.frames == 0) p.frames = p.lock_at + 60;
+  }
+
+  // ---- scalars for colour and beta, and their ranges
+  const auto scalar_range = [&](const std::string& name, const char* key,
+                                const std::optional<ScalarRange>& range, const char* range_key,
+                                std::vector<float>& values) {
+    try {
+      values = vertex_scalar(mesh, p.field, name);
+    } catch (const InputError& e) {
+      throw SettingError(key, mesh_label + ": " + e.what());
+    }
+    if (!range) return quantile_range(values);
+    if (range->percentile) return quantile_range(values, range->lo / 100.0f, range->hi / 100.0f);
+    if (!(range->hi > range->lo)) throw SettingError(range_key, "expected LO < HI");
+    return glm::vec2(range->lo, range->hi);
+  };
+  if (!s.color_by.empty()) {
+    settings.use_color = true;
+    settings.color_range =
+        scalar_range(s.color_by, "color_by", s.color_range, "color_range", p.color_scalar);
+  }
+  if (!s.beta_by.empty()) {
+    settings.use_beta = true;
+    settings.beta_range =
+        scalar_range(s.beta_by, "beta_by", s.beta_range, "beta_range", p.beta_scalar);
+  }
+  if (settings.object_noise) {
+    // s pixels at the distance of the mesh centre, in world units.
+    const float world_per_pixel = 2.0f * camera.distance_world() *
+                                  std::tan(glm::radians(s.camera.fov_deg) * 0.5f) /
+                                  static_cast<float>(s.height);
+    settings.object_cell = settings.noise.scale * world_per_pixel;
+  }
+  settings.validate();
+
+  // ---- the surface image, read once
+  if (!s.surface_image.empty())
+    p.surface_image = for_key("surface_image", [&] { return read_png(s.surface_image); });
+
+  p.mesh = std::move(mesh_ptr);
+  p.field_spec = *field_spec;
+  return p;
+}
+
+}  // namespace ibfvs

@@ -38,6 +38,8 @@
 namespace ibfvs::app {
 namespace {
 
+constexpr int kPanelWidth = 250;  // the side panel, in window units
+
 const char* const kHelp =
     "left drag      rotate\n"
     "right drag     pan (or shift + left drag)\n"
@@ -81,7 +83,9 @@ class Viewer {
   Viewer(const ViewOptions& options, Scene desc, PreparedScene prepared)
       : options_(options),
         desc_(std::move(desc)),
-        window_(prepared.width, prepared.height, "ibfvs view", options.vsync),
+        // The panel sits beside the image, not over it.
+        window_(prepared.width + (options.no_panel ? 0 : kPanelWidth), prepared.height,
+                "ibfvs view", options.vsync),
         session_(std::make_unique<Session>(std::move(prepared))),
         camera_(mesh_bounds(*scene().mesh), scene().camera,
                 static_cast<float>(scene().width) / static_cast<float>(scene().height)),
@@ -127,7 +131,9 @@ class Viewer {
       }
       int w = 0, h = 0;
       window_.framebuffer_size(w, h);
-      renderer().present(w, h);
+      int ww = 0, wh = 0;
+      glfwGetWindowSize(window_.handle(), &ww, &wh);
+      renderer().present(w, h, show_panel_ ? kPanelWidth * w / std::max(ww, 1) : 0);
       draw_interface();
       if (!window_shot_.empty()) {
         write_png(window_.read_pixels(), window_shot_);
@@ -270,14 +276,20 @@ class Viewer {
     }
   }
 
-  // The surface point under the cursor (window coordinates), if any.
+  // The surface point under the cursor (window coordinates), if any: the
+  // image fills the window right of the panel, its aspect kept (as present).
   std::optional<glm::vec3> surface_point(glm::vec2 cursor) {
     const ImageF depth = renderer().read_depth();
     int ww = 0, wh = 0;
     glfwGetWindowSize(window_.handle(), &ww, &wh);
-    const int px = static_cast<int>(cursor.x * scene().width / std::max(ww, 1));
-    const int py =
-        scene().height - 1 - static_cast<int>(cursor.y * scene().height / std::max(wh, 1));
+    const float left = show_panel_ ? static_cast<float>(kPanelWidth) : 0.0f;
+    const float area = std::max(static_cast<float>(ww) - left, 1.0f);
+    const float scale = std::min(area / static_cast<float>(scene().width),
+                                 static_cast<float>(wh) / static_cast<float>(scene().height));
+    const float x0 = left + 0.5f * (area - scale * static_cast<float>(scene().width));
+    const float y0 = 0.5f * (static_cast<float>(wh) - scale * static_cast<float>(scene().height));
+    const int px = static_cast<int>(std::floor((cursor.x - x0) / scale));
+    const int py = scene().height - 1 - static_cast<int>(std::floor((cursor.y - y0) / scale));
     if (px < 0 || py < 0 || px >= scene().width || py >= scene().height) return std::nullopt;
     const float z = depth.pixels[static_cast<std::size_t>(py) * scene().width + px];
     if (z >= 1.0f) return std::nullopt;  // background
@@ -609,47 +621,47 @@ class Viewer {
   }
 
   void draw_panel() {
-    // A narrow panel at the left edge, collapsed sections: at the default
-    // 512x512 window it covers the left third at most, and the mesh (centred)
-    // stays visible.
+    // A side bar left of the image (the window is that much wider), so it
+    // never hides the mesh.
     const ImVec2 display = ImGui::GetIO().DisplaySize;
-    ImGui::SetNextWindowPos(ImVec2(4, 4), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(std::min(260.0f, 0.34f * display.x), 0),
-                             ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSizeConstraints(ImVec2(120, 0), ImVec2(display.x * 0.5f, display.y - 8));
-    ImGui::SetNextWindowBgAlpha(0.6f);
-    ImGui::Begin("ibfvs", &show_panel_);
-    ImGui::PushItemWidth(-90);
-    ImGui::Text("%.1f fps, frame %d, %zu triangles", fps_, renderer().frame(),
-                scene().mesh->triangle_count());
+    ImGui::SetNextWindowPos(ImVec2(0, 0), ImGuiCond_Always);
+    ImGui::SetNextWindowSize(ImVec2(static_cast<float>(kPanelWidth), display.y), ImGuiCond_Always);
+    char title[64];
+    std::snprintf(title, sizeof title, "ibfvs %.0f fps###ibfvs", fps_);
+    ImGui::Begin(title, &show_panel_,
+                 ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+    ImGui::PushItemWidth(130);
     Scene d = desc_;
     bool changed = false;
-    changed |= ImGui::SliderFloat("alpha", &d.alpha, 0.0f, 1.0f);
-    changed |= ImGui::SliderFloat("beta", &d.beta, 0.0f, 1.0f);
-    changed |= ImGui::SliderFloat("v_g", &d.vg, 0.0f, 0.2f);
+    changed |= ImGui::SliderFloat("alpha", &d.alpha, 0.0f, 1.0f, "%.2f");
+    changed |= ImGui::SliderFloat("beta", &d.beta, 0.0f, 1.0f, "%.2f");
+    changed |= ImGui::SliderFloat("v_g", &d.vg, 0.0f, 0.2f, "%.3f");
     changed |= enum_combo("profile", d.profile);
-    changed |= ImGui::ColorEdit3("background", &d.background.x);
-    changed |= ImGui::ColorEdit3("surface", &d.surface_color.x);
+    const ImGuiColorEditFlags swatch = ImGuiColorEditFlags_NoInputs;
+    changed |= ImGui::ColorEdit3("bg", &d.background.x, swatch);
+    ImGui::SameLine();
+    changed |= ImGui::ColorEdit3("surface", &d.surface_color.x, swatch);
     if (changed) apply_live(d);
     enum_combo("drag", drag_mode_);
     bool locked = renderer().locked();
-    if (ImGui::Checkbox("lock texture", &locked)) toggle_lock();
+    if (ImGui::Checkbox("lock", &locked)) toggle_lock();
     ImGui::SameLine();
     ImGui::Checkbox("pause", &paused_);
-    if (ImGui::Button("reset camera")) camera_.reset();
+    if (ImGui::SmallButton("reset view")) camera_.reset();
     ImGui::SameLine();
-    if (ImGui::Button("restart texture")) renderer().reset();
+    if (ImGui::SmallButton("restart")) renderer().reset();
+    ImGui::SameLine();
+    if (ImGui::SmallButton("help")) show_help_ = !show_help_;
     if (scene().step_count > 1) {
       // Unsteady data (months on the globe): play with pause, step, slide.
       float t = static_cast<float>(time_);
-      if (ImGui::SliderFloat("time step", &t, 0.0f,
-                             static_cast<float>(scene().step_count) - 0.01f)) {
+      if (ImGui::SliderFloat("time", &t, 0.0f, static_cast<float>(scene().step_count) - 0.01f)) {
         time_ = t;
         session_->seek(time_);
       }
-      if (ImGui::Button("<")) time_ = std::floor(time_) - 1.0 + scene().step_count;
+      if (ImGui::SmallButton("<")) time_ = std::floor(time_) - 1.0 + scene().step_count;
       ImGui::SameLine();
-      if (ImGui::Button(">")) time_ = std::floor(time_) + 1.0;
+      if (ImGui::SmallButton(">")) time_ = std::floor(time_) + 1.0;
       ImGui::SameLine();
       ImGui::Text("step %d of %zu", static_cast<int>(time_) % static_cast<int>(scene().step_count),
                   scene().step_count);
@@ -658,22 +670,35 @@ class Viewer {
     if (ImGui::CollapsingHeader("More parameters")) draw_more_parameters();
     if (ImGui::CollapsingHeader("Styles and files")) draw_styles_and_files();
     if (ImGui::CollapsingHeader("Flow elements")) draw_elements();
-    if (!message_.empty()) ImGui::TextWrapped("%s", message_.c_str());
+    if (ImGui::CollapsingHeader("Save and record")) draw_save_and_record();
+    if (!message_.empty()) {
+      ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + 200);
+      ImGui::TextUnformatted(message_.c_str());
+      ImGui::PopTextWrapPos();
+    }
+    ImGui::PopItemWidth();
+    ImGui::End();
+  }
+
+  // Scene file, screenshot, recording, an offscreen render at any size.
+  void draw_save_and_record() {
+    ImGui::Text("frame %d, %zu triangles", renderer().frame(), scene().mesh->triangle_count());
     char path[256];
     std::snprintf(path, sizeof path, "%s", save_path_.c_str());
-    if (ImGui::InputText("scene file", path, sizeof path)) save_path_ = path;
-    if (ImGui::Button("save scene")) save_scene(save_path_);
+    ImGui::SetNextItemWidth(140);
+    if (ImGui::InputText("##scene file", path, sizeof path)) save_path_ = path;
     ImGui::SameLine();
-    if (ImGui::Button("screenshot")) {
+    if (ImGui::SmallButton("save scene")) save_scene(save_path_);
+    if (ImGui::SmallButton("screenshot")) {
       const std::string name = numbered_name(".png");
       screenshot(name);
     }
     ImGui::SameLine();
-    if (ImGui::Button(video_ ? "stop recording" : "record")) toggle_recording();
-    ImGui::SetNextItemWidth(120);
+    if (ImGui::SmallButton(video_ ? "stop recording" : "record")) toggle_recording();
+    ImGui::SetNextItemWidth(110);
     ImGui::InputInt2("##snapshot size", snapshot_size_);
     ImGui::SameLine();
-    if (ImGui::Button("render offscreen")) {
+    if (ImGui::SmallButton("render offscreen")) {
       const std::string name = numbered_name(".png");
       try {
         snapshot(std::clamp(snapshot_size_[0], 1, 16384), std::clamp(snapshot_size_[1], 1, 16384),
@@ -682,10 +707,6 @@ class Viewer {
         message_ = std::string("error: ") + e.what();
       }
     }
-    ImGui::SameLine();
-    if (ImGui::Button("help (h)")) show_help_ = !show_help_;
-    ImGui::PopItemWidth();
-    ImGui::End();
   }
 
   // A combo box over an enum's name table; true when the choice changed.

@@ -259,13 +259,14 @@ void IbfvsRenderer::shift_image(glm::vec2 pixels) {
   noise_shift_ += pixels;
 }
 
-void IbfvsRenderer::present(int window_width, int window_height) const {
+void IbfvsRenderer::present(int window_width, int window_height, int left) const {
   gl::clear_window(window_width, window_height, glm::vec4(settings_.background, 1.0f));
-  const float scale = std::min(static_cast<float>(window_width) / settings_.width,
+  const int area = std::max(window_width - left, 1);
+  const float scale = std::min(static_cast<float>(area) / settings_.width,
                                static_cast<float>(window_height) / settings_.height);
   const int w = static_cast<int>(std::lround(settings_.width * scale));
   const int h = static_cast<int>(std::lround(settings_.height * scale));
-  const int x0 = (window_width - w) / 2, y0 = (window_height - h) / 2;
+  const int x0 = left + (area - w) / 2, y0 = (window_height - h) / 2;
   framebuffer_[current_].blit_to_default(1, settings_.width, settings_.height, x0, y0, x0 + w,
                                          y0 + h);
 }

@@ -1,6 +1,9 @@
 // `ibfvs geometry` run as a user runs it.
 
+#include <algorithm>
+#include <array>
 #include <filesystem>
+#include <set>
 #include <utility>
 
 #include <gtest/gtest.h>
@@ -75,6 +78,40 @@ TEST_F(GeometryCommand, BadInputFailsCleanly) {
   expect_error("geometry sq.off --subdivide 9", "--subdivide");
   file("bad.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 9\n");
   expect_error("geometry bad.off", "bad.off: truncated or malformed");
+}
+
+// A user's per-vertex data must still line up with the written vertices:
+// the GPU's vertex-cache order is for rendering only. (The written file used
+// to come out in cache order.)
+TEST_F(GeometryCommand, WrittenVerticesKeepTheInputOrder) {
+  // A sphere whose vertices are shuffled, so that any reordering shows.
+  TriMesh ball = loop_subdivide(make_icosahedron(1.0f), 2);
+  std::vector<std::uint32_t> perm(ball.vertex_count());
+  for (std::size_t i = 0; i < perm.size(); ++i)
+    perm[i] = static_cast<std::uint32_t>((i * 97) % perm.size());  // 97 is prime to 162
+  TriMesh shuffled;
+  shuffled.positions.resize(perm.size());
+  for (std::size_t i = 0; i < perm.size(); ++i) shuffled.positions[perm[i]] = ball.positions[i];
+  for (const Triangle& t : ball.triangles)
+    shuffled.triangles.push_back({perm[t[0]], perm[t[1]], perm[t[2]]});
+  write_ply(shuffled, dir_ / "in.ply", false);
+  const test::Result r = run("geometry in.ply -o out.ply -q");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const TriMesh in = read_mesh(dir_ / "in.ply");
+  const TriMesh out = read_mesh(dir_ / "out.ply");
+  ASSERT_EQ(out.vertex_count(), in.vertex_count());
+  for (std::size_t i = 0; i < in.vertex_count(); ++i)
+    ASSERT_EQ(out.positions[i], in.positions[i]) << "vertex " << i << " moved";
+  ASSERT_EQ(out.triangles.size(), in.triangles.size());
+  // The same triangles (each may start at another corner, none is lost).
+  std::multiset<std::array<std::uint32_t, 3>> a, b;
+  const auto canonical = [](Triangle t) {
+    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+    return std::array<std::uint32_t, 3>{t[0], t[1], t[2]};
+  };
+  for (const Triangle& t : in.triangles) a.insert(canonical(t));
+  for (const Triangle& t : out.triangles) b.insert(canonical(t));
+  EXPECT_EQ(a, b);
 }
 
 }  // namespace

@@ -1,10 +1,13 @@
 // `ibfvs render` run as a user runs it: real process, exit status, stderr.
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <map>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -297,6 +300,71 @@ TEST_F(RenderCommand, ReliefAndDisplacement) {
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("field gradient:down"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("8192 triangles"), std::string::npos) << r.out;
+}
+
+// Figure 7 on terrain data as it usually comes, height along +Z: the style
+// must look down the mesh's own height axis, send the colours downhill along
+// it and lock only once they have reached the basin borders. (It used to look
+// down +Y, edge-on, with the flow along -Y, and lock after 40 frames.)
+TEST_F(RenderCommand, TopologyOnATerrainWithHeightAlongZ) {
+  // Two round hills, summits at x = -0.5 and x = +0.5: every point's basin is
+  // the hill on its side of x = 0.
+  const int n = 61;
+  std::string off =
+      "OFF\n" + std::to_string(n * n) + " " + std::to_string(2 * (n - 1) * (n - 1)) + " 0\n";
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const float x = -1.0f + 2.0f * i / (n - 1), y = -1.0f + 2.0f * j / (n - 1);
+      const float z = 0.3f * std::exp(-((x + 0.5f) * (x + 0.5f) + y * y) / 0.08f) +
+                      0.3f * std::exp(-((x - 0.5f) * (x - 0.5f) + y * y) / 0.08f);
+      off += std::to_string(x) + " " + std::to_string(y) + " " + std::to_string(z) + "\n";
+    }
+  for (int j = 0; j + 1 < n; ++j)
+    for (int i = 0; i + 1 < n; ++i) {
+      const int a = j * n + i;
+      off += "3 " + std::to_string(a) + " " + std::to_string(a + 1) + " " +
+             std::to_string(a + n + 1) + "\n3 " + std::to_string(a) + " " +
+             std::to_string(a + n + 1) + " " + std::to_string(a + n) + "\n";
+    }
+  file("hills.off", off);
+  // The style's own run, seen from above at the end (beta 1: F is F_t, the
+  // basin colours without shading).
+  const Result r =
+      run("render hills.off --style topology --size 160x160 --beta 1 "
+          "--lock-camera 0,90,0 --out t.png");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const ImageU8 img = read_png(dir_ / "t.png");
+  // Pixels well inside each basin: |x| from about 0.2 to 0.8, |y| < 0.35.
+  const auto purity = [&](int x0, int x1, std::array<int, 3>& mode) {
+    std::map<std::array<int, 3>, int> counts;
+    std::vector<std::array<int, 3>> colours;
+    for (int y = 80 - 18; y <= 80 + 18; ++y)
+      for (int x = x0; x <= x1; ++x) {
+        const std::size_t at = (static_cast<std::size_t>(y) * img.width + x) * img.channels;
+        const std::array<int, 3> c{img.pixels[at], img.pixels[at + 1], img.pixels[at + 2]};
+        colours.push_back(c);
+        ++counts[c];
+      }
+    mode = std::max_element(counts.begin(), counts.end(), [](const auto& a, const auto& b) {
+             return a.second < b.second;
+           })->first;
+    std::size_t same = 0;
+    for (const auto& c : colours)
+      // Repeated bilinear resampling leaves faint rings (a few levels); other
+      // cells' random colours lie much further apart.
+      same += std::abs(c[0] - mode[0]) + std::abs(c[1] - mode[1]) + std::abs(c[2] - mode[2]) <= 30;
+    return static_cast<double>(same) / static_cast<double>(colours.size());
+  };
+  std::array<int, 3> left{}, right{};
+  const double pl = purity(80 - 43, 80 - 10, left), pr = purity(80 + 10, 80 + 43, right);
+  std::printf("topology on a +Z terrain: basin purity %.3f (left), %.3f (right)\n", pl, pr);
+  EXPECT_GT(pl, 0.97);
+  EXPECT_GT(pr, 0.97);
+  EXPECT_NE(left, right) << "both basins took one colour";
+  for (const auto& mode : {left, right})
+    EXPECT_GT(std::abs(mode[0] - 128) + std::abs(mode[1] - 128) + std::abs(mode[2] - 128), 12)
+        << "the background, not the terrain (seen edge-on?)";
+  EXPECT_NE(r.out.find("gradient:down:0,0,1:normalize"), std::string::npos) << r.out;
 }
 
 TEST_F(RenderCommand, StylesLockingAndTopology) {

@@ -15,6 +15,7 @@
 #include "helpers.h"
 #include "ibfvs/core/error.h"
 #include "ibfvs/core/image.h"
+#include "ibfvs/core/mesh_io.h"
 #include "ibfvs/core/procedural.h"
 
 #include "ibfvs/core/scene.h"
@@ -181,6 +182,40 @@ TEST(ViewerCamera, RotateZoomPanReset) {
   EXPECT_EQ(parse_enum<app::DragMode>("freeze"), app::DragMode::Freeze);
   EXPECT_EQ(enum_name(app::DragMode::Translate), "translate");
   EXPECT_THROW(parse_enum<app::DragMode>("spin"), InputError);
+}
+
+// `ibfvs view MESH`, the README's first viewer example, opens the mesh (the
+// argument used to be refused), and at the default window size the panel
+// leaves the mesh visible: the share of the mesh's pixels it hides is measured
+// against the image without it.
+TEST_F(ViewCommand, AMeshArgumentAndAPanelThatLeavesTheMeshVisible) {
+  if (!have_xvfb()) GTEST_SKIP() << "xvfb-run missing";
+  write_ply(make_torus(1.0f, 0.45f, 96, 48), dir_ / "ring.ply", true);
+  const Result v =
+      view_under_xvfb("ring.ply --camera 0,60,0", "5 screenshot a.png\n5 window w.png\n6 quit\n");
+  ASSERT_EQ(v.status, 0) << v.err;
+  const ImageU8 image = read_png(dir_ / "a.png"), window = read_png(dir_ / "w.png");
+  ASSERT_EQ(image.width, 512);
+  // Mesh pixels: grey texture, not the background. The panel's pixels are
+  // bluish; whatever of the mesh it covers is missing from the window.
+  // Only the image's part of the window counts (right of a side panel).
+  const auto mesh_pixels = [&](const ImageU8& im) {
+    std::size_t n = 0;
+    for (std::size_t p = 0; p < static_cast<std::size_t>(im.width) * im.height; ++p) {
+      if (static_cast<int>(p % im.width) < im.width - image.width) continue;
+      const int r = im.pixels[p * im.channels], g = im.pixels[p * im.channels + 1],
+                b = im.pixels[p * im.channels + 2];
+      const bool background = std::abs(r - 128) + std::abs(g - 128) + std::abs(b - 128) < 4;
+      n += !background && std::abs(r - g) <= 6 && std::abs(g - b) <= 6;
+    }
+    return n;
+  };
+  const std::size_t mesh = mesh_pixels(image), visible = mesh_pixels(window);
+  const double hidden = 1.0 - static_cast<double>(visible) / static_cast<double>(mesh);
+  std::printf("the panel hides %.1f%% of the mesh at 512x512 (window %dx%d)\n", 100.0 * hidden,
+              window.width, window.height);
+  EXPECT_GT(mesh, 40000u);
+  EXPECT_LT(hidden, 0.02);
 }
 
 TEST(CommandLine, FlagsAreParsedOnceIntoTheTypedScene) {

@@ -112,9 +112,10 @@ class IbfvsRenderer {
   [[nodiscard]] ImageF read_depth() const;
   /// 1 where the surface covers the pixel in the last frame, else 0 (rows bottom-up).
   [[nodiscard]] std::vector<std::uint8_t> read_coverage() const;
-  /// Draws the last output F into the window's framebuffer, scaled to fit a
-  /// window of that size with its aspect kept, the rest in the background colour.
-  void present(int window_width, int window_height) const;
+  /// Draws the last output F into the window's framebuffer, scaled to fit the
+  /// part of a window of that size right of `left` pixels (a side panel) with
+  /// its aspect kept, the rest in the background colour.
+  void present(int window_width, int window_height, int left = 0) const;
   /// Blocks until the GPU has finished every submitted frame.
   void finish() const;
 

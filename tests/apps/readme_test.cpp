@@ -1,0 +1,121 @@
+// Every command line README.md shows runs: the examples in its code blocks
+// and the commands quoted in its text, with small sizes and frame counts, so
+// that the README cannot drift from the program again.
+
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "command_runner.h"
+#include "helpers.h"
+#include "ibfvs/core/mesh_io.h"
+#include "ibfvs/core/procedural.h"
+
+namespace ibfvs {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The `ibfvs ...` command lines of a Markdown text: lines of fenced code
+// blocks (continuations joined, comments dropped; "./build/ibfvs" counts) and
+// inline code spans that start with "ibfvs COMMAND -" or name a scene file.
+// Spans with placeholders (SCENE.toml, [options], FILE) are descriptions, not
+// examples, and are left out.
+std::vector<std::string> readme_commands(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream lines(text);
+  bool in_code = false;
+  std::string prose, pending;
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("```", 0) == 0) {
+      in_code = !in_code;
+      continue;
+    }
+    if (!in_code) {
+      prose += line + " ";
+      continue;
+    }
+    if (!pending.empty() || line.find("ibfvs ") != std::string::npos) {
+      const bool continues = !line.empty() && line.back() == '\\';
+      pending += continues ? line.substr(0, line.size() - 1) : line;
+      if (continues) continue;
+      std::string command = pending;
+      pending.clear();
+      if (const std::size_t hash = command.find(" #"); hash != std::string::npos)
+        command.resize(hash);
+      const std::size_t at = command.find("ibfvs ");
+      if (command.find("./build/ibfvs") == std::string::npos && at != 0) continue;
+      out.push_back(command.substr(at));
+    }
+  }
+  const std::regex span("`(ibfvs (render|view|geometry|bench)[^`]*)`");
+  for (auto it = std::sregex_iterator(prose.begin(), prose.end(), span);
+       it != std::sregex_iterator(); ++it) {
+    std::string command = std::regex_replace((*it)[1].str(), std::regex(" +"), " ");
+    const bool example =
+        command.find(" -") != std::string::npos || command.find(".toml") != std::string::npos;
+    const bool placeholder =
+        command.find('[') != std::string::npos || command.find("SCENE") != std::string::npos ||
+        command.find("SAVED") != std::string::npos || command.find("FILE") != std::string::npos ||
+        command.find("--help") != std::string::npos;
+    if (example && !placeholder) out.push_back(command);
+  }
+  return out;
+}
+
+class Readme : public test::CommandTest {};
+
+TEST_F(Readme, EveryCommandLineItShowsRuns) {
+  const fs::path data(IBFVS_TEST_DATA_DIR);
+  if (!fs::exists(data / "meshes/cow.off") || !fs::exists(data / "earth/etopo20.cdf"))
+    GTEST_SKIP() << "fetched data missing (scripts/fetch_data.sh)";
+  const bool xvfb = std::system("command -v xvfb-run >/dev/null 2>&1") == 0;
+  // The folders the README's paths are relative to, and the user's own
+  // files its examples name (a PLY with vx vy vz).
+  fs::create_directory_symlink(data, dir_ / "data");
+  fs::create_directory_symlink(IBFVS_SCENES_DIR, dir_ / "scenes");
+  TriMesh wing = make_torus(1.0f, 0.3f, 48, 16);
+  wing.vectors.assign(wing.vertex_count(), glm::vec3(1.0f, 0.2f, 0.0f));
+  write_ply(wing, dir_ / "wing.ply", true);
+  file("quit.txt", "3 quit\n");
+
+  std::ifstream in(fs::path(IBFVS_SOURCE_DIR) / "README.md");
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::vector<std::string> commands = readme_commands(text.str());
+  int ran = 0, views = 0;
+  for (const std::string& command : commands) {
+    SCOPED_TRACE(command);
+    // Small and short: later flags override the README's own.
+    std::string args = command.substr(command.find("ibfvs ") + 6);
+    const std::string verb = args.substr(0, args.find(' '));
+    std::string env = "IBFVS_DATA_DIR='" + data.string() + "'";
+    if (verb == "render") {
+      args += " --size 48x48 --frames 3 -q";
+    } else if (verb == "view") {
+      if (!xvfb) continue;
+      args += " --size 64x64 --script quit.txt -q";
+      env += " xvfb-run -a -s '-screen 0 640x480x24'";
+      ++views;
+    } else if (verb == "bench") {
+      args += " --subdivide 0 --sizes 32x32 --seconds 0.02 --repeats 1 --warmup 1 -q";
+    }
+    std::printf("README: ibfvs %s\n", args.c_str());
+    const test::Result r = run(args, env);
+    EXPECT_EQ(r.status, 0) << r.err;
+    ++ran;
+  }
+  // The code blocks and the captions hold over twenty; the viewer's three
+  // included (its first takes the mesh as an argument).
+  EXPECT_GE(ran, 20);
+  if (xvfb) EXPECT_EQ(views, 3);
+  std::printf("README: %d command lines ran\n", ran);
+}
+
+}  // namespace
+}  // namespace ibfvs

@@ -343,11 +343,16 @@ SavedState::SavedState() {
 }
 
 SavedState::~SavedState() {
-  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(draw_framebuffer_));
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(read_framebuffer_));
-  glUseProgram(static_cast<GLuint>(program_));
-  glBindVertexArray(static_cast<GLuint>(vertex_array_));
-  glBindTexture(GL_TEXTURE_2D, static_cast<GLuint>(texture_));
+  // A name bound before may have been deleted since (by the host, or by us
+  // when it was ours): binding it again would be an error, 0 is not.
+  const auto alive = [](int name, GLboolean (*is)(GLuint)) {
+    return name != 0 && is(static_cast<GLuint>(name)) ? static_cast<GLuint>(name) : 0u;
+  };
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, alive(draw_framebuffer_, glIsFramebuffer));
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, alive(read_framebuffer_, glIsFramebuffer));
+  glUseProgram(alive(program_, glIsProgram));
+  glBindVertexArray(alive(vertex_array_, glIsVertexArray));
+  glBindTexture(GL_TEXTURE_2D, alive(texture_, glIsTexture));
   glViewport(viewport_[0], viewport_[1], viewport_[2], viewport_[3]);
   if (depth_test_)
     glEnable(GL_DEPTH_TEST);

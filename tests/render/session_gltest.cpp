@@ -1,0 +1,107 @@
+// The session: the same frames as the renderer driven by hand, the run's own
+// stepping (lock, lock camera, orbit), and drawing inside a context whose
+// state belongs to somebody else (a host such as ParaView).
+
+#include <epoxy/gl.h>
+
+#include <gtest/gtest.h>
+
+#include "gl_fixture.h"
+#include "ibfvs/core/camera.h"
+#include "ibfvs/core/scene.h"
+#include "ibfvs/core/scene_prep.h"
+#include "ibfvs/gl/objects.h"
+#include "ibfvs/render/ibfvs_renderer.h"
+#include "ibfvs/render/session.h"
+
+namespace ibfvs {
+namespace {
+
+class SessionGLTest : public test::GlTest {};
+
+Scene small_scene() {
+  Scene s;
+  s.mesh = "torus";
+  s.width = 96;
+  s.height = 80;
+  s.orbit = 2.0f;
+  apply_setting(s, "camera", "20,40,0");
+  return s;
+}
+
+TEST_F(SessionGLTest, FramesEqualTheRendererDrivenByHand) {
+  const PreparedScene prepared = prepare_scene(small_scene());
+  Session session(prepared);
+  IbfvsRenderer by_hand(prepared.settings);
+  by_hand.set_mesh(*prepared.mesh, prepared.field);
+  Camera camera(mesh_bounds(*prepared.mesh), prepared.camera, 96.0f / 80.0f);
+  for (int k = 0; k < 12; ++k) {
+    session.advance();
+    if (k > 0) camera.orbit(2.0f);
+    by_hand.render_frame({camera.view(), camera.projection()}, prepared.dt);
+  }
+  EXPECT_EQ(session.frame(), 12);
+  EXPECT_EQ(session.read_output().pixels, by_hand.read_output().pixels);
+}
+
+TEST_F(SessionGLTest, LocksAtItsFrameAndMovesToTheLockCamera) {
+  Scene s = small_scene();
+  s.orbit = 0.0f;
+  s.lock_at = 5;
+  s.lock_camera = glm::vec3(60.0f, 10.0f, 0.0f);
+  Session session(prepare_scene(s));
+  for (int k = 0; k < 5; ++k) session.advance();
+  EXPECT_FALSE(session.renderer().locked());
+  const ImageF before = session.renderer().read_texture();
+  session.advance();
+  EXPECT_TRUE(session.renderer().locked());
+  EXPECT_EQ(session.camera().params().azimuth_deg, 60.0f);
+  for (int k = 0; k < 3; ++k) session.advance();
+  // Locked: F_t no longer changes.
+  EXPECT_EQ(session.renderer().read_texture().pixels, before.pixels);
+}
+
+TEST_F(SessionGLTest, LeavesTheHostsGlStateAsItFoundIt) {
+  // The host's own framebuffer, viewport, program-free state and depth test.
+  gl::Texture2D colour(32, 16, gl::Format::RGBA8, false);
+  gl::Framebuffer host = gl::Framebuffer::create();
+  host.attach_color(0, colour);
+  host.finish(1);
+  host.bind();
+  glViewport(3, 4, 20, 10);
+  glEnable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);
+  host.clear_color(0, glm::vec4(1.0f, 0.0f, 0.0f, 1.0f));
+  GLint before_fb = 0;
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &before_fb);
+
+  Session session(prepare_scene(small_scene()));  // uploads: state saved too
+  for (int k = 0; k < 3; ++k) session.advance();
+
+  GLint fb = 0, read_fb = 0, viewport[4] = {};
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fb);
+  glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &read_fb);
+  glGetIntegerv(GL_VIEWPORT, viewport);
+  EXPECT_EQ(fb, before_fb);
+  EXPECT_EQ(read_fb, before_fb);
+  EXPECT_EQ(viewport[0], 3);
+  EXPECT_EQ(viewport[1], 4);
+  EXPECT_EQ(viewport[2], 20);
+  EXPECT_EQ(viewport[3], 10);
+  EXPECT_TRUE(glIsEnabled(GL_DEPTH_TEST));
+  EXPECT_FALSE(glIsEnabled(GL_CULL_FACE));
+  // The host's picture is untouched.
+  std::vector<std::uint8_t> pixel(4);
+  glReadPixels(5, 5, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, pixel.data());
+  EXPECT_EQ(pixel, (std::vector<std::uint8_t>{255, 0, 0, 255}));
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  // And the session's own picture is there: the torus, not only background.
+  const ImageU8 out = session.read_output();
+  std::size_t surface = 0;
+  for (std::size_t i = 0; i < out.pixels.size(); i += 4)
+    surface += out.pixels[i] != out.pixels[0] || out.pixels[i + 1] != out.pixels[1];
+  EXPECT_GT(surface, 500u);
+}
+
+}  // namespace
+}  // namespace ibfvs

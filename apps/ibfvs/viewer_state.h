@@ -1,7 +1,6 @@
 #pragma once
-// The viewer's logic that needs no window: the camera under mouse
-// interaction, the drag behaviours of section 3.7 and the scripted sessions
-// the tests drive the real window with.
+// The viewer's camera under mouse interaction and the drag behaviours of
+// section 3.7, needing neither a window nor a GL context.
 
 #include <filesystem>
 #include <string>
@@ -64,27 +63,5 @@ class ViewerCamera {
   CameraParams start_, params_;
   float aspect_;
 };
-
-/// One timed action of a `--script` file.
-struct ScriptAction {
-  int frame = 0;     ///< the frame before which it happens
-  std::string verb;  ///< the action; see read_script
-  std::vector<std::string> args;
-};
-
-/// A verb of the viewer's scripts: the one list that reading, help and docs use.
-struct ScriptVerb {
-  std::string name;
-  std::size_t arguments;
-  std::string help;
-};
-const std::vector<ScriptVerb>& script_verbs();
-const ScriptVerb* find_script_verb(std::string_view name);  ///< nullptr when unknown
-std::string script_verb_names();                            ///< "drag, zoom, ..."
-
-/// Reads a script: one action per line, `FRAME VERB ARGS...`, '#' comments,
-/// frames not decreasing; verbs and their arguments as script_verbs() lists.
-/// Throws InputError naming the file and line.
-std::vector<ScriptAction> read_script(const std::filesystem::path& path);
 
 }  // namespace ibfvs::app

@@ -20,6 +20,7 @@
 
 #include "ibfvs/core/scene.h"
 #include "ibfvs/render_command.h"
+#include "ibfvs/script_runner.h"
 #include "ibfvs/viewer_state.h"
 
 namespace ibfvs {

@@ -1,0 +1,337 @@
+#include "ibfvs/viewer_session.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <set>
+
+#include <glm/matrix.hpp>
+#include <glm/trigonometric.hpp>
+
+#include "ibfvs/core/displacement.h"
+#include "ibfvs/core/error.h"
+#include "ibfvs/core/image.h"
+
+namespace ibfvs::app {
+namespace {
+
+float aspect_of(const PreparedScene& s) {
+  return static_cast<float>(s.width) / static_cast<float>(s.height);
+}
+
+}  // namespace
+
+ViewerSession::ViewerSession(Scene desc, PreparedScene prepared, DragMode drag)
+    : drag_mode(drag),
+      desc_(std::move(desc)),
+      session_(std::make_unique<Session>(std::move(prepared))),
+      camera_(mesh_bounds(*scene().mesh), scene().camera, aspect_of(scene())) {}
+
+ViewerSession::~ViewerSession() {
+  if (video_) video_->close();
+}
+
+void ViewerSession::frame() {
+  if (paused) return;
+  if (scene().step_count > 1) {
+    time += 1.0 / desc_.frames_per_step;
+    session_->seek(time);
+  }
+  session_->render(camera_.camera());
+  if (video_) {
+    ImageU8 image = video_->spare();
+    renderer().read_output(image);
+    video_->write(std::move(image));
+  }
+}
+
+// ------------------------------------------------------------ the scene
+
+bool ViewerSession::reload(const Scene& desc) {
+  try {
+    PreparedScene prepared = prepare_scene(desc);
+    for (const std::string& w : prepared.warnings)
+      std::fprintf(stderr, "ibfvs: warning: %s\n", w.c_str());
+    session_ = std::make_unique<Session>(std::move(prepared));
+    desc_ = desc;
+    camera_ = ViewerCamera(mesh_bounds(*scene().mesh), scene().camera, aspect_of(scene()));
+    selected_element = -1;
+    time = 0.0;
+    message = "loaded " + scene().mesh_name;
+    return true;
+  } catch (const std::exception& e) {
+    message = std::string("error: ") + e.what();
+    std::fprintf(stderr, "ibfvs: %s\n", message.c_str());
+    return false;
+  }
+}
+
+void ViewerSession::apply_style(Style style) {
+  Scene desc = desc_;
+  ibfvs::apply_style(desc, style);  // the preset wins over what is in force
+  if (reload(desc)) message = "style " + std::string(enum_name(style));
+}
+
+void ViewerSession::load(const std::string& path) {
+  if (is_scene_path(path)) {
+    try {
+      reload(read_scene(path));
+    } catch (const std::exception& e) {
+      message = std::string("error: ") + e.what();
+    }
+    return;
+  }
+  Scene desc = desc_;
+  desc.mesh = path;
+  desc.field_steps.clear();
+  reload(desc);
+}
+
+void ViewerSession::set(const std::string& key, const std::string& value) {
+  Scene desc = desc_;
+  apply_setting(desc, key, value);
+  static const std::set<std::string, std::less<>> live = {
+      "alpha",         "beta",        "vg",          "profile",    "background",
+      "surface_color", "color_map",   "color_range", "beta_range", "advect_view",
+      "inject",        "spike_width", "noise_space"};
+  if (key == "step") {
+    session_->set_dt(session_->dt() * desc.step / desc_.step);
+    desc_ = desc;
+  } else if (key == "scale") {
+    set_noise_scale(desc.scale);
+  } else if (key == "tangent") {
+    set_tangent(desc.tangent);
+  } else if (live.count(key)) {
+    apply_live(desc);
+  } else if (!reload(desc)) {
+    throw InputError(message);
+  }
+}
+
+void ViewerSession::apply_live(const Scene& desc) {
+  RenderSettings s = renderer().settings();
+  s.alpha = desc.alpha;
+  s.beta = desc.beta;
+  s.noise.rate = desc.vg;
+  s.noise.profile = desc.profile;
+  s.noise.spike_width = desc.spike_width;
+  s.background = desc.background;
+  s.surface_color = desc.surface_color;
+  s.color_map = desc.color_map;
+  s.inject = desc.inject;
+  s.advect_view = desc.advect_view;
+  if (desc.color_range && !desc.color_range->percentile)
+    s.color_range = {desc.color_range->lo, desc.color_range->hi};
+  if (desc.beta_range && !desc.beta_range->percentile)
+    s.beta_range = {desc.beta_range->lo, desc.beta_range->hi};
+  if ((desc.noise_space == NoiseSpace::Object) != s.object_noise) {
+    s.object_noise = desc.noise_space == NoiseSpace::Object;
+    // s pixels at the distance of the mesh centre, as prepare_scene does.
+    const Camera c = camera_.camera();
+    s.object_cell = s.noise.scale * 2.0f * c.distance_world() *
+                    std::tan(glm::radians(c.params().fov_deg) * 0.5f) /
+                    static_cast<float>(scene().height);
+  }
+  s.validate();
+  renderer().update_settings(s);
+  scene().settings = s;
+  desc_ = desc;
+}
+
+void ViewerSession::set_noise_scale(float scale) {
+  RenderSettings s = renderer().settings();
+  s.noise.scale = scale;
+  s.validate();
+  scene().settings = s;
+  session_->rebuild();
+  desc_.scale = scale;
+}
+
+void ViewerSession::set_tangent(TangentMode mode) {
+  session_->set_field(evaluate_field(*scene().mesh, scene().field_spec, mode));
+  desc_.tangent = mode;
+  update_dt();
+}
+
+void ViewerSession::save_scene(const std::filesystem::path& file) {
+  Scene desc = desc_;
+  const CameraParams& p = camera_.params();
+  const float diagonal = std::max(camera_.bounds().diagonal(), 1e-6f);
+  desc.camera.azimuth_deg = p.azimuth_deg;
+  desc.camera.elevation_deg = p.elevation_deg;
+  desc.camera.distance = p.distance > 0.0f ? camera_.camera().distance_world() / diagonal : 0.0f;
+  desc.camera.target = p.target;
+  desc.frames = std::max(frame_count(), 1);
+  desc.width = scene().width;
+  desc.height = scene().height;
+  if (desc.lock_at == Scene::kLockAuto) desc.lock_at = scene().lock_at;
+  std::ofstream out(file);
+  out << scene_toml(desc);
+  if (!out) throw InputError(file.string() + ": cannot write the scene");
+  std::printf("ibfvs: saved %s (frame %d)\n", file.c_str(), frame_count());
+}
+
+// ------------------------------------------------------------ flow elements
+
+void ViewerSession::add_element(const FlowElement& element) {
+  element.validate();
+  FieldSpec& spec = scene().field_spec;
+  std::vector<FlowElement> kept =
+      spec.kind == FieldKind::Elements ? spec.elements : std::vector<FlowElement>{};
+  kept.push_back(element);
+  if (spec.kind != FieldKind::Elements) spec = FieldSpec::parse("elements");
+  spec.elements = kept;
+  selected_element = static_cast<int>(kept.size()) - 1;
+  elements_changed();
+}
+
+void ViewerSession::elements_changed() {
+  FieldSpec& spec = scene().field_spec;
+  if (spec.kind != FieldKind::Elements) {
+    spec = FieldSpec::parse("elements");
+    message = "the field is now the flow elements";
+  }
+  try {
+    for (const FlowElement& e : spec.elements) e.validate();
+    session_->set_field(evaluate_field(*scene().mesh, spec, desc_.tangent));
+    // The typed scene follows, so that saving keeps the edited elements.
+    desc_.field = spec;
+    desc_.field->elements.clear();
+    desc_.elements = spec.elements;
+    update_dt();
+  } catch (const std::exception& e) {
+    message = std::string("error: ") + e.what();
+  }
+}
+
+// ------------------------------------------------------------ mouse
+
+void ViewerSession::begin_drag() {
+  dragging_ = true;
+  if (drag_mode == DragMode::Freeze && !renderer().locked()) {
+    renderer().lock();
+    locked_by_drag_ = true;
+  }
+  RenderSettings s = renderer().settings();
+  s.advect_view = drag_mode == DragMode::Previous ? AdvectView::Previous : AdvectView::Current;
+  renderer().update_settings(s);
+}
+
+void ViewerSession::drag_by(glm::vec2 pixels, bool pan) {
+  if (pan)
+    camera_.pan(pixels, scene().height);
+  else
+    camera_.rotate(pixels);
+  // The paper's option (b): move F_t and G with the pointer (exact for a pan).
+  if (drag_mode == DragMode::Translate) renderer().shift_image(pixels);
+}
+
+void ViewerSession::end_drag() {
+  dragging_ = false;
+  if (locked_by_drag_) {
+    renderer().unlock();
+    locked_by_drag_ = false;
+  }
+  RenderSettings s = renderer().settings();
+  s.advect_view = scene().settings.advect_view;
+  renderer().update_settings(s);
+}
+
+void ViewerSession::zoom(float steps) {
+  camera_.zoom(steps);
+  update_dt();
+}
+
+void ViewerSession::pan(glm::vec2 pixels) {
+  camera_.pan(pixels, scene().height);
+}
+
+std::optional<glm::vec3> ViewerSession::surface_point(glm::vec2 pixel) {
+  const int w = scene().width, h = scene().height;
+  const int px = static_cast<int>(std::floor(pixel.x));
+  const int py = h - 1 - static_cast<int>(std::floor(pixel.y));
+  if (px < 0 || py < 0 || px >= w || py >= h) return std::nullopt;
+  const ImageF depth = renderer().read_depth();
+  const float z = depth.pixels[static_cast<std::size_t>(py) * w + px];
+  if (z >= 1.0f) return std::nullopt;  // background
+  const Camera c = camera_.camera();
+  const glm::vec4 ndc(2.0f * (px + 0.5f) / w - 1.0f, 2.0f * (py + 0.5f) / h - 1.0f, 2.0f * z - 1.0f,
+                      1.0f);
+  const glm::vec4 world = glm::inverse(c.view_projection()) * ndc;
+  return glm::vec3(world) / world.w;
+}
+
+// The fastest motion back to `step` pixels a frame, after a zoom (which
+// would stretch it) or a new field (as render sets dt).
+void ViewerSession::update_dt() {
+  if (desc_.dt > 0.0f) return;  // the user's own dt stays
+  const float dt = dt_for(camera_.camera(), scene().width, scene().height);
+  if (dt > 0.0f) session_->set_dt(dt);
+}
+
+float ViewerSession::dt_for(const Camera& c, int width, int height) const {
+  return dt_for_pixel_step(session_->scene().mesh->positions, session_->scene().field,
+                           c.view_projection(), width, height, desc_.step);
+}
+
+// ------------------------------------------------------------ texture and outputs
+
+void ViewerSession::toggle_lock() {
+  if (renderer().locked())
+    renderer().unlock();
+  else
+    renderer().lock();
+}
+
+void ViewerSession::screenshot(const std::filesystem::path& file) {
+  write_png(renderer().read_output(), file);
+  std::printf("ibfvs: wrote %s\n", file.c_str());
+}
+
+void ViewerSession::write_texture(const std::filesystem::path& file) {
+  write_png16(renderer().read_texture().select_channels(0, 3), file);
+}
+
+void ViewerSession::toggle_recording() {
+  if (video_) {
+    video_->close();
+    video_.reset();
+    message = "recording saved";
+    return;
+  }
+  const std::string name = numbered_name(".mp4");
+  try {
+    video_ = std::make_unique<VideoWriter>(name, scene().width, scene().height, 30.0);
+    message = "recording " + name;
+  } catch (const std::exception& e) {
+    message = std::string("error: ") + e.what();
+  }
+}
+
+void ViewerSession::snapshot(int width, int height, const std::filesystem::path& file, int frames) {
+  if (width < 1 || height < 1 || width > 16384 || height > 16384)
+    throw InputError("snapshot: the size must be within 1..16384 pixels");
+  PreparedScene big = scene();
+  big.settings = renderer().settings();
+  big.settings.width = big.width = width;
+  big.settings.height = big.height = height;
+  Session offscreen(std::move(big));
+  ViewerCamera cam = camera_;
+  cam.set_aspect(static_cast<float>(width) / static_cast<float>(height));
+  const Camera c = cam.camera();
+  offscreen.set_dt(dt_for(c, width, height));  // the same pixels per frame as the window
+  offscreen.seek(time);
+  for (int k = 0; k < frames; ++k) offscreen.render(c);
+  write_png(offscreen.read_output(), file);
+  message = "wrote " + file.string();
+  std::printf("ibfvs: wrote %s (%dx%d)\n", file.c_str(), width, height);
+}
+
+std::string ViewerSession::numbered_name(const char* extension) {
+  char name[64];
+  std::snprintf(name, sizeof name, "ibfvs-view-%04d%s", numbered_++, extension);
+  return name;
+}
+
+}  // namespace ibfvs::app

@@ -56,6 +56,10 @@ int main(int argc, char** argv) {
       "Normals, principal curvatures and directions (Goldfeather-Interrante), Loop "
       "subdivision: print a summary and write a PLY");
   ibfvs::app::add_geometry_options(*geometry, *geometry_options);
+  bool keys_markdown = false;
+  CLI::App* keys = app.add_subcommand(
+      "keys", "List every scene key (scene files; the same as render's flags) with its default");
+  keys->add_flag("--markdown", keys_markdown, "As the Markdown table of docs/scenes.md");
   if (argc < 2) {
     std::fputs(app.help().c_str(), stderr);
     return 1;
@@ -65,18 +69,19 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help
     // One line in the same form as every other error.
-    if (*render || *geometry || *view || *bench)
+    if (*render || *geometry || *view || *bench || *keys)
       std::fprintf(stderr, "ibfvs: error: %s (see ibfvs %s --help)\n", e.what(),
                    *render  ? "render"
                    : *view  ? "view"
                    : *bench ? "bench"
+                   : *keys  ? "keys"
                             : "geometry");
     else
-      std::fprintf(
-          stderr,
-          "ibfvs: error: unknown command '%s' (expected render, view, geometry or bench; see ibfvs "
-          "--help)\n",
-          argv[1]);
+      std::fprintf(stderr,
+                   "ibfvs: error: unknown command '%s' (expected render, view, geometry, bench or "
+                   "keys; see ibfvs "
+                   "--help)\n",
+                   argv[1]);
     return 1;
   }
   try {
@@ -85,6 +90,10 @@ int main(int argc, char** argv) {
     if (*geometry) return ibfvs::app::run_geometry(*geometry_options);
     if (*view) return ibfvs::app::run_view(*view_options);
     if (*bench) return ibfvs::app::run_bench(*bench_options);
+    if (*keys) {
+      std::fputs(ibfvs::app::scene_keys_table(keys_markdown).c_str(), stdout);
+      return 0;
+    }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "ibfvs: error: %s\n", ibfvs::app::error_line(e).c_str());
     return 1;

@@ -56,6 +56,51 @@ void add_scene_options(CLI::App& cmd, SceneOptions& o) {
   }
 }
 
+std::string scene_keys_table(bool markdown) {
+  const auto type = [](KeyKind kind) -> const char* {
+    switch (kind) {
+      case KeyKind::String:
+        return "string";
+      case KeyKind::Integer:
+        return "integer";
+      case KeyKind::Number:
+        return "number";
+      case KeyKind::Flag:
+        return "boolean";
+      case KeyKind::Vector:
+        return "array of numbers or string";
+      case KeyKind::Size:
+        return "[W, H] or \"WxH\"";
+      case KeyKind::StringList:
+        return "string or array of strings";
+      case KeyKind::Elements:
+        return "array of tables or strings";
+      case KeyKind::Time:
+        return "integer or string";
+    }
+    return "";
+  };
+  std::string out;
+  if (markdown) out = "| key | type | flag | default | meaning |\n|---|---|---|---|---|\n";
+  const Scene defaults;
+  for (const SceneKey& key : scene_keys()) {
+    const std::vector<std::string> shown = key.get(defaults);
+    std::string value = shown.empty() ? "" : shown.front();
+    std::string help = key.help;
+    if (markdown) {
+      // Table cells: escape the bars of alternatives.
+      for (std::size_t p = help.find('|'); p != std::string::npos; p = help.find('|', p + 2))
+        help.replace(p, 1, "\\|");
+      out += "| `" + std::string(key.name) + "` | " + type(key.kind) + " | `" + flag_of(key.name) +
+             "` | " + (value.empty() ? "" : "`" + value + "`") + " | " + help + " |\n";
+    } else {
+      out += std::string(key.name) + " (" + type(key.kind) + (value.empty() ? "" : ", " + value) +
+             "): " + help + "\n";
+    }
+  }
+  return out;
+}
+
 Scene scene_from_command_line(const SceneOptions& o) {
   std::vector<Setting> settings;
   if (!o.input.empty()) {

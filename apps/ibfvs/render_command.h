@@ -36,6 +36,10 @@ std::string flag_of(std::string_view key);
 /// One line for an error: a SettingError names the flag, others as they are.
 std::string error_line(const std::exception& error);
 
+/// Every scene key: name, TOML type, flag, default and meaning, as text, or
+/// as the Markdown table of docs/scenes.md (`ibfvs keys --markdown`).
+std::string scene_keys_table(bool markdown);
+
 /// Renders; returns the exit status. Throws InputError / SettingError /
 /// GraphicsError.
 int run_render(const Scene& scene);

@@ -114,7 +114,9 @@ TEST_F(Readme, EveryCommandLineItShowsRuns) {
   // The code blocks and the captions hold over twenty; the viewer's three
   // included (its first takes the mesh as an argument).
   EXPECT_GE(ran, 20);
-  if (xvfb) EXPECT_EQ(views, 3);
+  if (xvfb) {
+    EXPECT_EQ(views, 3);
+  }
   std::printf("README: %d command lines ran\n", ran);
 }
 
@@ -145,8 +147,9 @@ TEST_F(Readme, DocsListEveryKeyAndEveryName) {
       std::size_t end = names.find_first_of(", ", start);
       if (end == std::string::npos) end = names.size();
       const std::string name = names.substr(start, end - start);
-      if (!name.empty() && name != "or")
+      if (!name.empty() && name != "or") {
         EXPECT_NE(r.find(name), std::string::npos) << flag << " row lacks " << name << ":\n" << r;
+      }
       start = end + 1;
     }
   };

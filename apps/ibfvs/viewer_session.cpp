@@ -97,7 +97,7 @@ void ViewerSession::set(const std::string& key, const std::string& value) {
       "inject",        "spike_width", "noise_space"};
   if (key == "step") {
     session_->set_dt(session_->dt() * desc.step / desc_.step);
-    desc_ = desc;
+    apply_live(desc);  // the image-normalised step too
   } else if (key == "scale") {
     set_noise_scale(desc.scale);
   } else if (key == "tangent") {
@@ -111,22 +111,9 @@ void ViewerSession::set(const std::string& key, const std::string& value) {
 
 void ViewerSession::apply_live(const Scene& desc) {
   RenderSettings s = renderer().settings();
-  s.alpha = desc.alpha;
-  s.beta = desc.beta;
-  s.noise.rate = desc.vg;
-  s.noise.profile = desc.profile;
-  s.noise.spike_width = desc.spike_width;
-  s.background = desc.background;
-  s.surface_color = desc.surface_color;
-  s.color_map = desc.color_map;
-  s.inject = desc.inject;
-  s.advect_view = desc.advect_view;
-  if (desc.color_range && !desc.color_range->percentile)
-    s.color_range = {desc.color_range->lo, desc.color_range->hi};
-  if (desc.beta_range && !desc.beta_range->percentile)
-    s.beta_range = {desc.beta_range->lo, desc.beta_range->hi};
-  if ((desc.noise_space == NoiseSpace::Object) != s.object_noise) {
-    s.object_noise = desc.noise_space == NoiseSpace::Object;
+  const bool object_noise = s.object_noise;
+  apply_texture_settings(desc, s);
+  if (s.object_noise && !object_noise) {
     // s pixels at the distance of the mesh centre, as prepare_scene does.
     const Camera c = camera_.camera();
     s.object_cell = s.noise.scale * 2.0f * c.distance_world() *

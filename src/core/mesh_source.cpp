@@ -119,17 +119,11 @@ TriMesh make_landscape(const std::string& spec) {
       std::istringstream numbers(line);
       int n = 0;
       for (std::string word; numbers >> word; ++n) {
-        std::size_t used = 0;
-        float v = 0.0f;
         try {
-          v = std::stof(word, &used);
-        } catch (const std::exception&) {
-          used = 0;
+          controls.push_back(static_cast<float>(parse_number(word)));
+        } catch (const InputError& e) {
+          throw InputError(parts[1] + ": line " + std::to_string(rows + 1) + ": " + e.what());
         }
-        if (used == 0 || used != word.size() || !std::isfinite(v))
-          throw InputError(parts[1] + ": line " + std::to_string(rows + 1) + ": '" + word +
-                           "' is not a finite number");
-        controls.push_back(v);
       }
       if (columns >= 0 && n != columns)
         throw InputError(parts[1] + ": every row of control heights needs " +

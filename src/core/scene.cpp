@@ -668,6 +668,22 @@ std::string scene_toml(const Scene& scene) {
 
 // ------------------------------------------------------------ styles
 
+namespace {
+
+// The bronze and eroded looks: colour by a curvature (p5 to p95), texture
+// only where the surface is more concave than its median (to p98).
+void curvature_look(Scene& s, const char* field, const char* curvature, ColorMap map) {
+  s.default_field = FieldSpec::parse(field);
+  s.color_by = curvature;
+  s.color_map = map;
+  s.color_range = ScalarRange{true, 5.0f, 95.0f};
+  s.beta_by = std::string("-") + curvature;
+  s.beta_range = ScalarRange{true, 50.0f, 98.0f};
+  s.beta = 0.7f;
+}
+
+}  // namespace
+
 void apply_style(Scene& s, Style style) {
   s.style = style;
   switch (style) {
@@ -699,23 +715,11 @@ void apply_style(Scene& s, Style style) {
       // kappa_max (patina in the hollows, metal on the ridges) and the dirt
       // texture only in the more concave half (-kappa_max from its median to
       // its 98th percentile), so the rest shows clean metal.
-      s.default_field = FieldSpec::parse("principal:min:smooth=10");
-      s.color_by = "kmax";
-      s.color_map = ColorMap::Bronze;
-      s.color_range = ScalarRange{true, 5.0f, 95.0f};
-      s.beta_by = "-kmax";
-      s.beta_range = ScalarRange{true, 50.0f, 98.0f};
-      s.beta = 0.7f;
+      curvature_look(s, "principal:min:smooth=10", "kmax", ColorMap::Bronze);
       break;
     case Style::Eroded:
       // Eroded stone (section 4.2): the same, parametrised by kappa_min.
-      s.default_field = FieldSpec::parse("principal:max:smooth=10");
-      s.color_by = "kmin";
-      s.color_map = ColorMap::Grey;
-      s.color_range = ScalarRange{true, 5.0f, 95.0f};
-      s.beta_by = "-kmin";
-      s.beta_range = ScalarRange{true, 50.0f, 98.0f};
-      s.beta = 0.7f;
+      curvature_look(s, "principal:max:smooth=10", "kmin", ColorMap::Grey);
       break;
     case Style::Topology:
       // Figure 7: alpha 0, random colours per noise cell, flow downhill along

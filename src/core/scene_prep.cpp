@@ -58,6 +58,25 @@ void check(const Scene& s) {
 
 }  // namespace
 
+void apply_texture_settings(const Scene& s, RenderSettings& settings) {
+  settings.alpha = s.alpha;
+  settings.beta = s.beta;
+  settings.image_step = s.image_normalize ? s.step : 0.0f;
+  settings.noise.profile = s.profile;
+  settings.noise.rate = s.vg;
+  settings.noise.spike_width = s.spike_width;
+  settings.inject = s.inject;
+  settings.background = s.background;
+  settings.surface_color = s.surface_color;
+  settings.advect_view = s.advect_view;
+  settings.object_noise = s.noise_space == NoiseSpace::Object;
+  settings.color_map = s.color_map;
+  if (s.color_range && !s.color_range->percentile)
+    settings.color_range = {s.color_range->lo, s.color_range->hi};
+  if (s.beta_range && !s.beta_range->percentile)
+    settings.beta_range = {s.beta_range->lo, s.beta_range->hi};
+}
+
 glm::vec3 thinnest_axis(const TriMesh& mesh) {
   const Bounds b = mesh_bounds(mesh);
   const glm::vec3 e = b.max - b.min;
@@ -79,20 +98,9 @@ PreparedScene prepare_scene(const Scene& s) {
   RenderSettings& settings = p.settings;
   settings.width = s.width;
   settings.height = s.height;
-  settings.alpha = s.alpha;
-  settings.beta = s.beta;
-  settings.image_step = s.image_normalize ? s.step : 0.0f;
+  apply_texture_settings(s, settings);
   settings.noise.scale = s.scale;
-  settings.noise.profile = s.profile;
-  settings.noise.rate = s.vg;
   settings.noise.seed = s.seed;
-  settings.noise.spike_width = s.spike_width;
-  settings.inject = s.inject;
-  settings.background = s.background;
-  settings.surface_color = s.surface_color;
-  settings.advect_view = s.advect_view;
-  settings.object_noise = s.noise_space == NoiseSpace::Object;
-  settings.color_map = s.color_map;
   settings.validate();
 
   std::optional<FieldSpec> field_spec = s.field;

@@ -44,6 +44,13 @@ struct PreparedScene {
   std::vector<std::string> warnings;  ///< repaired input, slow settings: for the front end to show
 };
 
+/// The scene's texture settings (alpha, beta, noise profile, rate and spike
+/// width, inject, colours, colour map, advect view, noise space, fixed
+/// colour and beta ranges) copied onto `settings`: what a renderer takes
+/// live, without a rebuild. Percentile ranges and the object-noise cell,
+/// which need the mesh and camera, are left as they are.
+void apply_texture_settings(const Scene& scene, RenderSettings& settings);
+
 /// Checks the scene and prepares it. Throws InputError naming the file, or
 /// SettingError naming the key whose value is wrong.
 PreparedScene prepare_scene(const Scene& scene);

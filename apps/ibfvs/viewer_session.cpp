@@ -300,10 +300,8 @@ void ViewerSession::snapshot(int width, int height, const std::filesystem::path&
   if (width < 1 || height < 1 || width > 16384 || height > 16384)
     throw InputError("snapshot: the size must be within 1..16384 pixels");
   PreparedScene big = scene();
-  big.settings = renderer().settings();
-  big.settings.width = big.width = width;
-  big.settings.height = big.height = height;
-  Session offscreen(std::move(big));
+  big.settings = renderer().settings();  // with the live changes
+  Session offscreen(resized(big, width, height));
   ViewerCamera cam = camera_;
   cam.set_aspect(static_cast<float>(width) / static_cast<float>(height));
   const Camera c = cam.camera();

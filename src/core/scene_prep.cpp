@@ -56,7 +56,38 @@ void check(const Scene& s) {
     throw SettingError("frames", "0 (automatic) needs lock_at auto");
 }
 
+// Sets the image size and what follows from it with the scene's camera: dt
+// from the step in pixels (unless the scene gives dt), the fastest vertex's
+// pixels per frame, the object-noise cell (s pixels at the mesh centre).
+// Returns the fastest vertex's pixels per unit of dt (0: nothing moves).
+float fit_to_image(PreparedScene& p, int width, int height) {
+  const Scene& s = p.scene;
+  p.width = p.settings.width = width;
+  p.height = p.settings.height = height;
+  const Camera camera(mesh_bounds(*p.mesh), p.camera,
+                      static_cast<float>(width) / static_cast<float>(height));
+  const float speed =
+      max_pixel_speed(p.mesh->positions, p.field, camera.view_projection(), width, height);
+  p.dt = s.dt > 0.0f ? s.dt : (speed > 0.0f ? s.step / speed : 0.0f);
+  p.max_px = s.image_normalize && speed > 0.0f ? s.step : speed * p.dt;
+  if (p.settings.object_noise) {
+    const float world_per_pixel = 2.0f * camera.distance_world() *
+                                  std::tan(glm::radians(p.camera.fov_deg) * 0.5f) /
+                                  static_cast<float>(height);
+    p.settings.object_cell = p.settings.noise.scale * world_per_pixel;
+  }
+  return speed;
+}
+
 }  // namespace
+
+PreparedScene resized(const PreparedScene& prepared, int width, int height) {
+  if (width < 1 || height < 1 || width > 16384 || height > 16384)
+    throw SettingError("size", "width and height must be between 1 and 16384 pixels");
+  PreparedScene p = prepared;
+  fit_to_image(p, width, height);
+  return p;
+}
 
 void apply_texture_settings(const Scene& s, RenderSettings& settings) {
   settings.alpha = s.alpha;
@@ -227,15 +258,10 @@ PreparedScene prepare_scene(const Scene& s) {
                          " vectors were NaN or infinite and are set to zero");
 
   // ---- camera and dt
-  const Bounds bounds = mesh_bounds(mesh);
-  const float aspect = static_cast<float>(s.width) / static_cast<float>(s.height);
-  const Camera camera(bounds, p.camera, aspect);
-  // Pixels per unit of dt at the fastest vertex: sets dt from step, and says
-  // how far the fastest vertex moves with a given dt.
-  const float speed =
-      max_pixel_speed(mesh.positions, p.field, camera.view_projection(), s.width, s.height);
-  p.dt = s.dt > 0.0f ? s.dt : (speed > 0.0f ? s.step / speed : 0.0f);
-  p.max_px = s.image_normalize && speed > 0.0f ? s.step : speed * p.dt;
+  p.mesh = mesh_ptr;
+  const float speed = fit_to_image(p, s.width, s.height);
+  const Camera camera(mesh_bounds(mesh), p.camera,
+                      static_cast<float>(s.width) / static_cast<float>(s.height));
   if (speed == 0.0f)
     p.warnings.push_back(
         "the field does not move any vertex in the image (zero after projection?); the texture "
@@ -291,13 +317,6 @@ PreparedScene prepare_scene(const Scene& s) {
     settings.use_beta = true;
     settings.beta_range =
         scalar_range(s.beta_by, "beta_by", s.beta_range, "beta_range", p.beta_scalar);
-  }
-  if (settings.object_noise) {
-    // s pixels at the distance of the mesh centre, in world units.
-    const float world_per_pixel = 2.0f * camera.distance_world() *
-                                  std::tan(glm::radians(s.camera.fov_deg) * 0.5f) /
-                                  static_cast<float>(s.height);
-    settings.object_cell = settings.noise.scale * world_per_pixel;
   }
   settings.validate();
 

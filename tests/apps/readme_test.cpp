@@ -54,7 +54,7 @@ std::vector<std::string> readme_commands(const std::string& text) {
       out.push_back(command.substr(at));
     }
   }
-  const std::regex span("`(ibfvs (render|view|geometry|bench)[^`]*)`");
+  const std::regex span("`(ibfvs (render|view|geometry|bench|keys)[^`]*)`");
   for (auto it = std::sregex_iterator(prose.begin(), prose.end(), span);
        it != std::sregex_iterator(); ++it) {
     std::string command = std::regex_replace((*it)[1].str(), std::regex(" +"), " ");
@@ -71,6 +71,8 @@ std::vector<std::string> readme_commands(const std::string& text) {
 
 class Readme : public test::CommandTest {};
 
+// README.md and the docs whose examples are short (docs/performance.md's
+// commands are whole benchmark runs and scale tests, left out).
 TEST_F(Readme, EveryCommandLineItShowsRuns) {
   const fs::path data(IBFVS_TEST_DATA_DIR);
   if (!fs::exists(data / "meshes/cow.off") || !fs::exists(data / "earth/etopo20.cdf"))
@@ -84,11 +86,15 @@ TEST_F(Readme, EveryCommandLineItShowsRuns) {
   wing.vectors.assign(wing.vertex_count(), glm::vec3(1.0f, 0.2f, 0.0f));
   write_ply(wing, dir_ / "wing.ply", true);
   file("quit.txt", "3 quit\n");
+  fs::create_directories(dir_ / "docs/gallery");  // the gallery's outputs
 
-  std::ifstream in(fs::path(IBFVS_SOURCE_DIR) / "README.md");
-  std::stringstream text;
-  text << in.rdbuf();
-  const std::vector<std::string> commands = readme_commands(text.str());
+  std::vector<std::string> commands;
+  for (const char* doc : {"README.md", "docs/scenes.md", "docs/gallery.md"}) {
+    const std::vector<std::string> found =
+        readme_commands(test::read_file(fs::path(IBFVS_SOURCE_DIR) / doc));
+    EXPECT_FALSE(found.empty()) << doc;
+    commands.insert(commands.end(), found.begin(), found.end());
+  }
   int ran = 0, views = 0;
   for (const std::string& command : commands) {
     SCOPED_TRACE(command);
@@ -111,9 +117,9 @@ TEST_F(Readme, EveryCommandLineItShowsRuns) {
     EXPECT_EQ(r.status, 0) << r.err;
     ++ran;
   }
-  // The code blocks and the captions hold over twenty; the viewer's three
-  // included (its first takes the mesh as an argument).
-  EXPECT_GE(ran, 20);
+  // The README's code blocks and captions hold over twenty, the viewer's three
+  // included (its first takes the mesh as an argument); the docs as many again.
+  EXPECT_GE(ran, 45);
   if (xvfb) {
     EXPECT_EQ(views, 3);
   }

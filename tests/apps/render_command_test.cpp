@@ -367,6 +367,22 @@ TEST_F(RenderCommand, TopologyOnATerrainWithHeightAlongZ) {
   EXPECT_NE(r.out.find("gradient:down:0,0,1:normalize"), std::string::npos) << r.out;
 }
 
+// The options and arguments this library work added fail as cleanly as the
+// old ones: one line naming the flag, exit 1.
+TEST_F(RenderCommand, NewOptionsFailCleanly) {
+  file("sq.off", kTri);
+  const std::string m = "render sq.off --frames 2 --size 32x32 --out x.png ";
+  expect_error(m + "--up 0,0,0", "--up: the axis must not be zero");
+  expect_error(m + "--up sideways", "--up: 'sideways' is not a finite number");
+  expect_error(m + "--lock-at soon", "--lock-at: 'soon' must be a whole number");
+  expect_error(m + "--frames 0", "--frames: 0 (automatic) needs lock_at auto");
+  expect_error("render missing.off --out x.png", "missing.off");
+  expect_error("render missing.toml", "missing.toml: no such scene file");
+  expect_error("keys --html", "--html");
+  const Result ok = run(m + "--up auto --lock-at auto --frames 0 -q");
+  EXPECT_EQ(ok.status, 0) << ok.err;
+}
+
 TEST_F(RenderCommand, StylesLockingAndTopology) {
   for (const char* style : {"flow", "particles", "principal", "bronze", "eroded", "topology"}) {
     const Result r = run(std::string("render --mesh landscape:2:6:24 --style ") + style +

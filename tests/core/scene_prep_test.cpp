@@ -70,6 +70,20 @@ TEST(ScenePrep, DtMovesTheFastestVertexStepPixels) {
   EXPECT_TRUE(p.warnings.empty());
 }
 
+TEST(ScenePrep, ResizedSharesTheMeshAndKeepsTheStepInPixels) {
+  Scene s;
+  s.mesh = "torus";
+  s.step = 2.0f;
+  const PreparedScene p = prepare_scene(s);
+  const PreparedScene q = resized(p, 1024, 256);
+  EXPECT_EQ(q.mesh.get(), p.mesh.get());  // not read again
+  EXPECT_EQ(q.width, 1024);
+  EXPECT_EQ(q.settings.height, 256);
+  EXPECT_NEAR(q.max_px, 2.0f, 1e-4f);
+  EXPECT_NE(q.dt, p.dt);  // a smaller image: more world per pixel
+  EXPECT_THROW(resized(p, 0, 10), SettingError);
+}
+
 TEST(ScenePrep, ErrorsNameTheKey) {
   const auto key_of = [](Scene s) -> std::string {
     try {

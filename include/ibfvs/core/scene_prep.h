@@ -55,6 +55,12 @@ void apply_texture_settings(const Scene& scene, RenderSettings& settings);
 /// SettingError naming the key whose value is wrong.
 PreparedScene prepare_scene(const Scene& scene);
 
+/// The prepared scene for another image size: the same mesh (shared, not read
+/// again), field and scalars, with dt from the step in pixels (unless the
+/// scene gives dt) and the object-noise cell for that size. Throws
+/// SettingError for a size outside 1..16384.
+PreparedScene resized(const PreparedScene& prepared, int width, int height);
+
 /// The mesh's thinnest bounding-box axis (+X, +Y or +Z): the height axis of a
 /// terrain.
 glm::vec3 thinnest_axis(const TriMesh& mesh);

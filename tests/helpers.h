@@ -78,15 +78,21 @@ inline double correlation(const std::vector<float>& a, const std::vector<float>&
 /// Largest and mean absolute difference of two equally long sequences.
 struct Difference {
   double max = 0.0, mean = 0.0;
+  double above = 0.0;  // fraction of values that differ by more than the threshold
 };
-inline Difference difference(const std::vector<float>& a, const std::vector<float>& b) {
+inline Difference difference(const std::vector<float>& a, const std::vector<float>& b,
+                             double threshold = 0.02) {
   Difference d;
   for (std::size_t i = 0; i < a.size(); ++i) {
     const double e = std::abs(static_cast<double>(a[i]) - b[i]);
     d.max = std::max(d.max, e);
     d.mean += e;
+    if (e > threshold) d.above += 1.0;
   }
-  if (!a.empty()) d.mean /= static_cast<double>(a.size());
+  if (!a.empty()) {
+    d.mean /= static_cast<double>(a.size());
+    d.above /= static_cast<double>(a.size());
+  }
   return d;
 }
 

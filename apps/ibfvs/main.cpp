@@ -15,6 +15,7 @@
 
 #include "ibfvs/bench_command.h"
 #include "ibfvs/geometry_command.h"
+#include "ibfvs/quality_command.h"
 #include "ibfvs/render_command.h"
 #include "ibfvs/view_command.h"
 
@@ -56,6 +57,13 @@ int main(int argc, char** argv) {
       "Normals, principal curvatures and directions (Goldfeather-Interrante), Loop "
       "subdivision: print a summary and write a PLY");
   ibfvs::app::add_geometry_options(*geometry, *geometry_options);
+  auto quality_scene = std::make_unique<ibfvs::app::SceneOptions>();
+  auto quality_options = std::make_unique<ibfvs::app::QualityOptions>();
+  CLI::App* quality = app.add_subcommand(
+      "quality",
+      "Measure the picture of a scene (the same options as render): alignment with the flow, "
+      "background inflow, pattern speed against the flow, flicker, contrast");
+  ibfvs::app::add_quality_options(*quality, *quality_scene, *quality_options);
   bool keys_markdown = false;
   CLI::App* keys = app.add_subcommand(
       "keys", "List every scene key (scene files; the same as render's flags) with its default");
@@ -69,17 +77,18 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help
     // One line in the same form as every other error.
-    if (*render || *geometry || *view || *bench || *keys)
+    if (*render || *geometry || *view || *bench || *keys || *quality)
       std::fprintf(stderr, "ibfvs: error: %s (see ibfvs %s --help)\n", e.what(),
-                   *render  ? "render"
-                   : *view  ? "view"
-                   : *bench ? "bench"
-                   : *keys  ? "keys"
-                            : "geometry");
+                   *render    ? "render"
+                   : *view    ? "view"
+                   : *bench   ? "bench"
+                   : *keys    ? "keys"
+                   : *quality ? "quality"
+                              : "geometry");
     else
       std::fprintf(stderr,
-                   "ibfvs: error: unknown command '%s' (expected render, view, geometry, bench or "
-                   "keys; see ibfvs "
+                   "ibfvs: error: unknown command '%s' (expected render, view, geometry, bench, "
+                   "quality or keys; see ibfvs "
                    "--help)\n",
                    argv[1]);
     return 1;
@@ -90,6 +99,7 @@ int main(int argc, char** argv) {
     if (*geometry) return ibfvs::app::run_geometry(*geometry_options);
     if (*view) return ibfvs::app::run_view(*view_options);
     if (*bench) return ibfvs::app::run_bench(*bench_options);
+    if (*quality) return ibfvs::app::run_quality(*quality_scene, *quality_options);
     if (*keys) {
       std::fputs(ibfvs::app::scene_keys_table(keys_markdown).c_str(), stdout);
       return 0;

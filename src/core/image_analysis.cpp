@@ -6,6 +6,9 @@
 
 #include <glm/geometric.hpp>
 
+#include "ibfvs/core/display.h"
+#include "ibfvs/core/error.h"
+
 namespace ibfvs {
 
 ImageF gaussian_blur(const ImageF& image, float sigma) {
@@ -71,6 +74,98 @@ double flow_alignment(const ImageF& image, const std::vector<std::uint8_t>& mask
       total += static_cast<double>(gx) * gx + static_cast<double>(gy) * gy;
     }
   return total > 0.0 ? along / total : std::numeric_limits<double>::quiet_NaN();
+}
+
+namespace {
+
+double channel_mean(const ImageF& image, int x, int y) {
+  const int n = std::min(image.channels, 3);
+  double sum = 0.0;
+  for (int c = 0; c < n; ++c) sum += image.at(x, y, c);
+  return sum / n;
+}
+
+double bilinear_mean(const ImageF& image, float x, float y) {
+  const int n = std::min(image.channels, 3);
+  double sum = 0.0;
+  for (int c = 0; c < n; ++c) sum += sample_bilinear(image, x, y, c);
+  return sum / n;
+}
+
+}  // namespace
+
+PatternMotion pattern_motion(const ImageF& before, const ImageF& after, const ImageF& flow,
+                             const std::vector<std::uint8_t>& mask, int lag) {
+  const int w = after.width, h = after.height;
+  if (before.width != w || before.height != h || flow.width != w || flow.height != h ||
+      flow.channels != 2 || mask.size() != static_cast<std::size_t>(w) * h || lag < 1)
+    throw InputError("pattern_motion: images, flow (2 channels) and mask must match, lag >= 1");
+  const auto masked = [&](float x, float y) {
+    const int xi = static_cast<int>(std::floor(x)), yi = static_cast<int>(std::floor(y));
+    return xi >= 0 && yi >= 0 && xi < w && yi < h && mask[static_cast<std::size_t>(yi) * w + xi];
+  };
+  PatternMotion result;
+  result.best = -2.0;
+  for (int step = 0; step <= 30; ++step) {
+    const double r = 0.05 * step;
+    double sa = 0, sb = 0, saa = 0, sbb = 0, sab = 0, n = 0;
+    for (int y = 0; y < h; y += 2)
+      for (int x = 0; x < w; x += 2) {
+        if (!mask[static_cast<std::size_t>(y) * w + x]) continue;
+        float px = static_cast<float>(x) + 0.5f, py = static_cast<float>(y) + 0.5f;
+        bool on = true;
+        for (int k = 0; k < lag && on; ++k) {
+          const float dx = sample_bilinear(flow, px, py, 0), dy = sample_bilinear(flow, px, py, 1);
+          px -= static_cast<float>(r) * dx;
+          py -= static_cast<float>(r) * dy;
+          on = masked(px, py);
+        }
+        if (!on) continue;
+        const double a = channel_mean(after, x, y), b = bilinear_mean(before, px, py);
+        sa += a, sb += b, saa += a * a, sbb += b * b, sab += a * b, n += 1;
+      }
+    double c = 0.0;
+    if (n > 1) {
+      const double va = saa / n - (sa / n) * (sa / n), vb = sbb / n - (sb / n) * (sb / n);
+      c = va > 0 && vb > 0 ? (sab / n - (sa / n) * (sb / n)) / std::sqrt(va * vb) : 0.0;
+    }
+    if (step == 0) result.still = c;
+    if (step == 20) {
+      result.at_flow = c;
+      result.pixels = static_cast<std::size_t>(n);
+    }
+    if (c > result.best) {
+      result.best = c;
+      result.ratio = r;
+    }
+  }
+  return result;
+}
+
+double rms_contrast(const ImageF& image, const std::vector<std::uint8_t>& mask) {
+  double s = 0, ss = 0, n = 0;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      if (!mask[static_cast<std::size_t>(y) * image.width + x]) continue;
+      const double v = channel_mean(image, x, y);
+      s += v, ss += v * v, n += 1;
+    }
+  if (n < 2) return 0.0;
+  return std::sqrt(std::max(ss / n - (s / n) * (s / n), 0.0));
+}
+
+double red_tinted_fraction(const ImageF& image, const std::vector<std::uint8_t>& mask,
+                           float threshold) {
+  if (image.channels < 3) throw InputError("red_tinted_fraction: needs an RGB image");
+  double tinted = 0, n = 0;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      if (!mask[static_cast<std::size_t>(y) * image.width + x]) continue;
+      n += 1;
+      if (image.at(x, y, 0) - 0.5f * (image.at(x, y, 1) + image.at(x, y, 2)) > threshold)
+        tinted += 1;
+    }
+  return n > 0 ? tinted / n : 0.0;
 }
 
 }  // namespace ibfvs

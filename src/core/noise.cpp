@@ -19,8 +19,23 @@ float noise_profile_value(NoiseProfile profile, float t, float spike_width) {
       return 0.5f + 0.5f * std::sin(2.0f * std::numbers::pi_v<float> * f);
     case NoiseProfile::Spike:
       return f < spike_width ? 1.0f : 0.0f;
+    case NoiseProfile::Random:
+      break;
   }
   return 0.0f;
+}
+
+float cell_noise_value(const NoiseParams& params, int i, int j, int k, float t) {
+  if (params.profile != NoiseProfile::Random)
+    return noise_profile_value(params.profile, t, params.spike_width);
+  const float n = std::floor(t), f = t - n;
+  // Cycle n hashes with a seed of its own (unsigned arithmetic wraps as GLSL's does).
+  const auto cycle_seed = [&](float c) {
+    return params.seed + static_cast<std::uint32_t>(static_cast<std::int32_t>(c)) * 0x9E3779B9u;
+  };
+  const float a = solid_phase(i, j, k, cycle_seed(n)), b = solid_phase(i, j, k, cycle_seed(n + 1));
+  const float ease = 0.5f - 0.5f * std::cos(std::numbers::pi_v<float> * f);
+  return a + (b - a) * ease;
 }
 
 float hash_uniform(std::uint32_t seed, std::uint64_t index) {
@@ -48,8 +63,7 @@ float NoiseGrid::grid_value(int i, int j, int frame) const {
   j = std::clamp(j, 0, rows_ - 1);
   const float phi = phases_[static_cast<std::size_t>(j) * static_cast<std::size_t>(columns_) +
                             static_cast<std::size_t>(i)];
-  return noise_profile_value(params_.profile, params_.rate * static_cast<float>(frame) + phi,
-                             params_.spike_width);
+  return cell_noise_value(params_, i, j, 0, params_.rate * static_cast<float>(frame) + phi);
 }
 
 float NoiseGrid::sample(float x, float y, int frame) const {
@@ -85,8 +99,8 @@ float solid_noise(const NoiseParams& params, float cell, float x, float y, float
     const int dx = corner & 1, dy = (corner >> 1) & 1, dz = (corner >> 2) & 1;
     const float w = (dx ? a[0] : 1 - a[0]) * (dy ? a[1] : 1 - a[1]) * (dz ? a[2] : 1 - a[2]);
     const float phi = solid_phase(i[0] + dx, i[1] + dy, i[2] + dz, params.seed);
-    g += w * noise_profile_value(params.profile, params.rate * static_cast<float>(frame) + phi,
-                                 params.spike_width);
+    g += w * cell_noise_value(params, i[0] + dx, i[1] + dy, i[2] + dz,
+                              params.rate * static_cast<float>(frame) + phi);
   }
   return g;
 }

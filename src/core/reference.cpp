@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "ibfvs/core/display.h"
 #include "ibfvs/core/error.h"
 
 namespace ibfvs {
@@ -10,6 +11,53 @@ namespace ibfvs {
 ReferenceIbfvs::ReferenceIbfvs(int width, int height, float background, const NoiseParams& noise)
     : background_(background), noise_(width, height, noise) {
   texture_ = ImageF(width, height, 1, background);
+  shown_ = texture_;
+  covered_.assign(static_cast<std::size_t>(width) * height, 0);
+}
+
+float ReferenceIbfvs::sample_cubic(float x, float y) const {
+  const float u = x - 0.5f, v = y - 0.5f;
+  const float fu = std::floor(u), fv = std::floor(v);
+  const int i = static_cast<int>(fu), j = static_cast<int>(fv);
+  const auto weights = [](float f, float w[4]) {
+    w[0] = f * (-0.5f + f * (1.0f - 0.5f * f));
+    w[1] = 1.0f + f * f * (-2.5f + 1.5f * f);
+    w[2] = f * (0.5f + f * (2.0f - 1.5f * f));
+    w[3] = f * f * (-0.5f + 0.5f * f);
+  };
+  float wx[4], wy[4];
+  weights(u - fu, wx);
+  weights(v - fv, wy);
+  const int w = texture_.width, h = texture_.height;
+  float sum = 0.0f;
+  for (int b = 0; b < 4; ++b)
+    for (int a = 0; a < 4; ++a) {
+      const int ti = std::clamp(i - 1 + a, 0, w - 1), tj = std::clamp(j - 1 + b, 0, h - 1);
+      if (!covered_[static_cast<std::size_t>(tj) * w + ti]) return sample(x, y);
+      sum += wx[a] * wy[b] * texture_.at(ti, tj);
+    }
+  return std::clamp(sum, 0.0f, 1.0f);
+}
+
+bool ReferenceIbfvs::on_previous_surface(float x, float y) const {
+  const int w = texture_.width, h = texture_.height;
+  return x >= 0.0f && x <= static_cast<float>(w) && y >= 0.0f && y <= static_cast<float>(h) &&
+         footprint_covered(x, y);
+}
+
+bool ReferenceIbfvs::footprint_covered(float x, float y) const {
+  const int w = texture_.width, h = texture_.height;
+  const float u = x - 0.5f, v = y - 0.5f;
+  const float fu = std::floor(u), fv = std::floor(v);
+  const int i = static_cast<int>(fu), j = static_cast<int>(fv);
+  const float a = u - fu, b = v - fv;
+  for (int dj = 0; dj < 2; ++dj)
+    for (int di = 0; di < 2; ++di) {
+      const float weight = (di ? a : 1 - a) * (dj ? b : 1 - b);
+      const int ti = std::clamp(i + di, 0, w - 1), tj = std::clamp(j + dj, 0, h - 1);
+      if (weight > 0.0f && !covered_[static_cast<std::size_t>(tj) * w + ti]) return false;
+    }
+  return true;
 }
 
 float ReferenceIbfvs::sample(float x, float y) const {
@@ -29,20 +77,52 @@ void ReferenceIbfvs::step(const BackwardMap& map, int frame, float alpha, Inject
   if (map.width != texture_.width || map.height != texture_.height)
     throw InputError("reference: backward map size differs from the image size");
   ImageF next = texture_;
+  ImageF shown = texture_;
+  const int taps = filter_taps(filter_length_);
+  const float spacing = filter_spacing(filter_length_);
+  const auto blend = [&](float prev, float g) {
+    return mode == InjectMode::Blend ? (1 - alpha) * prev + alpha * g
+                                     : std::min(1.0f, (1 - alpha) * prev + g);
+  };
   for (int y = 0; y < texture_.height; ++y)
     for (int x = 0; x < texture_.width; ++x) {
       const std::size_t i = static_cast<std::size_t>(y) * texture_.width + x;
       if (!map.covered[i]) {
-        next.pixels[i] = background_;
+        next.pixels[i] = shown.pixels[i] = background_;
         continue;
       }
-      const float prev = sample(map.source[i].x, map.source[i].y);
       const float g =
           noise_.sample(static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f, frame);
-      next.pixels[i] = mode == InjectMode::Blend ? (1 - alpha) * prev + alpha * g
-                                                 : std::min(1.0f, (1 - alpha) * prev + g);
+      const glm::vec2 s = map.source[i];
+      const bool same = on_previous_surface(s.x, s.y) && (map.occluded.empty() || !map.occluded[i]);
+      const float prev = !same    ? (mode == InjectMode::Blend ? g : 0.0f)
+                         : cubic_ ? sample_cubic(s.x, s.y)
+                                  : sample(s.x, s.y);
+      next.pixels[i] = blend(prev, g);
+      // The display filter: taps around the source in F_t,prev, around the
+      // pixel in G, along the displacement (as the fragment shader).
+      const glm::vec2 here(static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f);
+      const glm::vec2 moved = here - s;
+      const float length = std::sqrt(moved.x * moved.x + moved.y * moved.y);
+      shown.pixels[i] = next.pixels[i];
+      if (taps == 0 || !same || !(length > 1e-6f)) continue;
+      const glm::vec2 along = moved / length;
+      float sum = next.pixels[i], weights = 1.0f;
+      for (int k = 1; k <= taps; ++k)
+        for (const float side : {-1.0f, 1.0f}) {
+          const glm::vec2 offset = side * spacing * static_cast<float>(k) * along;
+          const glm::vec2 at = s + offset;
+          if (!footprint_covered(at.x, at.y)) continue;
+          const float w = filter_weight(filter_length_, k);
+          sum += w * blend(sample(at.x, at.y),
+                           noise_.sample(here.x + offset.x, here.y + offset.y, frame));
+          weights += w;
+        }
+      shown.pixels[i] = sum / weights;
     }
   texture_ = std::move(next);
+  shown_ = std::move(shown);
+  covered_ = map.covered;
 }
 
 }  // namespace ibfvs

@@ -21,6 +21,10 @@ void RenderSettings::validate() const {
   if (!in_unit(beta)) throw SettingError("beta", "must be between 0 and 1");
   if (!(image_step >= 0.0f) || !std::isfinite(image_step))
     throw SettingError("step", "the image-space step must be a finite number of pixels >= 0");
+  if (!(filter_length >= 0.0f && filter_length <= 32.0f))
+    throw SettingError("filter", "the filter length must be between 0 and 32 pixels");
+  if (!(contrast >= 0.0f && contrast <= 0.5f))
+    throw SettingError("contrast", "the RMS contrast must be between 0 (off) and 0.5");
   if (object_noise && (!(object_cell > 0.0f) || !std::isfinite(object_cell)))
     throw SettingError("noise_space", "object: the cell size must be positive");
   if (!(noise.scale >= 1.0f) || !std::isfinite(noise.scale))

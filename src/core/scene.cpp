@@ -284,6 +284,15 @@ std::vector<SceneKey> make_keys() {
        "every moving point moves step pixels per frame (paper figure 2)",
        [](Scene& s, std::string_view t) { s.image_normalize = flag(t); },
        [](const Scene& s) { return s.image_normalize ? one("true") : none(); }},
+      IBFVS_ENUM_KEY(resample, Resample, "how F_t is sampled at t(x) each frame (eq. 13)"),
+      IBFVS_NUMBER_KEY(filter,
+                       "display only: Gaussian filter along the flow over F_t, its length in "
+                       "pixels, 0..32 (0 off)",
+                       require(v >= 0.0f && v <= 32.0f, "must be between 0 and 32 pixels")),
+      IBFVS_NUMBER_KEY(contrast,
+                       "display only: RMS contrast of the shown texture, mean 0.5, 0..0.5 (0: "
+                       "as synthesised; section 3.4)",
+                       require(v >= 0.0f && v <= 0.5f, "must be between 0 (off) and 0.5")),
       IBFVS_ENUM_KEY(inject, InjectMode, "how noise enters the texture"),
       {"background", KeyKind::Vector, "background colour B, R,G,B in 0..1",
        [](Scene& s, std::string_view t) { s.background = colour(t); },
@@ -692,12 +701,22 @@ void apply_style(Scene& s, Style style) {
       s.beta = 0.5f;
       s.background = glm::vec3(0.5f);
       break;
+    case Style::Crisp:
+      // docs/quality.md: A >= 0.93 on the test meshes (VTK's Surface LIC:
+      // 0.98 on a sphere, static); about twice the cost per pixel of flow.
+      s.image_normalize = true;
+      s.resample = Resample::Cubic;
+      s.filter = 12.0f;
+      break;
     case Style::Particles:
       // Figure 8a: short spikes so that few grid values are bright, added
       // rather than blended, along kappa_min where the mesh has no field.
       s.profile = NoiseProfile::Spike;
       s.spike_width = 0.04f;
+      s.scale = 4.0f;  // one particle per 4 x 4 pixels, as the paper's
       s.inject = InjectMode::Add;
+      s.contrast = 0.0f;  // sparse bright spikes on the dark: no stretch to mean 0.5
+      s.filter = 0.0f;    // the comet tails as they are
       s.alpha = 0.08f;
       s.background = {0.05f, 0.05f, 0.08f};
       s.beta = 0.7f;
@@ -728,6 +747,10 @@ void apply_style(Scene& s, Style style) {
       // borders, then seen obliquely.
       s.alpha = 0.0f;
       s.init = InitMode::RandomCells;
+      s.scale = 4.0f;     // the colour cells of the figure
+      s.contrast = 0.0f;  // colours, not a grey texture
+      s.filter = 0.0f;
+      s.resample = Resample::Linear;
       s.default_field = FieldSpec::parse("gradient:down:normalize");
       s.up_auto = true;
       s.up.reset();

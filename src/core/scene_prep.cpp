@@ -93,6 +93,9 @@ void apply_texture_settings(const Scene& s, RenderSettings& settings) {
   settings.alpha = s.alpha;
   settings.beta = s.beta;
   settings.image_step = s.image_normalize ? s.step : 0.0f;
+  settings.filter_length = s.filter;
+  settings.resample = s.resample;
+  settings.contrast = s.contrast;
   settings.noise.profile = s.profile;
   settings.noise.rate = s.vg;
   settings.noise.spike_width = s.spike_width;
@@ -267,11 +270,13 @@ PreparedScene prepare_scene(const Scene& s) {
         "the field does not move any vertex in the image (zero after projection?); the texture "
         "will stand still");
   char text[200];
-  if (p.max_px > settings.noise.scale) {
+  // The display filter bridges gaps up to its length.
+  if (p.max_px > settings.noise.scale && p.max_px > settings.filter_length) {
     std::snprintf(text, sizeof text,
                   "the largest displacement is %.1f pixels per frame, more than the noise scale "
-                  "%.1f: expect broken streaks (lower step or dt)",
-                  p.max_px, settings.noise.scale);
+                  "%.1f and the filter length %.1f: expect broken streaks (lower step or dt, or "
+                  "raise filter)",
+                  p.max_px, settings.noise.scale, settings.filter_length);
     p.warnings.push_back(text);
   }
 

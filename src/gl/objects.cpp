@@ -41,10 +41,14 @@ FormatInfo info(Format f) {
   switch (f) {
     case Format::RGBA8:
       return {GL_RGBA8, GL_RGBA};
+    case Format::R8:
+      return {GL_R8, GL_RED};
     case Format::RGBA16F:
       return {GL_RGBA16F, GL_RGBA};
     case Format::R16F:
       return {GL_R16F, GL_RED};
+    case Format::RG16F:
+      return {GL_RG16F, GL_RG};
     case Format::RGBA32F:
       return {GL_RGBA32F, GL_RGBA};
     case Format::R32F:
@@ -53,6 +57,19 @@ FormatInfo info(Format f) {
       return {GL_DEPTH_COMPONENT24, GL_DEPTH_COMPONENT};
   }
   return {GL_RGBA8, GL_RGBA};
+}
+
+GLenum channel_format(int channels) {
+  switch (channels) {
+    case 1:
+      return GL_RED;
+    case 2:
+      return GL_RG;
+    case 4:
+      return GL_RGBA;
+    default:
+      throw GraphicsError("texture transfer: 1, 2 or 4 channels, not " + std::to_string(channels));
+  }
 }
 
 }  // namespace
@@ -102,17 +119,23 @@ void VertexArray::bind() const {
   glBindVertexArray(id());
 }
 
-Texture2D::Texture2D(int width, int height, Format format, bool linear)
+Texture2D::Texture2D(int width, int height, Format format, bool linear, int levels)
     : width_(width), height_(height), format_(format) {
   GLuint id = 0;
   glCreateTextures(GL_TEXTURE_2D, 1, &id);
   static_cast<Object&>(*this) = Object(id);
-  glTextureStorage2D(id, 1, info(format).internal, width, height);
+  glTextureStorage2D(id, levels, info(format).internal, width, height);
   const GLint filter = linear ? GL_LINEAR : GL_NEAREST;
-  glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, filter);
+  glTextureParameteri(
+      id, GL_TEXTURE_MIN_FILTER,
+      levels > 1 ? (linear ? GL_LINEAR_MIPMAP_NEAREST : GL_NEAREST_MIPMAP_NEAREST) : filter);
   glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, filter);
   glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
   glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+}
+
+void Texture2D::generate_mipmaps() {
+  glGenerateTextureMipmap(id());
 }
 
 void Texture2D::set_repeat(bool repeat) {
@@ -125,7 +148,7 @@ void Texture2D::upload_float(std::span<const float> data, int channels) {
   const std::size_t need = static_cast<std::size_t>(width_) * height_ * channels;
   if (data.size() < need) throw GraphicsError("texture upload: not enough data");
   glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-  glTextureSubImage2D(id(), 0, 0, 0, width_, height_, channels == 1 ? GL_RED : GL_RGBA, GL_FLOAT,
+  glTextureSubImage2D(id(), 0, 0, 0, width_, height_, channel_format(channels), GL_FLOAT,
                       data.data());
 }
 
@@ -137,7 +160,7 @@ void Texture2D::read_float(std::span<float> out, int channels) const {
   const std::size_t need = static_cast<std::size_t>(width_) * height_ * channels;
   if (out.size() < need) throw GraphicsError("texture read: buffer too small");
   glPixelStorei(GL_PACK_ALIGNMENT, 4);
-  glGetTextureImage(id(), 0, channels == 1 ? GL_RED : GL_RGBA, GL_FLOAT,
+  glGetTextureImage(id(), 0, channel_format(channels), GL_FLOAT,
                     static_cast<GLsizei>(need * sizeof(float)), out.data());
 }
 
@@ -269,6 +292,10 @@ void Program::use() const {
 int Program::location(const char* name) const {
   return glGetUniformLocation(id(), name);
 }
+void Program::set(int loc, std::span<const float> values) const {
+  glProgramUniform1fv(id(), loc, static_cast<GLsizei>(values.size()), values.data());
+}
+
 void Program::set(int loc, float v) const {
   glProgramUniform1f(id(), loc, v);
 }
@@ -310,6 +337,16 @@ void set_face_culling(int orientation) {
   glCullFace(orientation > 0 ? GL_BACK : GL_FRONT);
 }
 
+void set_running_average(float weight) {
+  if (weight > 0.0f) {
+    glEnable(GL_BLEND);
+    glBlendColor(0.0f, 0.0f, 0.0f, weight);
+    glBlendFunc(GL_CONSTANT_ALPHA, GL_ONE_MINUS_CONSTANT_ALPHA);
+  } else {
+    glDisable(GL_BLEND);
+  }
+}
+
 void enable_depth_test(bool on) {
   if (on) {
     glEnable(GL_DEPTH_TEST);
@@ -340,6 +377,12 @@ SavedState::SavedState() {
   glGetIntegerv(GL_VIEWPORT, viewport_);
   depth_test_ = glIsEnabled(GL_DEPTH_TEST) == GL_TRUE;
   cull_face_ = glIsEnabled(GL_CULL_FACE) == GL_TRUE;
+  blend_ = glIsEnabled(GL_BLEND) == GL_TRUE;
+  glGetIntegerv(GL_BLEND_SRC_RGB, &blend_func_[0]);
+  glGetIntegerv(GL_BLEND_DST_RGB, &blend_func_[1]);
+  glGetIntegerv(GL_BLEND_SRC_ALPHA, &blend_func_[2]);
+  glGetIntegerv(GL_BLEND_DST_ALPHA, &blend_func_[3]);
+  glGetFloatv(GL_BLEND_COLOR, blend_color_);
 }
 
 SavedState::~SavedState() {
@@ -362,6 +405,13 @@ SavedState::~SavedState() {
     glEnable(GL_CULL_FACE);
   else
     glDisable(GL_CULL_FACE);
+  if (blend_)
+    glEnable(GL_BLEND);
+  else
+    glDisable(GL_BLEND);
+  glBlendFuncSeparate(static_cast<GLenum>(blend_func_[0]), static_cast<GLenum>(blend_func_[1]),
+                      static_cast<GLenum>(blend_func_[2]), static_cast<GLenum>(blend_func_[3]));
+  glBlendColor(blend_color_[0], blend_color_[1], blend_color_[2], blend_color_[3]);
 }
 
 }  // namespace ibfvs::gl

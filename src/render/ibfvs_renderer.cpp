@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <string>
 #include <vector>
 
+#include "ibfvs/core/display.h"
 #include "ibfvs/core/error.h"
 #include "ibfvs/render/shaders.h"
 
@@ -29,6 +31,17 @@ IbfvsRenderer::IbfvsRenderer(const RenderSettings& settings) : settings_(setting
   const int w = settings_.width, h = settings_.height;
   output_ = gl::Texture2D(w, h, gl::Format::RGBA8, false);
   depth_ = gl::Renderbuffer(w, h, gl::Format::Depth24);
+  stats_ = gl::Texture2D(1, 1, gl::Format::RGBA32F, false);
+  stats_framebuffer_ = gl::Framebuffer::create();
+  stats_framebuffer_.attach_color(0, stats_);
+  stats_framebuffer_.finish(1);
+  for (const int mono : {0, 1}) {
+    StatsProgram& sp = stats_program_[mono];
+    sp.program = gl::Program(shaders::kGridVertex, shaders::stats_fragment_source(mono == 1));
+    sp.image_size = sp.program.location("u_image_size");
+    sp.stats_size = sp.program.location("u_stats_size");
+    sp.offset = sp.program.location("u_offset");
+  }
   allocate_texture(!grey(settings_.background));
 
   const NoiseGrid grid(w, h, settings_.noise);
@@ -45,6 +58,7 @@ IbfvsRenderer::IbfvsRenderer(const RenderSettings& settings) : settings_(setting
   grid_noise_time_ = grid_program_.location("u_noise_time");
   grid_profile_ = grid_program_.location("u_profile");
   grid_spike_width_ = grid_program_.location("u_spike_width");
+  grid_seed_ = grid_program_.location("u_seed");
   empty_vao_ = gl::VertexArray::create();
   apply_settings();
   static_cast<void>(current_variant());  // compile now: a shader error shows at construction
@@ -53,22 +67,43 @@ IbfvsRenderer::IbfvsRenderer(const RenderSettings& settings) : settings_(setting
 
 void IbfvsRenderer::allocate_texture(bool colour) {
   colour_texture_ = colour;
-  const gl::Format format = colour ? gl::Format::RGBA16F : gl::Format::R16F;
-  for (int i = 0; i < 2; ++i) {
+  const gl::Format format = colour ? gl::Format::RGBA16F : gl::Format::RG16F;
+  for (int i = 0; i < 2; ++i)
     texture_[i] = gl::Texture2D(settings_.width, settings_.height, format, true);
+  build_framebuffers();
+}
+
+void IbfvsRenderer::build_framebuffers() {
+  for (int i = 0; i < 2; ++i) {
     framebuffer_[i] = gl::Framebuffer::create();
     framebuffer_[i].attach_color(0, texture_[i]);
     framebuffer_[i].attach_color(1, output_);
+    if (record_flow_) framebuffer_[i].attach_color(2, flow_);
     framebuffer_[i].attach_depth(depth_);
-    framebuffer_[i].finish(2);
+    framebuffer_[i].finish(record_flow_ ? 3 : 2);
   }
+}
+
+void IbfvsRenderer::record_flow(bool on) {
+  if (on == record_flow_) return;
+  record_flow_ = on;
+  if (on && !flow_)
+    flow_ = gl::Texture2D(settings_.width, settings_.height, gl::Format::RG16F, false);
+  build_framebuffers();
+  if (on) framebuffer_[current_].clear_color(2, glm::vec4(0.0f));
 }
 
 void IbfvsRenderer::use_colour_texture() {
   if (colour_texture_) return;
-  const ImageF grey_texture = read_texture();  // already spread to RGBA
+  const ImageF raw = read_texture_raw();  // value, depth
+  std::vector<float> rgba(raw.pixels.size() * 2);
+  for (std::size_t i = 0; i < raw.pixels.size() / 2; ++i) {
+    const float v = raw.pixels[2 * i];
+    rgba[4 * i] = rgba[4 * i + 1] = rgba[4 * i + 2] = v;
+    rgba[4 * i + 3] = raw.pixels[2 * i + 1];
+  }
   allocate_texture(true);
-  texture_[current_].upload_float(grey_texture.pixels, 4);
+  texture_[current_].upload_float(rgba, 4);
 }
 
 shaders::ShaderFeatures IbfvsRenderer::features() const {
@@ -80,18 +115,23 @@ shaders::ShaderFeatures IbfvsRenderer::features() const {
   f.image_step = settings_.image_step > 0.0f;
   f.inject_add = settings_.inject == InjectMode::Add;
   f.mono_texture = !colour_texture_;
+  f.cubic = settings_.resample == Resample::Cubic;
+  f.filter_taps = ibfvs::filter_taps(settings_.filter_length);
+  f.contrast = settings_.contrast > 0.0f;
+  f.record_flow = record_flow_;
   return f;
 }
 
 IbfvsRenderer::Variant& IbfvsRenderer::current_variant() {
   const shaders::ShaderFeatures f = features();
-  Variant& v = variants_[f.key()];
+  Variant& v = variants_[f.key()];  // made on first use
   if (!v.program) {
     v.program = gl::Program(shaders::ibfvs_vertex_source(f), shaders::ibfvs_fragment_source(f));
     const gl::Program& p = v.program;
     v.u.view_projection = p.location("u_view_projection");
     v.u.advect_view_projection = p.location("u_advect_view_projection");
     v.u.view = p.location("u_view");
+    v.u.advect_view = p.location("u_advect_view");
     v.u.dt = p.location("u_dt");
     v.u.alpha = p.location("u_alpha");
     v.u.beta = p.location("u_beta");
@@ -114,6 +154,9 @@ IbfvsRenderer::Variant& IbfvsRenderer::current_variant() {
     v.u.image_centre = p.location("u_image_centre");
     v.u.phase_size = p.location("u_phase_size");
     v.u.inverse_size = p.location("u_inverse_size");
+    v.u.filter_spacing = p.location("u_filter_spacing");
+    v.u.filter_weights = p.location("u_filter_weights");
+    v.u.contrast = p.location("u_contrast");
   }
   if (v.applied != settings_version_) {  // the settings changed since it was last used
     const gl::Program& p = v.program;
@@ -134,6 +177,14 @@ IbfvsRenderer::Variant& IbfvsRenderer::current_variant() {
     p.set(v.u.inverse_size, glm::vec2(1.0f / static_cast<float>(settings_.width),
                                       1.0f / static_cast<float>(settings_.height)));
     p.set(v.u.image_centre, image_centre_);
+    if (f.filter_taps > 0) {
+      std::vector<float> weights(static_cast<std::size_t>(f.filter_taps));
+      for (int k = 0; k < f.filter_taps; ++k)
+        weights[static_cast<std::size_t>(k)] = filter_weight(settings_.filter_length, k + 1);
+      p.set(v.u.filter_spacing, filter_spacing(settings_.filter_length));
+      p.set(v.u.filter_weights, std::span<const float>(weights));
+    }
+    p.set(v.u.contrast, settings_.contrast);
     v.applied = settings_version_;
   }
   return v;
@@ -143,6 +194,7 @@ void IbfvsRenderer::apply_settings() {
   ++settings_version_;
   grid_program_.set(grid_profile_, static_cast<int>(settings_.noise.profile));
   grid_program_.set(grid_spike_width_, settings_.noise.spike_width);
+  grid_program_.set(grid_seed_, settings_.noise.seed);
   std::vector<float> table(256 * 4);
   for (int i = 0; i < 256; ++i) {
     const glm::vec3 c = color_map(settings_.color_map, static_cast<float>(i) / 255.0f);
@@ -243,13 +295,10 @@ void IbfvsRenderer::set_scalars(std::span<const float> color, std::span<const fl
 
 void IbfvsRenderer::reset() {
   if (colour_texture_ == grey(settings_.background)) allocate_texture(!grey(settings_.background));
-  const glm::vec4 b(settings_.background, 1.0f);
-  for (auto& fb : framebuffer_) {
-    fb.clear_color(0, b);
-    fb.clear_color(1, b);
-  }
-  framebuffer_[0].clear_depth();  // the depth buffer is shared by both framebuffers
+  for (auto& fb : framebuffer_) clear_targets(fb);
+  stats_framebuffer_.clear_color(0, glm::vec4(0.0f));  // no statistics before the first frame
   current_ = 0;
+  displayed_ = 0;
   frame_ = 0;
   has_previous_ = false;
 }
@@ -267,8 +316,8 @@ void IbfvsRenderer::present(int window_width, int window_height, int left) const
   const int w = static_cast<int>(std::lround(settings_.width * scale));
   const int h = static_cast<int>(std::lround(settings_.height * scale));
   const int x0 = left + (area - w) / 2, y0 = (window_height - h) / 2;
-  framebuffer_[current_].blit_to_default(1, settings_.width, settings_.height, x0, y0, x0 + w,
-                                         y0 + h);
+  framebuffer_[displayed_].blit_to_default(1, settings_.width, settings_.height, x0, y0, x0 + w,
+                                           y0 + h);
 }
 
 void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
@@ -276,10 +325,7 @@ void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
   const bool use_previous = settings_.advect_view == AdvectView::Previous && has_previous_;
   const int next = 1 - current_;
   gl::Framebuffer& fb = framebuffer_[next];
-  const glm::vec4 b(settings_.background, 1.0f);
-  fb.clear_color(0, b);
-  fb.clear_color(1, b);
-  fb.clear_depth();
+  clear_targets(fb);
   if (index_count_ > 0) {
     const float noise_time = settings_.noise.rate * static_cast<float>(frame_);
     if (!settings_.object_noise) {  // the grid pass: G_ij of this frame
@@ -294,6 +340,7 @@ void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
     }
     fb.bind();
     gl::set_viewport(settings_.width, settings_.height);
+    gl::set_running_average(0.0f);  // no blending (a host's may be on)
     gl::enable_depth_test(true);
     // A closed mesh hides its back faces behind its front ones: culling them
     // halves llvmpipe's triangle setup and changes no pixel.
@@ -306,6 +353,7 @@ void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
                                       : use_previous ? previous_view_projection_
                                                      : vp);
     p.set(v.u.view, view.view);
+    p.set(v.u.advect_view, locked_ ? lock_view_ : use_previous ? previous_view_ : view.view);
     p.set(v.u.dt, locked_ ? 0.0f : dt);
     p.set(v.u.probe, probe_);
     p.set(v.u.field_mix, field_mix_);
@@ -317,22 +365,56 @@ void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
     grid_.bind(1);
     color_map_.bind(2);
     if (surface_image_) surface_image_.bind(3);
+    stats_.bind(4);
     vao_.bind();
     gl::draw_triangles(index_count_, true);
+    if (settings_.contrast > 0.0f) statistics_pass(next);
   }
+  displayed_ = next;
   texture_shift_ = glm::vec2(0.0f);
   if (!locked_) {  // a locked F_t stays where it is; the output is shared
     current_ = next;
     previous_view_projection_ = vp;
+    previous_view_ = view.view;
   }
   has_previous_ = true;
   ++frame_;
+}
+
+void IbfvsRenderer::clear_targets(gl::Framebuffer& fb) const {
+  const glm::vec3& b = settings_.background;
+  fb.clear_color(0, colour_texture_ ? glm::vec4(b, kNoDepth) : glm::vec4(b.r, kNoDepth, 0, 0));
+  fb.clear_color(1, glm::vec4(b, 1.0f));
+  if (record_flow_) fb.clear_color(2, glm::vec4(0.0f));
+  fb.clear_depth();  // the depth buffer is shared by both framebuffers
+}
+
+void IbfvsRenderer::statistics_pass(int texture_index) {
+  const StatsProgram& sp = stats_program_[colour_texture_ ? 0 : 1];
+  stats_framebuffer_.bind();
+  gl::set_viewport(stats_.width(), stats_.height());
+  gl::enable_depth_test(false);
+  gl::set_face_culling(0);
+  sp.program.use();
+  sp.program.set(sp.image_size, glm::vec2(static_cast<float>(settings_.width),
+                                          static_cast<float>(settings_.height)));
+  sp.program.set(sp.stats_size, display_stats_size(settings_.width, settings_.height));
+  // Golden-ratio steps: the grid visits other pixels every frame.
+  const auto f = static_cast<float>(frame_);
+  sp.program.set(sp.offset,
+                 glm::vec2(std::fmod(f * 0.6180340f, 1.0f), std::fmod(f * 0.3819660f, 1.0f)));
+  texture_[texture_index].bind(0);
+  output_.bind(1);
+  gl::set_running_average(kStatsWeight);
+  gl::draw_attributeless_triangle(empty_vao_);
+  gl::set_running_average(0.0f);
 }
 
 void IbfvsRenderer::lock() {
   if (locked_) return;
   locked_ = true;
   lock_view_projection_ = previous_view_projection_;  // the view that made F_t
+  lock_view_ = previous_view_;
 }
 
 void IbfvsRenderer::unlock() {
@@ -353,7 +435,7 @@ void IbfvsRenderer::fill_texture_with_cell_colors(std::uint32_t seed) {
       float* p = &rgba[(static_cast<std::size_t>(y) * w + x) * 4];
       for (int c = 0; c < 3; ++c)
         p[c] = hash_uniform(seed, 3 * cell + static_cast<std::uint64_t>(c));
-      p[3] = 1.0f;
+      p[3] = kAnyDepth;
     }
   texture_[current_].upload_float(rgba, 4);
 }
@@ -369,22 +451,36 @@ void IbfvsRenderer::read_output(ImageU8& image) const {
   image.height = settings_.height;
   image.channels = 4;
   image.pixels.resize(static_cast<std::size_t>(image.width) * image.height * 4);
-  framebuffer_[current_].read_rgba8(1, image.width, image.height, image.pixels);
+  framebuffer_[displayed_].read_rgba8(1, image.width, image.height, image.pixels);
+  // The alpha channel holds the contrast stage's statistics input: F is opaque.
+  for (std::size_t i = 3; i < image.pixels.size(); i += 4) image.pixels[i] = 255;
+}
+
+ImageF IbfvsRenderer::read_texture_raw() const {
+  const int channels = colour_texture_ ? 4 : 2;
+  ImageF image(settings_.width, settings_.height, channels);
+  texture_[current_].read_float(image.pixels, channels);
+  return image;
 }
 
 ImageF IbfvsRenderer::read_texture() const {
+  const ImageF raw = read_texture_raw();
   ImageF image(settings_.width, settings_.height, 4);
-  if (colour_texture_) {
-    texture_[current_].read_float(image.pixels, 4);
-    return image;
-  }
-  std::vector<float> grey_values(image.pixels.size() / 4);
-  texture_[current_].read_float(grey_values, 1);
-  for (std::size_t i = 0; i < grey_values.size(); ++i) {
+  for (std::size_t i = 0; i < image.pixels.size() / 4; ++i) {
     float* p = &image.pixels[4 * i];
-    p[0] = p[1] = p[2] = grey_values[i];
+    if (raw.channels == 4)
+      std::copy_n(&raw.pixels[4 * i], 3, p);
+    else
+      p[0] = p[1] = p[2] = raw.pixels[2 * i];
     p[3] = 1.0f;
   }
+  return image;
+}
+
+ImageF IbfvsRenderer::read_flow() const {
+  if (!record_flow_) throw InputError("renderer: read_flow needs record_flow(true) first");
+  ImageF image(settings_.width, settings_.height, 2);
+  flow_.read_float(image.pixels, 2);
   return image;
 }
 

@@ -14,6 +14,7 @@ layout(location = 3) in vec2 a_scalars;  // (colour scalar, beta scalar)
 uniform mat4 u_view_projection;          // T_k: where the vertex is drawn
 uniform mat4 u_advect_view_projection;   // T_k or T_{k-1}: where its texture comes from
 uniform mat4 u_view;
+uniform mat4 u_advect_view;  // the view matrix of u_advect_view_projection
 uniform float u_dt;
 uniform float u_field_mix;  // 0: a_vector, 1: a_vector_next
 #ifdef IBFVS_IMAGE_STEP
@@ -31,6 +32,8 @@ uniform vec2 u_size;         // image size in pixels
 // interpolations err (section 3.9's artifact). It also avoids noperspective
 // varyings, which llvmpipe (Mesa 22.3) corrupts on triangles it clips.
 out vec4 v_from;
+out float v_from_depth;   // eye depth of r - v dt in the view that made F_t
+out float v_step_length;  // |v dt| in world units
 #if defined(IBFVS_COLOR_SCALAR) || defined(IBFVS_BETA_SCALAR)
 out vec2 v_scalars;
 #endif
@@ -39,8 +42,26 @@ out vec3 v_position_eye;
 #if defined(IBFVS_SURFACE_IMAGE) || defined(IBFVS_OBJECT_NOISE)
 out vec3 v_position_object;  // for the spherical image map and the solid noise
 #endif
+#ifdef IBFVS_CONTRAST
+// The contrast stage's mean and gain from the last frame's statistics, read
+// per vertex (the same for all) rather than per pixel.
+layout(binding = 4) uniform sampler2D u_stats;  // 1 x 1: (sum l, sum l^2, count)
+uniform float u_contrast;
+flat out vec2 v_contrast;
+#endif
 
 void main() {
+#ifdef IBFVS_CONTRAST
+  {
+    vec3 st = texelFetch(u_stats, ivec2(0), 0).xyz;
+    v_contrast = vec2(0.0);
+    if (st.z > 0.0) {
+      float mean = st.x / st.z;
+      float deviation = sqrt(max(st.y / st.z - mean * mean, 0.0));
+      v_contrast = vec2(mean, min(u_contrast / max(deviation, 1e-6), 8.0));
+    }
+  }
+#endif
   gl_Position = u_view_projection * vec4(a_position, 1.0);
   vec3 v = mix(a_vector, a_vector_next, u_field_mix);
   vec3 step = v * u_dt;
@@ -57,6 +78,8 @@ void main() {
   }
 #endif
   v_from = u_advect_view_projection * vec4(a_position - step, 1.0);
+  v_from_depth = -(u_advect_view * vec4(a_position - step, 1.0)).z;
+  v_step_length = length(step);
 #if defined(IBFVS_COLOR_SCALAR) || defined(IBFVS_BETA_SCALAR)
   v_scalars = a_scalars;
 #endif
@@ -83,10 +106,28 @@ namespace {
 // The noise time profile w(t), period 1 (equation 8): shared by the grid pass
 // and the object-space noise of the IBFVS pass.
 const char* const kProfile = R"(
-uniform int u_profile;  // 0 square, 1 sawtooth, 2 sine, 3 spike
+uniform int u_profile;  // 0 square, 1 sawtooth, 2 sine, 3 spike, 4 random
 uniform float u_spike_width;
-float profile(float t) {
-  float f = t - floor(t);
+uniform uint u_seed;
+// solid_phase() of noise.cpp, bit for bit: a PCG step of the lattice point.
+float solid_phase(ivec3 i, uint seed) {
+  uint h = uint(i.x) * 73856093u ^ uint(i.y) * 19349663u ^ uint(i.z) * 83492791u ^
+           seed * 2654435761u;
+  uint state = h * 747796405u + 2891336453u;
+  h = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+  h = (h >> 22u) ^ h;
+  return float(h >> 8) / 16777216.0;
+}
+// cell_noise_value() of noise.cpp: w(t), or for the random profile a new
+// value per period eased from the last one.
+float cell_value(ivec3 cell, float t) {
+  float n = floor(t), f = t - n;
+  if (u_profile == 4) {
+    uint c = uint(int(n));
+    float a = solid_phase(cell, u_seed + c * 0x9E3779B9u);
+    float b = solid_phase(cell, u_seed + (c + 1u) * 0x9E3779B9u);
+    return a + (b - a) * (0.5 - 0.5 * cos(3.14159265359 * f));
+  }
   if (u_profile == 0) return f < 0.5 ? 1.0 : 0.0;
   if (u_profile == 1) return f;
   if (u_profile == 2) return 0.5 + 0.5 * sin(6.28318530718 * f);
@@ -98,6 +139,8 @@ float profile(float t) {
 // skipped by uniform branches: llvmpipe runs both sides of every branch.
 const char* const kIbfvsFragmentBody = R"(
 in vec4 v_from;
+in float v_from_depth;
+in float v_step_length;
 #if defined(IBFVS_COLOR_SCALAR) || defined(IBFVS_BETA_SCALAR)
 in vec2 v_scalars;
 #endif
@@ -107,9 +150,22 @@ in vec3 v_position_eye;
 in vec3 v_position_object;
 #endif
 
-layout(location = 0) out vec4 o_texture;  // F_t of this frame
-layout(location = 1) out vec4 o_color;    // F
-
+// F_t of this frame, its last channel the eye depth (the background holds
+// kNoDepth): the next frame tells by it whether t(x) lands on this surface.
+layout(location = 0) out vec4 o_texture;
+// F; its alpha holds D(F_t) before the contrast stage, for the statistics
+// (read_output sets it to 1): a third attachment would cost more per pixel.
+layout(location = 1) out vec4 o_color;
+#ifdef IBFVS_RECORD_FLOW
+layout(location = 2) out vec2 o_flow;  // this frame's displacement in pixels (measurements)
+#endif
+#ifdef IBFVS_FILTER
+uniform float u_filter_spacing;        // pixels between taps
+uniform float u_filter_weights[8];     // exp(-2 (d / L)^2) of tap k at d = (k + 1) spacing
+#endif
+#ifdef IBFVS_CONTRAST
+flat in vec2 v_contrast;  // (mean, gain) of the contrast stage
+#endif
 layout(binding = 0) uniform sampler2D u_previous;  // F_t of the last frame
 layout(binding = 1) uniform sampler2D u_grid;      // w(v_g k + phi_ij), this frame's grid values
 
@@ -141,21 +197,11 @@ uniform vec2 u_beta_range;   // beta is 0 at the first value, u_beta at the seco
 // (i s, j s) is the centre of texel (i, j). The grid pass wrote this frame's
 // values; the texture repeats, so the pattern wraps when shifted (3.7).
 float noise(vec2 x) {
-  return texture(u_grid, (x / u_noise_scale + 0.5) / vec2(u_phase_size)).r;
+  return textureLod(u_grid, (x / u_noise_scale + 0.5) / vec2(u_phase_size), 0.0).r;
 }
 #else
-// Section 3.6 beyond the paper: G on a 3D lattice at the surface point. The
-// hash is solid_phase() of noise.cpp, bit for bit.
+// Section 3.6 beyond the paper: G on a 3D lattice at the surface point.
 uniform float u_object_cell;  // lattice spacing in world units
-uniform uint u_seed;
-float solid_phase(ivec3 i) {
-  uint h = uint(i.x) * 73856093u ^ uint(i.y) * 19349663u ^ uint(i.z) * 83492791u ^
-           u_seed * 2654435761u;
-  uint state = h * 747796405u + 2891336453u;
-  h = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
-  h = (h >> 22u) ^ h;
-  return float(h >> 8) / 16777216.0;
-}
 float solid_noise(vec3 p) {
   vec3 u = p / u_object_cell;
   vec3 fl = floor(u);
@@ -165,26 +211,93 @@ float solid_noise(vec3 p) {
   for (int c = 0; c < 8; ++c) {
     ivec3 d = ivec3(c & 1, (c >> 1) & 1, (c >> 2) & 1);
     vec3 w3 = mix(1.0 - a, a, vec3(d));
-    g += w3.x * w3.y * w3.z * profile(u_noise_time + solid_phase(i + d));
+    g += w3.x * w3.y * w3.z * cell_value(i + d, u_noise_time + solid_phase(i + d, u_seed));
   }
   return g;
 }
 #endif
 
+#ifdef IBFVS_CUBIC
+// Catmull-Rom interpolation of F_t at uv from nine bilinear taps: per axis the
+// two middle weights are merged into one bilinear tap between their texels.
+// Each frame's bilinear resampling blurs F_t by up to a quarter of a pixel
+// squared across the flow, and over 1 / alpha frames that adds up; the cubic
+// keeps the grain fine. Where a tap has background in its footprint, the
+// bilinear value is kept (no inflow through the wider footprint).
+vec4 sample_cubic(vec2 uv, vec4 bilinear) {
+  vec2 size = vec2(textureSize(u_previous, 0));
+  vec2 p = uv * size - 0.5;
+  vec2 base = floor(p);
+  vec2 f = p - base;
+  vec2 w0 = f * (-0.5 + f * (1.0 - 0.5 * f));
+  vec2 w1 = 1.0 + f * f * (-2.5 + 1.5 * f);
+  vec2 w2 = f * (0.5 + f * (2.0 - 1.5 * f));
+  vec2 w3 = f * f * (-0.5 + 0.5 * f);
+  vec2 w12 = w1 + w2;
+  vec2 t0 = (base - 0.5) / size, t12 = (base + 0.5 + w2 / w12) / size, t3 = (base + 2.5) / size;
+  vec2 tx[3] = vec2[3](t0, t12, t3), wx[3] = vec2[3](w0, w12, w3);
+  vec4 sum = vec4(0.0);
+  float lowest = 1e30;
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) {
+      vec4 t = textureLod(u_previous, vec2(tx[i].x, tx[j].y), 0.0);
+#ifdef IBFVS_MONO_TEXTURE
+      lowest = min(lowest, t.g);
+#else
+      lowest = min(lowest, t.a);
+#endif
+      sum += wx[i].x * wx[j].y * t;
+    }
+#ifdef IBFVS_MONO_TEXTURE
+  return lowest > -255.0 ? vec4(clamp(sum.r, 0.0, 1.0), bilinear.g, 0.0, 0.0) : bilinear;
+#else
+  return lowest > -255.0 ? vec4(clamp(sum.rgb, 0.0, 1.0), bilinear.a) : bilinear;
+#endif
+}
+#endif
+
 void main() {
   // A point that was behind the eye has no image position: no advection there.
-  vec2 texcoord = (v_from.w > 1e-6 ? v_from.xy / v_from.w * 0.5 + 0.5
-                                   : gl_FragCoord.xy * u_inverse_size) -
-                  u_texture_shift * u_inverse_size;
+  bool ahead = v_from.w > 1e-6;
+  vec2 unshifted = ahead ? v_from.xy / v_from.w * 0.5 + 0.5 : gl_FragCoord.xy * u_inverse_size;
+  vec2 texcoord = unshifted - u_texture_shift * u_inverse_size;
+  vec4 stored = textureLod(u_previous, texcoord, 0.0);
+#ifdef IBFVS_CUBIC
+  stored = sample_cubic(texcoord, stored);
+#endif
 #ifdef IBFVS_MONO_TEXTURE
-  vec3 previous = texture(u_previous, texcoord).rrr;
+  vec3 previous = stored.rrr;
+  float previous_depth = stored.g;
 #else
-  vec3 previous = texture(u_previous, texcoord).rgb;
+  vec3 previous = stored.rgb;
+  float previous_depth = stored.a;
 #endif
 #ifdef IBFVS_OBJECT_NOISE
   float g = solid_noise(v_position_object);
 #else
   float g = noise(gl_FragCoord.xy - u_noise_shift);
+#endif
+  // Section 3.5 without the inflow: where t(x) = T(r - v dt) lands outside
+  // the last frame's surface (the background holds kNoDepth, so one
+  // background texel in the bilinear footprint is enough), outside the
+  // image, or on a surface at another depth (an occlusion edge), the image
+  // holds nothing of this surface: start from fresh noise instead. The
+  // tolerance covers the step off the surface, the depth's change across a
+  // pixel and 16-bit storage. While the image is dragged (3.7) only
+  // coverage counts: a depth below -255 has a background texel in its
+  // footprint (bilinear weights come in steps of 1/256 at the least).
+  float depth = -v_position_eye.z;
+  float tolerance = 0.02 * abs(v_from_depth) + 2.0 * fwidth(depth) + v_step_length;
+  bool inside = all(greaterThanEqual(texcoord, vec2(0.0))) && all(lessThanEqual(texcoord, vec2(1.0)));
+  bool dragged = u_texture_shift != vec2(0.0);
+  bool same_surface = ahead && inside &&
+                      (dragged ? previous_depth > -255.0
+                               : abs(previous_depth - v_from_depth) <= tolerance ||
+                                     previous_depth >= 65000.0);  // kAnyDepth: put in from outside
+#ifdef IBFVS_INJECT_ADD
+  if (!same_surface && u_locked == 0) previous = vec3(0.0);  // no ink has arrived yet
+#else
+  if (!same_surface && u_locked == 0) previous = vec3(g);
 #endif
 #ifdef IBFVS_INJECT_ADD
   vec3 ft = min(previous * (1.0 - u_alpha) + vec3(g), vec3(1.0));
@@ -192,7 +305,68 @@ void main() {
   vec3 ft = mix(previous, vec3(g), u_alpha);  // equation 10
 #endif
   if (u_locked != 0) ft = previous;  // a locked texture is only mapped, never changed
-  o_texture = vec4(ft, 1.0);
+#ifdef IBFVS_MONO_TEXTURE
+  o_texture = vec4(ft.r, depth, 0.0, 0.0);
+#else
+  o_texture = vec4(ft, depth);
+#endif
+  vec2 moved = ahead && u_locked == 0 ? gl_FragCoord.xy - unshifted / u_inverse_size : vec2(0.0);
+#ifdef IBFVS_RECORD_FLOW
+  o_flow = moved;
+#endif
+
+  // The displayed texture D(F_t), for display only: F_t stays as synthesised.
+  vec3 shown = ft;
+#ifdef IBFVS_FILTER
+  // A Gaussian filter along the flow, exp(-2 (d / L)^2) at distance d (taps
+  // L / (n + 1/2) apart, n = ceil(L / 4) on each side: F_t is smooth along
+  // the flow already, the filter evens out what is left): this
+  // frame's F_t at x + d along the displacement is (1 - alpha) F_t,prev(t(x) + d)
+  // + alpha G(x + d) (a translation locally), so the taps read the last
+  // frame's texture around t(x) and the noise around x, and no pass reads
+  // this frame's F_t again. Taps off the last frame's surface are left out.
+  float moved_length = length(moved);
+  if (same_surface && moved_length > 1e-6) {
+    vec2 along = moved / moved_length;
+    vec3 sum = ft;
+    float weights = 1.0;
+    for (int k = 0; k < IBFVS_FILTER; ++k) {  // taps per side, a compile-time constant
+      float w = u_filter_weights[k];
+      for (int side = -1; side <= 1; side += 2) {
+        vec2 offset = float(side) * u_filter_spacing * float(k + 1) * along;
+        vec4 t = textureLod(u_previous, texcoord + offset * u_inverse_size, 0.0);
+#ifdef IBFVS_MONO_TEXTURE
+        vec3 tp = t.rrr;
+        float td = t.g;
+#else
+        vec3 tp = t.rgb;
+        float td = t.a;
+#endif
+        if (!(td > -255.0)) continue;
+#ifdef IBFVS_OBJECT_NOISE
+        float tg = g;
+#else
+        float tg = noise(gl_FragCoord.xy + offset - u_noise_shift);
+#endif
+#ifdef IBFVS_INJECT_ADD
+        sum += w * min(tp * (1.0 - u_alpha) + vec3(tg), vec3(1.0));
+#else
+        sum += w * mix(tp, vec3(tg), u_alpha);
+#endif
+        weights += w;
+      }
+    }
+    shown = sum / weights;
+  }
+#endif
+  float shown_mean = (shown.r + shown.g + shown.b) / 3.0;
+#ifdef IBFVS_CONTRAST
+  // Section 3.4's contrast, improved separately: the surface's values moved
+  // to mean 0.5 and standard deviation u_contrast, with the mean and
+  // deviation of the last frame's whole surface: steady over time (no
+  // brightness pumping as with a per-frame min/max stretch).
+  if (v_contrast.y > 0.0) shown = clamp(0.5 + (shown - v_contrast.x) * v_contrast.y, 0.0, 1.0);
+#endif
 
   // F_s: Blinn-Phong with a headlight, lit from both sides (open meshes).
   vec3 n = normalize(v_normal_eye);
@@ -214,7 +388,7 @@ void main() {
 #ifdef IBFVS_COLOR_SCALAR
   if (!isnan(v_scalars.x)) {  // missing data keeps the surface colour
     float t = clamp((v_scalars.x - u_color_range.x) / (u_color_range.y - u_color_range.x), 0.0, 1.0);
-    albedo = texture(u_color_map, vec2((t * 255.0 + 0.5) / 256.0, 0.5)).rgb;
+    albedo = textureLod(u_color_map, vec2((t * 255.0 + 0.5) / 256.0, 0.5), 0.0).rgb;
   }
 #endif
   vec3 shaded = albedo * (0.18 + 0.82 * diffuse) + vec3(0.25 * specular);
@@ -224,7 +398,7 @@ void main() {
               ? 0.0
               : clamp((v_scalars.y - u_beta_range.x) / (u_beta_range.y - u_beta_range.x), 0.0, 1.0);
 #endif
-  o_color = vec4(beta * ft + (1.0 - beta) * shaded, 1.0);
+  o_color = vec4(beta * shown + (1.0 - beta) * shaded, shown_mean);
 }
 )";
 
@@ -236,7 +410,40 @@ layout(binding = 0) uniform sampler2D u_phases;  // phi_ij
 uniform float u_noise_time;  // v_g k
 
 void main() {
-  o_value = profile(u_noise_time + texelFetch(u_phases, ivec2(gl_FragCoord.xy), 0).r);
+  ivec2 ij = ivec2(gl_FragCoord.xy);
+  o_value = cell_value(ivec3(ij, 0), u_noise_time + texelFetch(u_phases, ij, 0).r);
+}
+)";
+
+// The statistics pass, after the IBFVS pass: one fragment averages (l, l^2, 1)
+// over a grid of sample points on the surface (shifted each frame), l the
+// displayed value before the contrast stage, and blends it into a running
+// average (weight 0.1) that the next frame's contrast stage reads (no
+// read-back to the CPU).
+const char* const kStatsFragmentBody = R"(
+layout(location = 0) out vec4 o_stats;
+layout(binding = 0) uniform sampler2D u_texture;  // F_t, depth in the last channel
+layout(binding = 1) uniform sampler2D u_shown;    // F, D(F_t) before the contrast stage in alpha
+uniform vec2 u_image_size;
+uniform int u_stats_size;
+uniform vec2 u_offset;  // in grid cells, in [0, 1): a different sample grid each frame
+void main() {
+  vec3 sum = vec3(0.0);
+  for (int j = 0; j < u_stats_size; ++j)
+    for (int i = 0; i < u_stats_size; ++i) {
+      ivec2 p = ivec2(floor((vec2(i, j) + u_offset) / float(u_stats_size) * u_image_size));
+      vec4 t = texelFetch(u_texture, p, 0);
+#ifdef IBFVS_MONO_TEXTURE
+      float depth = t.g;
+#else
+      float depth = t.a;
+#endif
+      float l = texelFetch(u_shown, p, 0).a;
+      if (depth > -255.0) sum += vec3(l, l * l, 1.0);
+    }
+  // Means, blended into a running average: the ratios stay means whatever
+  // the weights, and no surface this frame (0) leaves them as they were.
+  o_stats = sum.z > 0.0 ? vec4(sum / sum.z, 0.0) : vec4(0.0);
 }
 )";
 
@@ -256,6 +463,11 @@ std::string with_defines(const ShaderFeatures& features, const char* body, bool 
   define(features.image_step, "IBFVS_IMAGE_STEP");
   define(features.inject_add, "IBFVS_INJECT_ADD");
   define(features.mono_texture, "IBFVS_MONO_TEXTURE");
+  define(features.cubic, "IBFVS_CUBIC");
+  if (features.filter_taps > 0)
+    source += "#define IBFVS_FILTER " + std::to_string(features.filter_taps) + "\n";
+  define(features.contrast, "IBFVS_CONTRAST");
+  define(features.record_flow, "IBFVS_RECORD_FLOW");
   if (profile) source += kProfile;
   return source + body;
 }
@@ -265,7 +477,8 @@ std::string with_defines(const ShaderFeatures& features, const char* body, bool 
 unsigned ShaderFeatures::key() const {
   return (object_noise ? 1u : 0u) | (surface_image ? 2u : 0u) | (color_scalar ? 4u : 0u) |
          (beta_scalar ? 8u : 0u) | (image_step ? 16u : 0u) | (inject_add ? 32u : 0u) |
-         (mono_texture ? 64u : 0u);
+         (mono_texture ? 64u : 0u) | (cubic ? 128u : 0u) | (contrast ? 256u : 0u) |
+         (record_flow ? 512u : 0u) | (static_cast<unsigned>(filter_taps) << 10u);
 }
 
 std::string ibfvs_vertex_source(const ShaderFeatures& features) {
@@ -274,6 +487,11 @@ std::string ibfvs_vertex_source(const ShaderFeatures& features) {
 
 std::string ibfvs_fragment_source(const ShaderFeatures& features) {
   return with_defines(features, kIbfvsFragmentBody, features.object_noise);
+}
+
+std::string stats_fragment_source(bool mono_texture) {
+  return std::string("#version 450 core\n") + (mono_texture ? "#define IBFVS_MONO_TEXTURE\n" : "") +
+         kStatsFragmentBody;
 }
 
 std::string grid_fragment_source() {

@@ -165,6 +165,7 @@ TEST_F(Readme, DocsListEveryKeyAndEveryName) {
   check("--inject", enum_name_list<InjectMode>());
   check("--noise-space", enum_name_list<NoiseSpace>());
   check("--advect-view", enum_name_list<AdvectView>());
+  check("--resample", enum_name_list<Resample>());
 }
 
 }  // namespace

@@ -58,6 +58,9 @@ Scene busy_scene() {
       {"seed", "7"},
       {"step", "2.5"},
       {"dt", "0.125"},
+      {"resample", "cubic"},
+      {"filter", "4.5"},
+      {"contrast", "0.15"},
       {"image_normalize", "true"},
       {"inject", "add"},
       {"background", "0.1,0.2,0.3"},
@@ -124,7 +127,9 @@ TEST(SceneKeys, ErrorsNameTheKeyAndNeverAFlag) {
   };
   EXPECT_EQ(problem("alpha", "1.5"), "must be between 0 and 1");
   EXPECT_EQ(problem("profile", "triangle"),
-            "expected square, sawtooth, sine or spike, got 'triangle'");
+            "expected square, sawtooth, sine, spike or random, got 'triangle'");
+  EXPECT_EQ(problem("filter", "40"), "must be between 0 and 32 pixels");
+  EXPECT_EQ(problem("resample", "nearest"), "expected cubic or linear, got 'nearest'");
   EXPECT_EQ(problem("color_map", "jet"), "expected viridis, coolwarm, grey or bronze, got 'jet'");
   EXPECT_NE(problem("size", "-5x10").find("expected WxH"), std::string::npos);
   EXPECT_NE(problem("field", "vortex:1").find("unknown field 'vortex:1'"), std::string::npos);
@@ -190,7 +195,7 @@ TEST(EnumNames, ParsePrintAndListComeFromOneTable) {
   EXPECT_EQ(parse_enum<ColorMap>("diverging"), ColorMap::CoolWarm);  // an alias
   EXPECT_EQ(enum_name(ColorMap::CoolWarm), "coolwarm");
   EXPECT_EQ(enum_name_list<ColorMap>(), "viridis, coolwarm, grey or bronze");
-  EXPECT_EQ(enum_entries<Style>().size(), 6u);
+  EXPECT_EQ(enum_entries<Style>().size(), 7u);
   EXPECT_EQ(enum_index(NoiseProfile::Spike), 3);
   for (const EnumName<NoiseProfile>& e : enum_entries<NoiseProfile>())
     EXPECT_EQ(parse_enum<NoiseProfile>(e.name), e.value);

@@ -25,4 +25,30 @@ double flow_alignment(const ImageF& image, const std::vector<std::uint8_t>& mask
 /// Gaussian blur with a 5-tap kernel of the given sigma, clamped at the borders.
 ImageF gaussian_blur(const ImageF& image, float sigma);
 
+/// How far the pattern moved between two frames `lag` frames apart, against
+/// how far the flow moved. Every masked pixel of `after` is traced back `lag`
+/// frames through `flow` (displacement per frame in pixels, 2 channels, as
+/// IbfvsRenderer::read_flow gives it) scaled by a factor r, and `before` is
+/// sampled there; the Pearson correlation of the two over the pixels whose
+/// whole trace stays on the mask is computed for r = 0, 0.05, ... 1.5.
+struct PatternMotion {
+  double ratio = 0.0;      ///< the r of the best correlation: 1 moves with the flow
+  double best = 0.0;       ///< the correlation there
+  double at_flow = 0.0;    ///< the correlation at r = 1
+  double still = 0.0;      ///< the correlation at r = 0 (a pattern fixed in the image)
+  std::size_t pixels = 0;  ///< pixels that took part (at r = 1)
+};
+PatternMotion pattern_motion(const ImageF& before, const ImageF& after, const ImageF& flow,
+                             const std::vector<std::uint8_t>& mask, int lag);
+
+/// Standard deviation of the channel mean over the masked pixels (values in
+/// [0, 1]): the RMS contrast of the image there.
+double rms_contrast(const ImageF& image, const std::vector<std::uint8_t>& mask);
+
+/// Fraction of the masked pixels of an RGB(A) image whose red exceeds the mean
+/// of green and blue by more than `threshold`: surface pixels tinted by a red
+/// background that flowed in.
+double red_tinted_fraction(const ImageF& image, const std::vector<std::uint8_t>& mask,
+                           float threshold = 0.02f);
+
 }  // namespace ibfvs

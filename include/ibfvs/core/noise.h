@@ -13,12 +13,17 @@
 
 namespace ibfvs {
 
-/// The periodic time profile w(t), period 1.
+/// The time profile w(t), period 1.
 enum class NoiseProfile {
   Square,    ///< 1 for the first half of the period, 0 for the second
   Sawtooth,  ///< frac(t)
   Sine,      ///< 0.5 + 0.5 sin(2 pi t)
   Spike,     ///< 1 during the first `spike_width` of the period, else 0 (particles)
+  /// Not periodic: a new random value every period, eased from the last one
+  /// by a raised cosine. The noise never repeats, so the only structure that
+  /// lasts from frame to frame is the one the flow carries: the pattern moves
+  /// with the flow instead of being held back by noise fixed in the image.
+  Random,
 };
 
 template <>
@@ -28,6 +33,8 @@ struct EnumNames<NoiseProfile> {
       {NoiseProfile::Sawtooth, "sawtooth", "rising through the period"},
       {NoiseProfile::Sine, "sine", "smooth"},
       {NoiseProfile::Spike, "spike", "on for spike_width of the period: particles"},
+      {NoiseProfile::Random, "random",
+       "a new random value each period, eased (never repeats: the pattern moves with the flow)"},
   };
 };
 
@@ -40,8 +47,13 @@ struct NoiseParams {
   float spike_width = 0.1f;                     ///< fraction of the period a spike is on
 };
 
-/// w(t) for the given profile.
+/// w(t) for the periodic profiles (Random is not periodic: cell_noise_value).
 float noise_profile_value(NoiseProfile profile, float t, float spike_width);
+
+/// The value of noise cell (i, j, k) at profile time t = v_g k + phi: w(t)
+/// for the periodic profiles; for Random, r(n) eased into r(n + 1) with
+/// n = floor(t) and r a hash of the cell and n (the shaders compute the same).
+float cell_noise_value(const NoiseParams& params, int i, int j, int k, float t);
 
 /// The phase grid of one image size, and G evaluated from it.
 class NoiseGrid {

@@ -34,6 +34,9 @@ struct BackwardMap {
   int height = 0;
   std::vector<std::uint8_t> covered;  ///< 1 where the projected surface covers the pixel
   std::vector<glm::vec2> source;      ///< previous position of the pixel centre, in pixels
+  /// Optional (empty: none): 1 where the source lies on another surface
+  /// than the pixel's in the previous frame (across an occlusion edge).
+  std::vector<std::uint8_t> occluded;
 };
 
 /// Image-space texture synthesis on the CPU.
@@ -45,15 +48,42 @@ class ReferenceIbfvs {
   /// One frame: F_t(x) = (1 - gamma) F_t,prev(source(x)) + gamma G(x; frame) with
   /// gamma = alpha on covered pixels; uncovered pixels become the background.
   /// F_t,prev is sampled bilinearly with texel centres at +0.5 and clamped
-  /// edges, as a GL_LINEAR texture does.
+  /// edges, as a GL_LINEAR texture does. Where the source is outside the
+  /// image, has a texel off the previous frame's surface in its bilinear
+  /// footprint, or is occluded, F_t,prev(source(x)) is replaced by G(x; frame)
+  /// (by 0 when adding: no ink yet): no background and no other surface
+  /// flows in (section 3.5's inflow).
   void step(const BackwardMap& map, int frame, float alpha, InjectMode mode = InjectMode::Blend);
+  /// The display filter (RenderSettings::filter_length, core/display.h) for
+  /// the next steps: shown() is F_t filtered along each pixel's displacement
+  /// as the GPU pass computes it, from the last frame's F_t around the source
+  /// and the noise around the pixel; 0 shows F_t as it is.
+  void set_filter_length(float length) { filter_length_ = length; }
+  /// F_t,prev(source) by Catmull-Rom (RenderSettings::resample cubic) where
+  /// the 4 x 4 texels around it were all on the surface, else bilinearly.
+  void set_cubic(bool cubic) { cubic_ = cubic; }
+
+  /// D(F_t) of the last step before the contrast stage (one channel).
+  [[nodiscard]] const ImageF& shown() const { return shown_; }
 
   [[nodiscard]] const ImageF& texture() const { return texture_; }
   /// Bilinear sample of F_t at (x, y) in pixels.
   [[nodiscard]] float sample(float x, float y) const;
+  /// Whether the previous frame's surface covers the whole bilinear footprint
+  /// of (x, y), inside the image.
+  [[nodiscard]] bool on_previous_surface(float x, float y) const;
 
  private:
+  // Whether every texel with a weight in the bilinear footprint of (x, y)
+  // (clamped at the edges) was on the previous frame's surface.
+  [[nodiscard]] bool footprint_covered(float x, float y) const;
+
   ImageF texture_;
+  ImageF shown_;
+  float filter_length_ = 0.0f;
+  bool cubic_ = false;
+  [[nodiscard]] float sample_cubic(float x, float y) const;
+  std::vector<std::uint8_t> covered_;  // the previous frame's surface
   float background_;
   NoiseGrid noise_;
 };

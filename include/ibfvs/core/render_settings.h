@@ -26,6 +26,20 @@ struct EnumNames<AdvectView> {
   };
 };
 
+/// How F_t is sampled at t(x) (equation 13) each frame.
+enum class Resample {
+  Linear,  ///< bilinear, as the paper's texture mapping
+  Cubic,   ///< Catmull-Rom: less blur accumulates across the flow (finer grain)
+};
+
+template <>
+struct EnumNames<Resample> {
+  static constexpr EnumName<Resample> table[] = {
+      {Resample::Cubic, "cubic", "Catmull-Rom: a finer grain, 9 texture taps"},
+      {Resample::Linear, "linear", "bilinear, as the paper (1 tap)"},
+  };
+};
+
 /// Everything that shapes the picture apart from mesh, field and camera.
 struct RenderSettings {
   int width = 512;                                ///< image width in pixels
@@ -48,6 +62,14 @@ struct RenderSettings {
   /// pixels per frame (paper figure 2; image_normalized_step); dt then only
   /// says whether to move (0 stops, as when locked).
   float image_step = 0.0f;
+  /// Display only (the feedback loop keeps F_t as synthesised): length L in
+  /// pixels of a Gaussian filter along the flow over F_t, taps 1 pixel apart
+  /// out to L on both sides; 0 shows F_t as it is.
+  float filter_length = 0.0f;
+  Resample resample = Resample::Linear;  ///< how F_t is sampled at t(x)
+  /// Display only: the displayed texture's values moved to mean 0.5 and this
+  /// standard deviation (RMS contrast) over the surface; 0 leaves them.
+  float contrast = 0.0f;
 
   /// Throws SettingError naming the first impossible value by its scene key.
   void validate() const;

@@ -90,8 +90,10 @@ class VertexArray : public Object<delete_vertex_array> {
 /// Pixel formats used by ibfvs.
 enum class Format {
   RGBA8,    ///< output images
+  R8,       ///< the displayed value before the contrast stage
   RGBA16F,  ///< the texture image F_t (16-bit float per channel)
-  R16F,     ///< F_t while it is grey: one channel, a quarter of the sampling work
+  R16F,     ///< one 16-bit float channel
+  RG16F,    ///< F_t while it is grey (value, depth); the image-space flow
   RGBA32F,  ///< exact read-back in tests
   R32F,     ///< noise phases
   Depth24,  ///< depth renderbuffer
@@ -101,13 +103,16 @@ enum class Format {
 class Texture2D : public Object<delete_texture> {
  public:
   Texture2D() = default;
-  Texture2D(int width, int height, Format format, bool linear = true);
-  /// Uploads float data (channels matching the format) for the whole texture.
+  /// `levels` > 1 allocates a mipmap chain (see generate_mipmaps).
+  Texture2D(int width, int height, Format format, bool linear = true, int levels = 1);
+  /// Uploads float data (channels matching the format: 1, 2 or 4) for the whole texture.
   void upload_float(std::span<const float> data, int channels);
+  /// Fills levels 1.. from level 0 (box-filtered averages).
+  void generate_mipmaps();
   void bind(unsigned unit) const;
   /// Repeat (true) or clamp to the edge (false, the default) outside [0, 1].
   void set_repeat(bool repeat);
-  /// Reads the whole texture as floats, `channels` per pixel (1 or 4), rows bottom-up.
+  /// Reads the whole texture as floats, `channels` per pixel (1, 2 or 4), rows bottom-up.
   void read_float(std::span<float> out, int channels) const;
   [[nodiscard]] int width() const { return width_; }
   [[nodiscard]] int height() const { return height_; }
@@ -155,6 +160,7 @@ class Program : public Object<delete_program> {
   void use() const;
   [[nodiscard]] int location(const char* name) const;
   void set(int location, float v) const;
+  void set(int location, std::span<const float> values) const;  ///< a float array
   void set(int location, int v) const;
   void set(int location, std::uint32_t v) const;
   void set(int location, const glm::vec2& v) const;
@@ -169,6 +175,9 @@ void set_viewport(int width, int height);
 /// and clears it to `rgba`.
 void clear_window(int width, int height, const glm::vec4& rgba);
 void enable_depth_test(bool on);
+/// weight > 0: draws blend as weight * new + (1 - weight) * old (a running
+/// average); 0: blending off.
+void set_running_average(float weight);
 /// 0: draw every face; +1: cull clockwise (back) faces; -1: cull counter-clockwise ones.
 void set_face_culling(int orientation);
 void draw_triangles(std::size_t index_count, bool index32);
@@ -192,7 +201,9 @@ class SavedState {
  private:
   int draw_framebuffer_ = 0, read_framebuffer_ = 0, program_ = 0, vertex_array_ = 0;
   int texture_ = 0, viewport_[4] = {0, 0, 0, 0};
-  bool depth_test_ = false, cull_face_ = false;
+  bool depth_test_ = false, cull_face_ = false, blend_ = false;
+  int blend_func_[4] = {1, 0, 1, 0};
+  float blend_color_[4] = {0, 0, 0, 0};
 };
 
 }  // namespace ibfvs::gl

@@ -6,8 +6,18 @@
 //   draw the mesh once into two colour attachments (MRT):
 //     t = T(r - v dt): homogeneous per vertex, divided per pixel   (step 3, eq. 13)
 //     F_t'(x) = (1 - alpha) F_t(t(x)) + alpha G(x; k)             (steps 4-5, eq. 10)
-//     F(x)    = beta F_t'(x) + (1 - beta) F_s(x)                  (step 7, eq. 11)
+//       with F_t(t(x)) replaced by fresh noise G where t(x) is not on the
+//       same surface in the last frame (its depth is stored with F_t)
+//     F(x)    = beta D(F_t')(x) + (1 - beta) F_s(x)               (step 7, eq. 11)
+//       D, for display only (the feedback loop stays the paper's): a filter
+//       along the flow and a contrast stage (section 3.4); D before the
+//       contrast stage goes to F's alpha channel
 //   swap F_t and F_t' (ping-pong)                                 (step 6)
+//   if contrast: mean and deviation of D over the surface, on a grid of
+//   sample points mipmapped to one texel, for the next frame's contrast
+//
+// Everything per pixel happens in the one geometry pass: on llvmpipe a second
+// full-screen pass costs more than the whole synthesis at 1024x1024.
 //
 // The depth test keeps only the nearest surface per pixel, so gamma = alpha
 // exactly on the projected surface and 0 on the background (eq. 12) without
@@ -21,6 +31,7 @@
 #include <cstdint>
 #include <span>
 #include <string_view>
+#include <unordered_map>
 #include <vector>
 
 #include <glm/mat4x4.hpp>
@@ -46,6 +57,12 @@ struct ViewState {
 /// The IBFVS engine. Needs a current OpenGL 4.5 context for its whole life.
 class IbfvsRenderer {
  public:
+  /// The depth F_t stores where no surface was drawn.
+  static constexpr float kNoDepth = -65504.0f;
+  /// The depth of a texture put in from outside (fill_texture_with_cell_colors):
+  /// taken as on whatever surface the next frame finds there.
+  static constexpr float kAnyDepth = 65504.0f;
+
   explicit IbfvsRenderer(const RenderSettings& settings);
 
   /// Uploads positions, normals and the per-vertex field `field` (one vector
@@ -107,6 +124,15 @@ class IbfvsRenderer {
   /// The texture image F_t, RGBA float (values as stored in 16-bit float; a
   /// one-channel F_t is spread to grey RGB with alpha 1).
   [[nodiscard]] ImageF read_texture() const;
+  /// F_t as stored: two channels (grey value, eye depth) or four (RGB, eye
+  /// depth); the depth is kNoDepth off the surface.
+  [[nodiscard]] ImageF read_texture_raw() const;
+  /// Records every pixel's displacement from now on (for measurements: it
+  /// costs a fourth attachment), or stops.
+  void record_flow(bool on);
+  /// The last frame's displacement of every pixel in pixels (x right, y up),
+  /// two channels; 0 off the surface and while locked. Needs record_flow(true).
+  [[nodiscard]] ImageF read_flow() const;
   /// Window depth of the last frame, one channel in [0, 1]; 1 where the
   /// surface does not cover the pixel (the projected surface Omega' of eq. 12).
   [[nodiscard]] ImageF read_depth() const;
@@ -124,42 +150,55 @@ class IbfvsRenderer {
   // shaders::ShaderFeatures), made on first use; settings_version_ tells
   // which ones still need the current settings as uniforms.
   struct Uniforms {
-    int view_projection, advect_view_projection, view, dt, alpha, beta, noise_time, noise_scale,
-        profile, spike_width, surface_color, phase_size, inverse_size, color_range, beta_range,
-        field_mix, image_centre, locked, object_cell, seed, image_step, probe, size, texture_shift,
-        noise_shift;
+    int view_projection, advect_view_projection, view, advect_view, dt, alpha, beta, noise_time,
+        noise_scale, profile, spike_width, surface_color, phase_size, inverse_size, color_range,
+        beta_range, field_mix, image_centre, locked, object_cell, seed, image_step, probe, size,
+        texture_shift, noise_shift, filter_spacing, filter_weights, contrast;
   };
   struct Variant {
     gl::Program program;
     Uniforms u{};
     std::uint64_t applied = 0;  // settings_version_ last set
   };
+  void statistics_pass(int texture_index);  // for the contrast stage of the next frame
+  void build_framebuffers();
+  void clear_targets(gl::Framebuffer& fb) const;
   [[nodiscard]] shaders::ShaderFeatures features() const;
   Variant& current_variant();  // the variant for the current features, compiled and up to date
   void apply_settings();       // after settings_ changed
-  // F_t in one channel (R16F) while it can only hold grey values (a grey
-  // background and grey noise), else RGBA16F; sampling one channel is
-  // cheaper on llvmpipe. Switching keeps the content when asked to.
+  // F_t in two channels (RG16F: value, depth) while it can only hold grey
+  // values (a grey background and grey noise), else RGBA16F (RGB, depth);
+  // fewer channels are cheaper to sample on llvmpipe. Switching keeps the
+  // content.
   void allocate_texture(bool colour);
   void use_colour_texture();
   bool colour_texture_ = true;
 
   RenderSettings settings_;
-  std::array<Variant, shaders::ShaderFeatures::kVariantCount> variants_;
+  std::unordered_map<unsigned, Variant> variants_;  // by ShaderFeatures::key()
   std::uint64_t settings_version_ = 0;
   glm::ivec2 phase_size_{0};
   glm::vec3 image_centre_{0.0f};
   float field_mix_ = 0.0f;
   gl::Texture2D texture_[2];  // F_t ping-pong
   gl::Texture2D output_;      // F
-  gl::Texture2D phases_;      // phi_ij
-  gl::Texture2D grid_;        // this frame's grid values G_ij (the grid pass)
+  gl::Texture2D flow_;        // displacement of the last frame, pixels (when recorded)
+  bool record_flow_ = false;
+  gl::Texture2D stats_;  // the statistics pass: 1 x 1 (sum l, sum l^2, count)
+  gl::Framebuffer stats_framebuffer_;
+  struct StatsProgram {
+    gl::Program program;
+    int image_size = -1, stats_size = -1, offset = -1;
+  } stats_program_[2];                         // [mono]
+  static constexpr float kStatsWeight = 0.1f;  // of each frame in the running average
+  gl::Texture2D phases_;                       // phi_ij
+  gl::Texture2D grid_;                         // this frame's grid values G_ij (the grid pass)
   gl::Framebuffer grid_framebuffer_;
   gl::Program grid_program_;
   gl::VertexArray empty_vao_;  // for the attributeless grid pass
-  int grid_noise_time_ = -1, grid_profile_ = -1, grid_spike_width_ = -1;
+  int grid_noise_time_ = -1, grid_profile_ = -1, grid_spike_width_ = -1, grid_seed_ = -1;
   gl::Renderbuffer depth_;
-  gl::Framebuffer framebuffer_[2];  // [i] draws into texture_[i] and output_
+  gl::Framebuffer framebuffer_[2];  // [i] draws into texture_[i], output_ (, flow_)
   gl::Buffer vertices_;
   gl::Buffer field_;
   gl::Buffer field_next_;
@@ -175,11 +214,14 @@ class IbfvsRenderer {
   glm::vec2 texture_shift_{0.0f};  // pixels, for the next frame only
   glm::vec2 noise_shift_{0.0f};    // pixels, accumulated
   int current_ = 0;                // texture_[current_] holds F_t of the last frame
+  int displayed_ = 0;              // framebuffer_[displayed_] drew the last F
   int frame_ = 0;
   bool has_previous_ = false;
   bool locked_ = false;
   glm::mat4 lock_view_projection_{1.0f};
   glm::mat4 previous_view_projection_{1.0f};
+  glm::mat4 lock_view_{1.0f};
+  glm::mat4 previous_view_{1.0f};
 };
 
 }  // namespace ibfvs

@@ -83,7 +83,7 @@ section "Figure 2: boundary inflow (section 3.5)" \
   "A landscape with the flow downhill along the gradient, normalised in image space, alpha 0.1, beta 0.4, seen at a grazing angle with the horizon in view. The paper: \"When red is used as background color, some inflow across the horizon is visible, when grey is used, no artifacts are visible.\""
 render figure2-red still scenes/figure2-landscape.toml --background 0.8,0.1,0.1
 render figure2-grey still scenes/figure2-landscape.toml
-flush "Left: red background, red streaks enter where the flow comes over the horizon (top edge). Right: the default grey, the same inflow is invisible."
+flush "Left: red background. The paper's red streaks entering where the flow comes over the horizon (top edge) are gone: where t(x) leaves the last frame's surface, ibfvs starts from fresh noise instead of the image's background (docs/quality.md). Right: the default grey background."
 
 section "Figure 3: uniform density in screen and in world space (section 3.6)" \
   "Two cylinders with the flow along their axes, in strong perspective. IBFVS gives a texture of constant density on the screen; a solid (object-space) noise gives constant density on the surface."

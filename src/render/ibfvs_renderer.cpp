@@ -131,7 +131,7 @@ IbfvsRenderer::Variant& IbfvsRenderer::current_variant() {
     v.u.view_projection = p.location("u_view_projection");
     v.u.advect_view_projection = p.location("u_advect_view_projection");
     v.u.view = p.location("u_view");
-    v.u.advect_view = p.location("u_advect_view");
+    v.u.clip_to_depth = p.location("u_clip_to_depth");
     v.u.dt = p.location("u_dt");
     v.u.alpha = p.location("u_alpha");
     v.u.beta = p.location("u_beta");
@@ -353,7 +353,12 @@ void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
                                       : use_previous ? previous_view_projection_
                                                      : vp);
     p.set(v.u.view, view.view);
-    p.set(v.u.advect_view, locked_ ? lock_view_ : use_previous ? previous_view_ : view.view);
+    // Eye depth d = -z_eye from clip (z, w): w = -z_eye in perspective
+    // (P[2][3] = -1, P[3][3] = 0); z = P[2][2] z_eye + P[3][2] with w = 1 in
+    // orthographic projection.
+    const glm::mat4& pr = view.projection;
+    p.set(v.u.clip_to_depth, pr[3][3] == 0.0f ? glm::vec2(0.0f, 1.0f)
+                                              : glm::vec2(-1.0f / pr[2][2], pr[3][2] / pr[2][2]));
     p.set(v.u.dt, locked_ ? 0.0f : dt);
     p.set(v.u.probe, probe_);
     p.set(v.u.field_mix, field_mix_);
@@ -375,7 +380,6 @@ void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
   if (!locked_) {  // a locked F_t stays where it is; the output is shared
     current_ = next;
     previous_view_projection_ = vp;
-    previous_view_ = view.view;
   }
   has_previous_ = true;
   ++frame_;
@@ -414,7 +418,6 @@ void IbfvsRenderer::lock() {
   if (locked_) return;
   locked_ = true;
   lock_view_projection_ = previous_view_projection_;  // the view that made F_t
-  lock_view_ = previous_view_;
 }
 
 void IbfvsRenderer::unlock() {

@@ -14,7 +14,6 @@ layout(location = 3) in vec2 a_scalars;  // (colour scalar, beta scalar)
 uniform mat4 u_view_projection;          // T_k: where the vertex is drawn
 uniform mat4 u_advect_view_projection;   // T_k or T_{k-1}: where its texture comes from
 uniform mat4 u_view;
-uniform mat4 u_advect_view;  // the view matrix of u_advect_view_projection
 uniform float u_dt;
 uniform float u_field_mix;  // 0: a_vector, 1: a_vector_next
 #ifdef IBFVS_IMAGE_STEP
@@ -32,8 +31,6 @@ uniform vec2 u_size;         // image size in pixels
 // interpolations err (section 3.9's artifact). It also avoids noperspective
 // varyings, which llvmpipe (Mesa 22.3) corrupts on triangles it clips.
 out vec4 v_from;
-out float v_from_depth;   // eye depth of r - v dt in the view that made F_t
-out float v_step_length;  // |v dt| in world units
 #if defined(IBFVS_COLOR_SCALAR) || defined(IBFVS_BETA_SCALAR)
 out vec2 v_scalars;
 #endif
@@ -78,8 +75,6 @@ void main() {
   }
 #endif
   v_from = u_advect_view_projection * vec4(a_position - step, 1.0);
-  v_from_depth = -(u_advect_view * vec4(a_position - step, 1.0)).z;
-  v_step_length = length(step);
 #if defined(IBFVS_COLOR_SCALAR) || defined(IBFVS_BETA_SCALAR)
   v_scalars = a_scalars;
 #endif
@@ -139,8 +134,7 @@ float cell_value(ivec3 cell, float t) {
 // skipped by uniform branches: llvmpipe runs both sides of every branch.
 const char* const kIbfvsFragmentBody = R"(
 in vec4 v_from;
-in float v_from_depth;
-in float v_step_length;
+uniform vec2 u_clip_to_depth;  // (a, b): eye depth = a clip.z + b clip.w (this projection)
 #if defined(IBFVS_COLOR_SCALAR) || defined(IBFVS_BETA_SCALAR)
 in vec2 v_scalars;
 #endif
@@ -282,17 +276,21 @@ void main() {
   // background texel in the bilinear footprint is enough), outside the
   // image, or on a surface at another depth (an occlusion edge), the image
   // holds nothing of this surface: start from fresh noise instead. The
-  // tolerance covers the step off the surface, the depth's change across a
-  // pixel and 16-bit storage. While the image is dragged (3.7) only
+  // tolerance covers the step off the surface (a few pixels: well under 2%
+  // of the depth), the depth's change across a pixel and 16-bit storage. While the image is dragged (3.7) only
   // coverage counts: a depth below -255 has a background texel in its
   // footprint (bilinear weights come in steps of 1/256 at the least).
-  float depth = -v_position_eye.z;
-  float tolerance = 0.02 * abs(v_from_depth) + 2.0 * fwidth(depth) + v_step_length;
+  // Eye depths from clip coordinates (no extra varyings: llvmpipe pays for
+  // each per pixel): this pixel's from gl_FragCoord, t(x)'s from v_from.
+  float depth = (u_clip_to_depth.x * (2.0 * gl_FragCoord.z - 1.0) + u_clip_to_depth.y) /
+                gl_FragCoord.w;
+  float from_depth = u_clip_to_depth.x * v_from.z + u_clip_to_depth.y * v_from.w;
+  float tolerance = 0.02 * abs(from_depth) + 2.0 * fwidth(depth);
   bool inside = all(greaterThanEqual(texcoord, vec2(0.0))) && all(lessThanEqual(texcoord, vec2(1.0)));
   bool dragged = u_texture_shift != vec2(0.0);
   bool same_surface = ahead && inside &&
                       (dragged ? previous_depth > -255.0
-                               : abs(previous_depth - v_from_depth) <= tolerance ||
+                               : abs(previous_depth - from_depth) <= tolerance ||
                                      previous_depth >= 65000.0);  // kAnyDepth: put in from outside
 #ifdef IBFVS_INJECT_ADD
   if (!same_surface && u_locked == 0) previous = vec3(0.0);  // no ink has arrived yet

@@ -54,7 +54,7 @@ std::vector<std::string> readme_commands(const std::string& text) {
       out.push_back(command.substr(at));
     }
   }
-  const std::regex span("`(ibfvs (render|view|geometry|bench|keys)[^`]*)`");
+  const std::regex span("`(ibfvs (render|view|geometry|bench|keys|quality)[^`]*)`");
   for (auto it = std::sregex_iterator(prose.begin(), prose.end(), span);
        it != std::sregex_iterator(); ++it) {
     std::string command = std::regex_replace((*it)[1].str(), std::regex(" +"), " ");
@@ -89,7 +89,7 @@ TEST_F(Readme, EveryCommandLineItShowsRuns) {
   fs::create_directories(dir_ / "docs/gallery");  // the gallery's outputs
 
   std::vector<std::string> commands;
-  for (const char* doc : {"README.md", "docs/scenes.md", "docs/gallery.md"}) {
+  for (const char* doc : {"README.md", "docs/scenes.md", "docs/gallery.md", "docs/quality.md"}) {
     const std::vector<std::string> found =
         readme_commands(test::read_file(fs::path(IBFVS_SOURCE_DIR) / doc));
     EXPECT_FALSE(found.empty()) << doc;
@@ -109,6 +109,14 @@ TEST_F(Readme, EveryCommandLineItShowsRuns) {
       args += " --size 64x64 --script quit.txt -q";
       env += " xvfb-run -a -s '-screen 0 640x480x24'";
       ++views;
+    } else if (verb == "quality") {
+      if (args.find("--png") != std::string::npos) {
+        // The picture another tool made (ParaView's, in docs/quality.md): one of ours.
+        const std::string png = args.substr(args.find("--png") + 6);
+        ASSERT_EQ(run("render --size 48x48 --frames 3 -q --out " + png, env).status, 0);
+      } else {
+        args += " --size 64x64 --warmup 5";
+      }
     } else if (verb == "bench") {
       args += " --subdivide 0 --sizes 32x32 --seconds 0.02 --repeats 1 --warmup 1 -q";
     }

@@ -150,7 +150,7 @@ class IbfvsRenderer {
   // shaders::ShaderFeatures), made on first use; settings_version_ tells
   // which ones still need the current settings as uniforms.
   struct Uniforms {
-    int view_projection, advect_view_projection, view, advect_view, dt, alpha, beta, noise_time,
+    int view_projection, advect_view_projection, view, clip_to_depth, dt, alpha, beta, noise_time,
         noise_scale, profile, spike_width, surface_color, phase_size, inverse_size, color_range,
         beta_range, field_mix, image_centre, locked, object_cell, seed, image_step, probe, size,
         texture_shift, noise_shift, filter_spacing, filter_weights, contrast;
@@ -220,8 +220,6 @@ class IbfvsRenderer {
   bool locked_ = false;
   glm::mat4 lock_view_projection_{1.0f};
   glm::mat4 previous_view_projection_{1.0f};
-  glm::mat4 lock_view_{1.0f};
-  glm::mat4 previous_view_{1.0f};
 };
 
 }  // namespace ibfvs

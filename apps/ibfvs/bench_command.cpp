@@ -96,10 +96,30 @@ void add_bench_options(CLI::App& cmd, BenchOptions& o) {
       ->capture_default_str();
   cmd.add_option("--csv", o.csv, "Also write the results as CSV to this file");
   cmd.add_option("--json", o.json, "Also write the results as JSON to this file");
+  cmd.add_option("--set", o.settings,
+                 "KEY=VALUE: a scene setting on top of the defaults (repeatable; ibfvs keys "
+                 "lists them), e.g. --set filter=0 --set contrast=0");
   cmd.add_flag("-q,--quiet", o.quiet, "Print only the table");
 }
 
+namespace {
+
+void apply_bench_settings(Scene& scene, const std::vector<std::string>& settings) {
+  for (const std::string& setting : settings) {
+    const std::size_t eq = setting.find('=');
+    if (eq == std::string::npos)
+      throw InputError("--set: expected KEY=VALUE, got '" + setting + "'");
+    apply_setting(scene, setting.substr(0, eq), setting.substr(eq + 1));
+  }
+}
+
+}  // namespace
+
 int run_bench(const BenchOptions& o) {
+  {  // bad settings fail before anything is printed
+    Scene check;
+    apply_bench_settings(check, o.settings);
+  }
   if (o.subdivide.empty() || o.sizes.empty())
     throw InputError("--subdivide and --sizes need at least one value each");
   for (const int s : o.subdivide)
@@ -149,6 +169,7 @@ int run_bench(const BenchOptions& o) {
     scene.mesh = mesh_path;
     scene.subdivide = level;
     scene.field = FieldSpec::parse("rotate:0,1,0");
+    apply_bench_settings(scene, o.settings);
     const PreparedScene prepared = prepare_scene(scene);
     for (const auto& [w, h] : sizes) {
       Session session(resized(prepared, w, h));

@@ -21,6 +21,9 @@ struct BenchOptions {
   int warmup = 20;        ///< frames before measuring
   float orbit = 1.0f;     ///< degrees per frame in the dynamic case
   std::string csv, json;  ///< also write the results there
+  /// Scene settings KEY=VALUE on top of the defaults (another look: the
+  /// paper's is profile=square, scale=4, vg=0.02, filter=0, contrast=0).
+  std::vector<std::string> settings;
   bool quiet = false;
 };
 

@@ -55,6 +55,18 @@ TEST_F(BenchCommand, BadOptionsFailCleanly) {
   expect_error(b + "--seconds 0", "--seconds");
   expect_error(b + "--repeats 0", "--repeats");
   expect_error("bench --mesh missing.off --seconds 0.01", "missing.off");
+  expect_error(b + "--set filter", "--set: expected KEY=VALUE, got 'filter'");
+  expect_error(b + "--set filter=99", "--filter: must be between 0 and 32 pixels");
+  expect_error(b + "--set nonsense=1", "nonsense");
+}
+
+TEST_F(BenchCommand, SettingsChangeTheLook) {
+  // The paper's look on the protocol: it runs, and the settings reach the scene.
+  const test::Result r =
+      run("bench --subdivide 0 --sizes 32x32 --seconds 0.02 --repeats 1 --warmup 1 -q "
+          "--set profile=square --set scale=4 --set vg=0.02 --set filter=0 --set contrast=0");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("| 32x32 |"), std::string::npos) << r.out;
 }
 
 }  // namespace

@@ -54,8 +54,12 @@ void ViewerPanel::draw(ViewerSession& viewer, bool& show, bool& show_help, doubl
   bool changed = false;
   changed |= ImGui::SliderFloat("alpha", &d.alpha, 0.0f, 1.0f, "%.2f");
   changed |= ImGui::SliderFloat("beta", &d.beta, 0.0f, 1.0f, "%.2f");
-  changed |= ImGui::SliderFloat("v_g", &d.vg, 0.0f, 0.2f, "%.3f");
+  changed |= ImGui::SliderFloat("v_g", &d.vg, 0.0f, 0.5f, "%.3f");
   changed |= enum_combo("profile", d.profile);
+  // The display stage and the warp (docs/quality.md).
+  changed |= ImGui::SliderFloat("filter (px)", &d.filter, 0.0f, 16.0f, "%.1f");
+  changed |= ImGui::SliderFloat("contrast", &d.contrast, 0.0f, 0.5f, "%.2f");
+  changed |= enum_combo("resample", d.resample);
   const ImGuiColorEditFlags swatch = ImGuiColorEditFlags_NoInputs;
   changed |= ImGui::ColorEdit3("bg", &d.background.x, swatch);
   ImGui::SameLine();

@@ -92,9 +92,9 @@ void ViewerSession::set(const std::string& key, const std::string& value) {
   Scene desc = desc_;
   apply_setting(desc, key, value);
   static const std::set<std::string, std::less<>> live = {
-      "alpha",         "beta",        "vg",          "profile",    "background",
-      "surface_color", "color_map",   "color_range", "beta_range", "advect_view",
-      "inject",        "spike_width", "noise_space"};
+      "alpha",       "beta",        "vg",         "profile",     "background", "surface_color",
+      "color_map",   "color_range", "beta_range", "advect_view", "inject",     "spike_width",
+      "noise_space", "filter",      "contrast",   "resample"};
   if (key == "step") {
     session_->set_dt(session_->dt() * desc.step / desc_.step);
     apply_live(desc);  // the image-normalised step too

@@ -48,6 +48,14 @@ TEST_F(ViewerSessionTest, SettingsChangeLiveOrByPreparingTheSceneAgain) {
   EXPECT_EQ(v.frame_count(), 5);
   v.set("color_map", "bronze");
   EXPECT_EQ(v.renderer().settings().color_map, ColorMap::Bronze);
+  v.set("filter", "8");  // the display stage and the warp change live too
+  v.set("contrast", "0");
+  v.set("resample", "cubic");
+  EXPECT_EQ(v.renderer().settings().filter_length, 8.0f);
+  EXPECT_EQ(v.renderer().settings().contrast, 0.0f);
+  EXPECT_EQ(v.renderer().settings().resample, Resample::Cubic);
+  v.frame();
+  EXPECT_EQ(v.frame_count(), 6) << "not prepared again";
   v.set("mesh", "torus:1,0.2");  // a new mesh: prepared again, frames from 0
   EXPECT_EQ(v.scene().mesh_name, "torus:1,0.2");
   EXPECT_EQ(v.frame_count(), 0);

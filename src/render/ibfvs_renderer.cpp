@@ -373,7 +373,9 @@ void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
     stats_.bind(4);
     vao_.bind();
     gl::draw_triangles(index_count_, true);
-    if (settings_.contrast > 0.0f) statistics_pass(next);
+    // The statistics change slowly: every kStatsEvery frames is enough, and
+    // on llvmpipe each extra pass ends the frame's scene early.
+    if (settings_.contrast > 0.0f && frame_ % kStatsEvery == 0) statistics_pass(next);
   }
   displayed_ = next;
   texture_shift_ = glm::vec2(0.0f);

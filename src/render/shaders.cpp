@@ -416,8 +416,8 @@ void main() {
 // The statistics pass, after the IBFVS pass: one fragment averages (l, l^2, 1)
 // over a grid of sample points on the surface (shifted each frame), l the
 // displayed value before the contrast stage, and blends it into a running
-// average (weight 0.1) that the next frame's contrast stage reads (no
-// read-back to the CPU).
+// average (weight 0.25, every 4th frame) that the next frames' contrast stage
+// reads (no read-back to the CPU).
 const char* const kStatsFragmentBody = R"(
 layout(location = 0) out vec4 o_stats;
 layout(binding = 0) uniform sampler2D u_texture;  // F_t, depth in the last channel

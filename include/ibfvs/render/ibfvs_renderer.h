@@ -189,10 +189,11 @@ class IbfvsRenderer {
   struct StatsProgram {
     gl::Program program;
     int image_size = -1, stats_size = -1, offset = -1;
-  } stats_program_[2];                         // [mono]
-  static constexpr float kStatsWeight = 0.1f;  // of each frame in the running average
-  gl::Texture2D phases_;                       // phi_ij
-  gl::Texture2D grid_;                         // this frame's grid values G_ij (the grid pass)
+  } stats_program_[2];                          // [mono]
+  static constexpr int kStatsEvery = 4;         // frames between statistics passes
+  static constexpr float kStatsWeight = 0.25f;  // of each pass in the running average
+  gl::Texture2D phases_;                        // phi_ij
+  gl::Texture2D grid_;                          // this frame's grid values G_ij (the grid pass)
   gl::Framebuffer grid_framebuffer_;
   gl::Program grid_program_;
   gl::VertexArray empty_vao_;  // for the attributeless grid pass

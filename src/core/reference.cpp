@@ -61,16 +61,7 @@ bool ReferenceIbfvs::footprint_covered(float x, float y) const {
 }
 
 float ReferenceIbfvs::sample(float x, float y) const {
-  const float u = x - 0.5f, v = y - 0.5f;
-  const float fu = std::floor(u), fv = std::floor(v);
-  const int i = static_cast<int>(fu), j = static_cast<int>(fv);
-  const float a = u - fu, b = v - fv;
-  const auto t = [&](int ii, int jj) {
-    return texture_.at(std::clamp(ii, 0, texture_.width - 1),
-                       std::clamp(jj, 0, texture_.height - 1));
-  };
-  return (1 - a) * (1 - b) * t(i, j) + a * (1 - b) * t(i + 1, j) + (1 - a) * b * t(i, j + 1) +
-         a * b * t(i + 1, j + 1);
+  return sample_bilinear(texture_, x, y, 0);
 }
 
 void ReferenceIbfvs::step(const BackwardMap& map, int frame, float alpha, InjectMode mode) {

@@ -41,8 +41,6 @@ FormatInfo info(Format f) {
   switch (f) {
     case Format::RGBA8:
       return {GL_RGBA8, GL_RGBA};
-    case Format::R8:
-      return {GL_R8, GL_RED};
     case Format::RGBA16F:
       return {GL_RGBA16F, GL_RGBA};
     case Format::R16F:
@@ -119,23 +117,17 @@ void VertexArray::bind() const {
   glBindVertexArray(id());
 }
 
-Texture2D::Texture2D(int width, int height, Format format, bool linear, int levels)
+Texture2D::Texture2D(int width, int height, Format format, bool linear)
     : width_(width), height_(height), format_(format) {
   GLuint id = 0;
   glCreateTextures(GL_TEXTURE_2D, 1, &id);
   static_cast<Object&>(*this) = Object(id);
-  glTextureStorage2D(id, levels, info(format).internal, width, height);
+  glTextureStorage2D(id, 1, info(format).internal, width, height);
   const GLint filter = linear ? GL_LINEAR : GL_NEAREST;
-  glTextureParameteri(
-      id, GL_TEXTURE_MIN_FILTER,
-      levels > 1 ? (linear ? GL_LINEAR_MIPMAP_NEAREST : GL_NEAREST_MIPMAP_NEAREST) : filter);
+  glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, filter);
   glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, filter);
   glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
   glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-}
-
-void Texture2D::generate_mipmaps() {
-  glGenerateTextureMipmap(id());
 }
 
 void Texture2D::set_repeat(bool repeat) {

@@ -211,6 +211,15 @@ float solid_noise(vec3 p) {
 }
 #endif
 
+// F_t as stored: the value (grey in one channel, or RGB) and the eye depth.
+#ifdef IBFVS_MONO_TEXTURE
+vec3 stored_value(vec4 t) { return t.rrr; }
+float stored_depth(vec4 t) { return t.g; }
+#else
+vec3 stored_value(vec4 t) { return t.rgb; }
+float stored_depth(vec4 t) { return t.a; }
+#endif
+
 #ifdef IBFVS_CUBIC
 // Catmull-Rom interpolation of F_t at uv from nine bilinear taps: per axis the
 // two middle weights are merged into one bilinear tap between their texels.
@@ -235,11 +244,7 @@ vec4 sample_cubic(vec2 uv, vec4 bilinear) {
   for (int j = 0; j < 3; ++j)
     for (int i = 0; i < 3; ++i) {
       vec4 t = textureLod(u_previous, vec2(tx[i].x, tx[j].y), 0.0);
-#ifdef IBFVS_MONO_TEXTURE
-      lowest = min(lowest, t.g);
-#else
-      lowest = min(lowest, t.a);
-#endif
+      lowest = min(lowest, stored_depth(t));
       sum += wx[i].x * wx[j].y * t;
     }
 #ifdef IBFVS_MONO_TEXTURE
@@ -259,13 +264,8 @@ void main() {
 #ifdef IBFVS_CUBIC
   stored = sample_cubic(texcoord, stored);
 #endif
-#ifdef IBFVS_MONO_TEXTURE
-  vec3 previous = stored.rrr;
-  float previous_depth = stored.g;
-#else
-  vec3 previous = stored.rgb;
-  float previous_depth = stored.a;
-#endif
+  vec3 previous = stored_value(stored);
+  float previous_depth = stored_depth(stored);
 #ifdef IBFVS_OBJECT_NOISE
   float g = solid_noise(v_position_object);
 #else
@@ -333,14 +333,8 @@ void main() {
       for (int side = -1; side <= 1; side += 2) {
         vec2 offset = float(side) * u_filter_spacing * float(k + 1) * along;
         vec4 t = textureLod(u_previous, texcoord + offset * u_inverse_size, 0.0);
-#ifdef IBFVS_MONO_TEXTURE
-        vec3 tp = t.rrr;
-        float td = t.g;
-#else
-        vec3 tp = t.rgb;
-        float td = t.a;
-#endif
-        if (!(td > -255.0)) continue;
+        vec3 tp = stored_value(t);
+        if (!(stored_depth(t) > -255.0)) continue;
 #ifdef IBFVS_OBJECT_NOISE
         float tg = g;
 #else

@@ -16,11 +16,6 @@
 
 namespace ibfvs {
 
-/// Stored depths at or below this have a background texel in their bilinear
-/// footprint (the background stores -65504 and bilinear weights come in
-/// steps of 1/256 at the least).
-inline constexpr float kCoveredDepth = -255.0f;
-
 /// Sample points per side of the statistics grid: 32 (1024 points, summed by
 /// one fragment every 4th frame into a running average: on llvmpipe 4096
 /// cost 0.25 ms a frame; the shown RMS contrast varies by about 1% from

@@ -90,7 +90,6 @@ class VertexArray : public Object<delete_vertex_array> {
 /// Pixel formats used by ibfvs.
 enum class Format {
   RGBA8,    ///< output images
-  R8,       ///< the displayed value before the contrast stage
   RGBA16F,  ///< the texture image F_t (16-bit float per channel)
   R16F,     ///< one 16-bit float channel
   RG16F,    ///< F_t while it is grey (value, depth); the image-space flow
@@ -103,12 +102,9 @@ enum class Format {
 class Texture2D : public Object<delete_texture> {
  public:
   Texture2D() = default;
-  /// `levels` > 1 allocates a mipmap chain (see generate_mipmaps).
-  Texture2D(int width, int height, Format format, bool linear = true, int levels = 1);
+  Texture2D(int width, int height, Format format, bool linear = true);
   /// Uploads float data (channels matching the format: 1, 2 or 4) for the whole texture.
   void upload_float(std::span<const float> data, int channels);
-  /// Fills levels 1.. from level 0 (box-filtered averages).
-  void generate_mipmaps();
   void bind(unsigned unit) const;
   /// Repeat (true) or clamp to the edge (false, the default) outside [0, 1].
   void set_repeat(bool repeat);

@@ -383,6 +383,27 @@ TEST_F(RenderCommand, NewOptionsFailCleanly) {
   EXPECT_EQ(ok.status, 0) << ok.err;
 }
 
+// The picture-quality options and `ibfvs quality` (docs/quality.md).
+TEST_F(RenderCommand, QualityOptionsFailCleanly) {
+  file("sq.off", kTri);
+  file("not-a-png.png", "hello");
+  const std::string m = "render sq.off --frames 2 --size 32x32 --out x.png ";
+  expect_error(m + "--filter -1", "--filter: must be between 0 and 32 pixels");
+  expect_error(m + "--contrast 0.9", "--contrast: must be between 0 (off) and 0.5");
+  expect_error(m + "--resample nearest", "--resample: expected cubic or linear, got 'nearest'");
+  expect_error(m + "--profile white",
+               "--profile: expected square, sawtooth, sine, spike or random");
+  expect_error("quality sq.off --warmup 0", "--warmup");
+  expect_error("quality --png missing.png", "missing.png");
+  expect_error("quality --png not-a-png.png", "not-a-png.png");
+  expect_error("quality --png x.png --centre 1", "--centre");
+  expect_error("quality missing.off", "missing.off");
+  const Result q = run("quality sq.off --size 48x48 --warmup 3");
+  EXPECT_EQ(q.status, 0) << q.err;
+  EXPECT_NE(q.out.find("alignment A"), std::string::npos) << q.out;
+  EXPECT_NE(q.out.find("red inflow"), std::string::npos) << q.out;
+}
+
 TEST_F(RenderCommand, StylesLockingAndTopology) {
   for (const char* style : {"flow", "particles", "principal", "bronze", "eroded", "topology"}) {
     const Result r = run(std::string("render --mesh landscape:2:6:24 --style ") + style +

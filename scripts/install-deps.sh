@@ -11,6 +11,9 @@ packages=(
   libegl-dev libegl-mesa0 libgl1-mesa-dri libgbm1
   libgtest-dev googletest libbenchmark-dev
   ffmpeg
+  # The VTK and OpenFOAM readers: the VTK inside Debian's ParaView (about
+  # 1 GiB with ParaView itself), never libvtk9-dev (docs/data.md).
+  paraview-dev
 )
 sudo=""
 if [[ $(id -u) -ne 0 ]]; then sudo="sudo"; fi

@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 
 #include "ibfvs/core/curvature.h"
+#include "ibfvs/core/dataset_io.h"
 #include "ibfvs/core/error.h"
 #include "ibfvs/core/file_names.h"
 #include "ibfvs/core/mesh_io.h"
@@ -17,11 +18,15 @@ namespace ibfvs::app {
 namespace fs = std::filesystem;
 
 void add_geometry_options(CLI::App& cmd, GeometryOptions& o) {
-  cmd.add_option("mesh", o.mesh, "Triangle mesh: .off .obj .ply .stl")->required();
+  cmd.add_option("mesh", o.mesh,
+                 "Triangle mesh: .off .obj .ply .stl, or a dataset: .vtk .vtp .vtu .vtm .pvd, an "
+                 "OpenFOAM case")
+      ->required();
   cmd.add_option("--subdivide", o.subdivide, "Loop subdivision levels (0..8)")
       ->capture_default_str();
   cmd.add_option("-o,--out", o.out,
-                 "Write a PLY with per-vertex nx ny nz (refined normals), kmin kmax, dminx dminy "
+                 "Write a PLY or VTK .vtp (for ParaView) with per-vertex nx ny nz (refined "
+                 "normals), kmin kmax, dminx dminy "
                  "dminz, dmaxx dmaxy dmaxz (principal curvatures and directions), and any vx vy "
                  "vz and scalars of the input. Default: only print the summary");
   cmd.add_flag("--ascii", o.ascii, "Write ASCII PLY instead of binary");
@@ -44,8 +49,13 @@ int run_geometry(const GeometryOptions& o) {
   if (o.subdivide < 0 || o.subdivide > 8)
     throw InputError("--subdivide: levels must be between 0 and 8");
   if (!o.out.empty()) {
-    if (lower_extension(o.out) != ".ply")
-      throw InputError("--out: must be a .ply file, got '" + o.out + "'");
+    const std::string ext = lower_extension(o.out);
+    if (ext != ".ply" && ext != ".vtp")
+      throw InputError("--out: must be a .ply or .vtp file, got '" + o.out + "'");
+    if (ext == ".vtp" && !dataset_io_available())
+      throw InputError("--out: " + o.out +
+                       ": .vtp needs ibfvs built with ParaView's VTK (Debian's paraview-dev); "
+                       "this build left it out");
     const fs::path parent = fs::path(o.out).parent_path();
     std::error_code ec;
     if (!parent.empty() && !fs::is_directory(parent, ec))
@@ -67,7 +77,12 @@ int run_geometry(const GeometryOptions& o) {
   const Curvature curvature = compute_curvature(mesh);
   const auto t2 = clock::now();
   store_curvature(mesh, curvature);
-  if (!o.out.empty()) write_ply(mesh, o.out, !o.ascii);
+  if (!o.out.empty()) {
+    if (lower_extension(o.out) == ".vtp")
+      write_polydata(mesh, nullptr, o.out);
+    else
+      write_ply(mesh, o.out, !o.ascii);
+  }
   const auto t3 = clock::now();
 
   if (!o.quiet) {

@@ -18,6 +18,9 @@
 #include "ibfvs/quality_command.h"
 #include "ibfvs/render_command.h"
 #include "ibfvs/view_command.h"
+#ifdef IBFVS_HAVE_VTK
+#include "ibfvs/vtk/vtk_io.h"
+#endif
 
 int main(int argc, char** argv) {
   // Mesa's llvmpipe allocates and frees large buffers every frame; glibc's
@@ -34,7 +37,15 @@ int main(int argc, char** argv) {
   if (std::thread::hardware_concurrency() == 2) setenv("LP_NUM_THREADS", "3", 0);
   CLI::App app{"ibfvs: image based flow visualization for curved surfaces"};
   app.require_subcommand(1, 1);
-  app.set_version_flag("--version", IBFVS_VERSION);
+#ifdef IBFVS_HAVE_VTK
+  ibfvs::vtk::install_vtk_io();
+  const std::string version = std::string(IBFVS_VERSION) + " (VTK and OpenFOAM readers: VTK " +
+                              ibfvs::vtk::vtk_version() + " from ParaView)";
+#else
+  const std::string version =
+      std::string(IBFVS_VERSION) + " (built without the VTK and OpenFOAM readers)";
+#endif
+  app.set_version_flag("--version", version);
   auto render_options = std::make_unique<ibfvs::app::SceneOptions>();
   CLI::App* render = app.add_subcommand(
       "render", "Render IBFVS texture on a mesh headless (EGL) to a video or PNG");

@@ -11,6 +11,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "ibfvs/core/dataset_io.h"
 #include "ibfvs/core/error.h"
 #include "ibfvs/core/file_names.h"
 #include "ibfvs/core/image.h"
@@ -192,9 +193,14 @@ int run_render(const Scene& o) {
   ensure_parent(out, "--out");
   const std::string export_ext = lower_extension(o.export_model);
   if (!o.export_model.empty()) {
-    if (export_ext != ".obj" && export_ext != ".gltf" && export_ext != ".glb")
-      throw InputError("--export: must be a .obj, .gltf or .glb file, got '" + o.export_model +
-                       "'");
+    if (export_ext != ".obj" && export_ext != ".gltf" && export_ext != ".glb" &&
+        export_ext != ".vtp")
+      throw InputError("--export: must be a .obj, .gltf, .glb or .vtp file, got '" +
+                       o.export_model + "'");
+    if (export_ext == ".vtp" && !dataset_io_available())
+      throw InputError("--export: " + o.export_model +
+                       ": .vtp needs ibfvs built with ParaView's VTK (Debian's paraview-dev); "
+                       "this build left it out");
     ensure_parent(o.export_model, "--export");
   }
   if (!o.texture_out.empty()) {
@@ -271,6 +277,9 @@ int run_render(const Scene& o) {
     if (export_ext == ".obj") {
       write_obj_textured(mesh, uv, model, png.filename().string());
       written += ", " + fs::path(model).replace_extension(".mtl").string();
+    } else if (export_ext == ".vtp") {
+      // For ParaView: texture coordinates TCoords, the PNG's name in field data.
+      write_polydata(mesh, &uv, model, png.filename().string());
     } else {
       write_gltf_textured(mesh, uv, model, png);
       if (export_ext == ".gltf")

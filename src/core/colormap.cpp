@@ -65,8 +65,17 @@ std::vector<float> vertex_scalar(const TriMesh& mesh, const std::vector<glm::vec
     for (std::size_t i = 0; i < out.size(); ++i) out[i] = mesh.positions[i][axis];
     return out;
   }
+  // A vector array by name: its magnitude (as ParaView colours by it).
+  if (const auto it = mesh.vector_arrays.find(key); it != mesh.vector_arrays.end()) {
+    for (std::size_t i = 0; i < out.size(); ++i) out[i] = glm::length(it->second[i]);
+    return out;
+  }
+  if (const auto it = mesh.other_arrays.find(key); it != mesh.other_arrays.end())
+    throw InputError("the array '" + key + "' has " + std::to_string(it->second) +
+                     " components; a scalar needs 1 (or 3, for the magnitude)");
   std::string known = "speed, kmin, kmax, x, y, z";
   for (const auto& [n, v] : mesh.scalars) known += ", " + n;
+  for (const auto& [n, v] : mesh.vector_arrays) known += ", " + n + " (magnitude)";
   throw InputError("no per-vertex scalar '" + key + "' (available: " + known + ")");
 }
 

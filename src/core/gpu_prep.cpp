@@ -36,6 +36,7 @@ std::vector<unsigned> optimize_for_gpu(TriMesh& mesh) {
   remap(mesh.normals, map, kept);
   remap(mesh.vectors, map, kept);
   for (auto& [name, values] : mesh.scalars) remap(values, map, kept);
+  for (auto& [name, values] : mesh.vector_arrays) remap(values, map, kept);
   return map;
 }
 

@@ -82,6 +82,52 @@ void validate_mesh(const TriMesh& mesh, const std::string& source) {
   for (const auto& [name, values] : mesh.scalars)
     if (values.size() != n)
       throw InputError(source + ": property '" + name + "' count differs from vertex count");
+  for (const auto& [name, values] : mesh.vector_arrays)
+    if (values.size() != n)
+      throw InputError(source + ": array '" + name + "' count differs from vertex count");
+}
+
+namespace {
+
+template <class T>
+std::vector<T> area_weighted(const TriMesh& mesh, const std::vector<T>& values) {
+  if (values.size() != mesh.triangles.size())
+    throw InputError("per-triangle data has " + std::to_string(values.size()) + " values for " +
+                     std::to_string(mesh.triangles.size()) + " triangles");
+  const std::size_t n = mesh.vertex_count();
+  std::vector<T> sum(n, T(0.0f)), plain(n, T(0.0f));
+  std::vector<float> weight(n, 0.0f);
+  std::vector<std::uint32_t> count(n, 0);
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    const Triangle& t = mesh.triangles[f];
+    if (t[0] >= n || t[1] >= n || t[2] >= n) continue;
+    const glm::vec3 a = mesh.positions[t[0]], b = mesh.positions[t[1]], c = mesh.positions[t[2]];
+    const float area = 0.5f * glm::length(glm::cross(b - a, c - a));
+    for (const std::uint32_t v : t) {
+      if (std::isfinite(area) && area > 0.0f) {
+        sum[v] += area * values[f];
+        weight[v] += area;
+      }
+      plain[v] += values[f];
+      ++count[v];
+    }
+  }
+  for (std::size_t v = 0; v < n; ++v)
+    sum[v] = weight[v] > 0.0f ? sum[v] / weight[v]
+             : count[v] > 0   ? plain[v] / static_cast<float>(count[v])
+                              : T(0.0f);
+  return sum;
+}
+
+}  // namespace
+
+std::vector<float> triangle_to_vertex(const TriMesh& mesh, const std::vector<float>& values) {
+  return area_weighted(mesh, values);
+}
+
+std::vector<glm::vec3> triangle_to_vertex(const TriMesh& mesh,
+                                          const std::vector<glm::vec3>& values) {
+  return area_weighted(mesh, values);
 }
 
 Topology analyze_topology(const TriMesh& mesh) {

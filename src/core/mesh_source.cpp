@@ -1,6 +1,7 @@
 #include "ibfvs/core/mesh_source.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include "ibfvs/core/data_paths.h"
+#include "ibfvs/core/dataset_io.h"
 #include "ibfvs/core/error.h"
 #include "ibfvs/core/gpu_prep.h"
 #include "ibfvs/core/lonlat_grid.h"
@@ -195,9 +197,58 @@ TriMesh make_cylinders_spec(const std::string& spec) {
   return m;
 }
 
+// The last run of digits in a file name (for ordering a numbered series), or
+// -1 when it has none.
+long long last_number(const std::string& name) {
+  const std::size_t end = name.find_last_of("0123456789");
+  if (end == std::string::npos) return -1;
+  std::size_t begin = end;
+  while (begin > 0 && std::isdigit(static_cast<unsigned char>(name[begin - 1]))) --begin;
+  const std::string digits = name.substr(begin, std::min<std::size_t>(end - begin + 1, 18));
+  return std::stoll(digits);
+}
+
+// The files of a numbered series `dir/pattern`, ordered by their numbers.
+std::vector<std::string> series_files(const std::string& path) {
+  const fs::path p(path);
+  const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
+  const std::string pattern = p.filename().string();
+  if (p.parent_path().string().find('*') != std::string::npos)
+    throw InputError(path + ": only the file name of a series may hold '*'");
+  std::vector<std::string> names;
+  std::error_code ec;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
+    if (it->is_regular_file(ec) && glob_match(pattern, it->path().filename().string()))
+      names.push_back(it->path().filename().string());
+  if (names.empty()) throw InputError(path + ": no file matches");
+  std::stable_sort(names.begin(), names.end(), [](const std::string& a, const std::string& b) {
+    const long long na = last_number(a), nb = last_number(b);
+    return na != nb ? na < nb : a < b;
+  });
+  std::vector<std::string> files;
+  for (const std::string& n : names) files.push_back((dir / n).string());
+  return files;
+}
+
 }  // namespace
 
-LoadedMesh load_mesh(const std::string& path, int subdivide, bool gpu_order) {
+TriMesh read_any_mesh(const std::string& path, const std::vector<std::string>& blocks,
+                      std::vector<std::string>* warnings) {
+  if (is_dataset_path(path)) {
+    Dataset d = read_dataset({path, blocks});
+    if (warnings) warnings->insert(warnings->end(), d.warnings.begin(), d.warnings.end());
+    return std::move(d.mesh);
+  }
+  if (!blocks.empty())
+    throw SettingError("blocks", path + ": has no blocks (only .vtm files and OpenFOAM cases do)");
+  MeshReadReport report;
+  TriMesh mesh = read_mesh(path, &report);
+  if (warnings) warnings->insert(warnings->end(), report.warnings.begin(), report.warnings.end());
+  return mesh;
+}
+
+LoadedMesh load_mesh(const std::string& path, int subdivide, bool gpu_order,
+                     const std::vector<std::string>& blocks) {
   LoadedMesh out;
   out.demo = path.empty();
   if (out.demo) {
@@ -234,7 +285,35 @@ LoadedMesh load_mesh(const std::string& path, int subdivide, bool gpu_order) {
     out.mesh = make_landscape(path);
     out.name = path;
     out.generated_landscape = true;
+  } else if (path.find('*') != std::string::npos && !fs::exists(path)) {
+    // A numbered series: the first file's mesh, every file's arrays a step.
+    const std::vector<std::string> files = series_files(path);
+    out.mesh = read_any_mesh(files[0], blocks, &out.warnings);
+    out.name = path;
+    if (files.size() > 1) {
+      for (std::size_t k = 0; k < files.size(); ++k)
+        out.step_times.push_back(static_cast<double>(k));
+      out.read_step = [files, blocks, n = out.mesh.vertex_count()](std::size_t k) {
+        TriMesh step = read_any_mesh(files.at(k), blocks);
+        if (step.vertex_count() != n)
+          throw InputError(files[k] + ": " + std::to_string(step.vertex_count()) +
+                           " vertices, the series' first file has " + std::to_string(n));
+        return step;
+      };
+    }
+  } else if (is_dataset_path(path)) {
+    Dataset d = read_dataset({path, blocks});
+    out.mesh = std::move(d.mesh);
+    out.warnings = std::move(d.warnings);
+    out.name = path;
+    if (d.times.size() > 1) {
+      out.step_times = std::move(d.times);
+      out.read_step = std::move(d.step);
+    }
   } else {
+    if (!blocks.empty())
+      throw SettingError("blocks",
+                         path + ": has no blocks (only .vtm files and OpenFOAM cases do)");
     MeshReadReport report;
     out.mesh = read_mesh(path, &report);
     out.warnings = report.warnings;

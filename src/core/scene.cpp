@@ -169,11 +169,31 @@ std::vector<SceneKey> make_keys() {
   return {
       // ---- mesh
       {"mesh", KeyKind::String,
-       "mesh file (.off .obj .ply .stl) or generated: landscape[:SEED[:CONTROLS[:RESOLUTION]]], "
+       "mesh file (.off .obj .ply .stl; .vtk .vtp .vtu .vtm .pvd, an OpenFOAM .foam or case "
+       "folder; NAME_*.EXT a numbered series) or generated: "
+       "landscape[:SEED[:CONTROLS[:RESOLUTION]]], "
        "relief:FILE:VAR:BOX[:SCALE[:RES]], globe[:LEVEL], torus[:R,r], "
        "cylinder[:RADIUS,LENGTH[,COUNT]]; empty: the demo",
        [](Scene& s, std::string_view t) { s.mesh = t; },
        [](const Scene& s) { return s.mesh.empty() ? none() : one(s.mesh); }},
+      {"blocks", KeyKind::String,
+       "NAME,NAME,...: blocks of a .vtm or patches of an OpenFOAM case, names or patterns with "
+       "* and ?; default: all (OpenFOAM: every boundary patch)",
+       [](Scene& s, std::string_view t) {
+         s.blocks.clear();
+         std::string text(t);
+         for (std::size_t b = 0; b <= text.size();) {
+           const std::size_t e = std::min(text.find(',', b), text.size());
+           if (e > b) s.blocks.push_back(text.substr(b, e - b));
+           b = e + 1;
+         }
+         require(!s.blocks.empty(), "expected NAME[,NAME...]");
+       },
+       [](const Scene& s) {
+         std::string text;
+         for (const std::string& b : s.blocks) text += (text.empty() ? "" : ",") + b;
+         return s.blocks.empty() ? none() : one(text);
+       }},
       {"subdivide", KeyKind::Integer, "Loop subdivision levels, 0..8",
        [](Scene& s, std::string_view t) { s.subdivide = static_cast<int>(parse_integer(t, 0, 8)); },
        [](const Scene& s) { return one(std::to_string(s.subdivide)); }},
@@ -195,9 +215,10 @@ std::vector<SceneKey> make_keys() {
        }},
       // ---- field
       {"field", KeyKind::String,
-       "file | uniform:X,Y,Z | rotate:X,Y,Z | elements[:X,Y,Z] | "
+       "file[:ARRAY] | uniform:X,Y,Z | rotate:X,Y,Z | elements[:X,Y,Z] | "
        "principal:min|max[:X,Y,Z][:rot90][:smooth=K] | gradient:down|up[:X,Y,Z][:normalize] | "
-       "wind:FILE[:UVAR:VVAR]; default: file when the mesh has vectors, else default_field",
+       "wind:FILE[:UVAR:VVAR] | sample:FILE:ARRAY[:OFFSET]; default: file when the mesh has "
+       "vectors, else default_field",
        [](Scene& s, std::string_view t) { s.field = FieldSpec::parse(t); },
        [](const Scene& s) { return s.field ? one(s.field->text()) : none(); }},
       {"default_field", KeyKind::String,
@@ -216,11 +237,17 @@ std::vector<SceneKey> make_keys() {
        }},
       IBFVS_ENUM_KEY(tangent, TangentMode, "how vectors with a normal part are used (3.8)"),
       {"time", KeyKind::Time,
-       "netCDF time index from 0, or a range A:B played through, frames_per_step each",
+       "time step from 0 (netCDF, a series: .pvd, OpenFOAM times, numbered files), or a range "
+       "A:B played through, frames_per_step each; default: 0, or a whole series",
        [](Scene& s, std::string_view t) { s.time = TimeRange::parse(t); },
-       [](const Scene& s) { return one(s.time.to_string()); }},
+       [](const Scene& s) { return s.time ? one(s.time->to_string()) : none(); }},
+      {"reverse", KeyKind::Flag,
+       "negate the field: OpenFOAM's wallShearStress points against the near-wall flow",
+       [](Scene& s, std::string_view t) { s.reverse = flag(t); },
+       [](const Scene& s) { return s.reverse ? one("true") : none(); }},
       {"field_step", KeyKind::StringList,
-       "repeatable: a PLY file whose vx vy vz are one step of an unsteady field",
+       "repeatable: a mesh file (PLY vx vy vz, or a dataset with the field's array) that is one "
+       "step of an unsteady field",
        [](Scene& s, std::string_view t) { s.field_steps.emplace_back(t); },
        [](const Scene& s) { return s.field_steps; }},
       {"frames_per_step", KeyKind::Integer, "frames from one time step to the next, 1..100000",
@@ -387,7 +414,8 @@ std::vector<SceneKey> make_keys() {
       {"texture_out", KeyKind::String, "the texture F_t of the last frame, 16-bit PNG",
        [](Scene& s, std::string_view t) { s.texture_out = t; },
        [](const Scene& s) { return s.texture_out.empty() ? none() : one(s.texture_out); }},
-      {"export", KeyKind::String, "FILE.obj|.gltf|.glb: the mesh with the final texture (3.7)",
+      {"export", KeyKind::String,
+       "FILE.obj|.gltf|.glb|.vtp: the mesh with the final texture (3.7); .vtp for ParaView",
        [](Scene& s, std::string_view t) { s.export_model = t; },
        [](const Scene& s) { return s.export_model.empty() ? none() : one(s.export_model); }},
       {"quiet", KeyKind::Flag, "no progress bar, no summary",

@@ -15,6 +15,7 @@
 #include "ibfvs/core/lonlat_grid.h"
 #include "ibfvs/core/mesh_io.h"
 #include "ibfvs/core/mesh_source.h"
+#include "ibfvs/core/text.h"
 
 namespace ibfvs {
 namespace fs = std::filesystem;
@@ -33,6 +34,18 @@ auto for_key(const char* key, F&& f) {
   }
 }
 
+// A step's arrays (in file vertex order) onto the mesh, reordered like it.
+void take_arrays(TriMesh& mesh, const TriMesh& step, const std::vector<unsigned>& order) {
+  const auto put = [&](const auto& values) {
+    return order.empty() ? values : remap_vertex_data(values, order);
+  };
+  if (step.vectors.size() == step.vertex_count() && !step.vectors.empty())
+    mesh.vectors = put(step.vectors);
+  for (const auto& [name, values] : step.vector_arrays) mesh.vector_arrays[name] = put(values);
+  for (const auto& [name, values] : step.scalars) mesh.scalars[name] = put(values);
+  for (const auto& [name, c] : step.other_arrays) mesh.other_arrays[name] = c;
+}
+
 bool wants_curvature(const std::string& name) {
   const std::string n = !name.empty() && name[0] == '-' ? name.substr(1) : name;
   return n == "kmin" || n == "kmax";
@@ -49,9 +62,7 @@ void check(const Scene& s) {
     throw SettingError("field_step", "cannot be combined with subdivide");
   if (!s.field_steps.empty() && s.field && s.field->kind != FieldKind::File)
     throw SettingError("field_step",
-                       "needs field file (or no field), got field " + s.field->text());
-  if (s.time.last > s.time.first && (!s.field || s.field->kind != FieldKind::Wind))
-    throw SettingError("time", "a range A:B needs field wind:...");
+                       "needs field file[:ARRAY] (or no field), got field " + s.field->text());
   if (s.frames == 0 && s.lock_at != Scene::kLockAuto)
     throw SettingError("frames", "0 (automatic) needs lock_at auto");
 }
@@ -139,13 +150,15 @@ PreparedScene prepare_scene(const Scene& s) {
 
   std::optional<FieldSpec> field_spec = s.field;
   if (!field_spec && !s.elements.empty()) field_spec = FieldSpec::parse("elements");
+  const std::size_t time_first = s.time ? s.time->first : 0;
   if (field_spec) {
     for (const FlowElement& e : s.elements) field_spec->elements.push_back(e);
-    field_spec->time = s.time.first;
+    field_spec->time = time_first;
   }
 
   // ---- mesh
-  LoadedMesh loaded = for_key("mesh", [&] { return load_mesh(s.mesh, s.subdivide); });
+  LoadedMesh loaded =
+      for_key("mesh", [&] { return load_mesh(s.mesh, s.subdivide, true, s.blocks); });
   for (const std::string& w : loaded.warnings) p.warnings.push_back(w);
   auto mesh_ptr = std::make_shared<TriMesh>(std::move(loaded.mesh));
   TriMesh& mesh = *mesh_ptr;
@@ -153,6 +166,35 @@ PreparedScene prepare_scene(const Scene& s) {
   p.mesh_name = loaded.demo ? loaded.name : fs::path(s.mesh).filename().string();
   // Messages about the mesh's data name the file as given.
   const std::string mesh_label = loaded.demo ? p.mesh_name : s.mesh;
+
+  // ---- a series: its steps (all, or the time key's range or step)
+  const bool series = !loaded.step_times.empty();
+  std::size_t series_first = 0, series_last = 0;
+  if (series) {
+    const std::size_t count = loaded.step_times.size();
+    if (s.subdivide > 0)
+      throw SettingError("subdivide", mesh_label + ": a series (" + std::to_string(count) +
+                                          " steps) cannot be subdivided");
+    if (!s.field_steps.empty())
+      throw SettingError("field_step", mesh_label + ": is a series already");
+    series_first = s.time ? s.time->first : 0;
+    series_last = s.time ? s.time->last : count - 1;
+    if (series_last >= count)
+      throw SettingError("time", mesh_label + ": has " + std::to_string(count) + " steps (0.." +
+                                     std::to_string(count - 1) + "), asked for " +
+                                     s.time->to_string());
+    if (series_first == series_last && series_first > 0)
+      take_arrays(mesh, loaded.read_step(series_first), loaded.vertex_order);
+  }
+  const bool field_is_file =
+      (field_spec && field_spec->kind == FieldKind::File) ||
+      (!field_spec && (!mesh.vector_arrays.empty() || mesh.vectors.size() == mesh.vertex_count()));
+  if (s.time && s.time->last > s.time->first && !(series && field_is_file) &&
+      !(field_spec &&
+        (field_spec->kind == FieldKind::Wind || field_spec->kind == FieldKind::Sample)))
+    throw SettingError("time",
+                       "a range A:B needs a series (.pvd, OpenFOAM times, numbered files) with "
+                       "field file[:ARRAY], or field wind:... or sample:...");
 
   // ---- the height axis
   const glm::vec3 up = s.up_auto ? thinnest_axis(mesh) : s.up.value_or(glm::vec3(0, 1, 0));
@@ -175,7 +217,7 @@ PreparedScene prepare_scene(const Scene& s) {
   // ---- scalars sampled from netCDF grids
   for (const GridScalar& g : s.scalars) {
     LonLatGrid grid = read_lonlat_grid(g.path, g.variable, 0);
-    if (grid.time_steps > 1) grid = read_lonlat_grid(g.path, g.variable, s.time.first);
+    if (grid.time_steps > 1) grid = read_lonlat_grid(g.path, g.variable, time_first);
     mesh.scalars[g.name] = lonlat_scalars(mesh, grid);
   }
 
@@ -208,7 +250,8 @@ PreparedScene prepare_scene(const Scene& s) {
 
   // ---- field
   if (!field_spec) {
-    field_spec = mesh.vectors.size() == mesh.positions.size() ? FieldSpec::parse("file")
+    field_spec = mesh.vectors.size() == mesh.positions.size() || !mesh.vector_arrays.empty()
+                     ? FieldSpec::parse("file")
                  : default_field                              ? *default_field
                  : loaded.generated_landscape ? [&] {
                      FieldSpec g = FieldSpec::parse("gradient:down");
@@ -218,35 +261,63 @@ PreparedScene prepare_scene(const Scene& s) {
                                               : FieldSpec::parse("rotate:0,1,0");
   }
   const TangentMode tangent = s.tangent;
+  // The field at a step from a mesh file's arrays (file order) on this mesh.
+  const auto arrays_on_mesh = [spec = *field_spec, order = loaded.vertex_order,
+                               mesh_ptr = std::shared_ptr<const TriMesh>(mesh_ptr),
+                               tangent](const TriMesh& step) {
+    TriMesh on_mesh;
+    on_mesh.positions = mesh_ptr->positions;
+    on_mesh.normals = mesh_ptr->normals;
+    on_mesh.triangles = mesh_ptr->triangles;
+    take_arrays(on_mesh, step, order);
+    return evaluate_field(on_mesh, spec, tangent);
+  };
   if (!s.field_steps.empty()) {
     // An unsteady field: its steps, evaluated when the animation reaches them.
     p.step_count = s.field_steps.size();
-    p.step_field = [files = s.field_steps, expected = loaded.file_vertices,
-                    order = loaded.vertex_order,
-                    mesh_ptr = std::shared_ptr<const TriMesh>(mesh_ptr), tangent](std::size_t k) {
+    p.step_field = [files = s.field_steps, expected = loaded.file_vertices, blocks = s.blocks,
+                    arrays_on_mesh](std::size_t k) {
       const std::string& file = files[k];
-      const TriMesh step = read_mesh(file);
+      const TriMesh step = read_any_mesh(file, blocks);
       if (step.vertex_count() != expected)
         throw SettingError("field_step", file + ": " + std::to_string(step.vertex_count()) +
                                              " vertices, the mesh has " + std::to_string(expected));
-      if (step.vectors.empty()) throw SettingError("field_step", file + ": has no vx vy vz");
-      TriMesh on_mesh;
-      on_mesh.positions = mesh_ptr->positions;
-      on_mesh.normals = mesh_ptr->normals;
-      on_mesh.triangles = mesh_ptr->triangles;
-      on_mesh.vectors = order.empty() ? step.vectors : remap_vertex_data(step.vectors, order);
-      return evaluate_field(on_mesh, FieldSpec::parse("file"), tangent);
+      try {
+        return arrays_on_mesh(step);
+      } catch (const InputError& e) {
+        throw SettingError("field_step", file + ": " + e.what());
+      }
     };
-  } else if (s.time.last > s.time.first) {
-    p.step_count = s.time.last - s.time.first + 1;
-    read_lonlat_grid(field_spec->path, field_spec->east, s.time.last);  // the range exists
-    p.step_field = [spec = *field_spec, first = s.time.first,
+  } else if (series && field_spec->kind == FieldKind::File && series_last > series_first) {
+    p.step_count = series_last - series_first + 1;
+    p.step_field = [read = loaded.read_step, first = series_first, arrays_on_mesh,
+                    label = mesh_label](std::size_t k) {
+      try {
+        return arrays_on_mesh(read(first + k));
+      } catch (const SettingError&) {
+        throw;
+      } catch (const InputError& e) {
+        throw SettingError("field",
+                           label + ": step " + std::to_string(first + k) + ": " + e.what());
+      }
+    };
+  } else if (s.time && s.time->last > s.time->first) {
+    p.step_count = s.time->last - s.time->first + 1;
+    if (field_spec->kind == FieldKind::Wind)
+      read_lonlat_grid(field_spec->path, field_spec->east, s.time->last);  // the range exists
+    p.step_field = [spec = *field_spec, first = s.time->first,
                     mesh_ptr = std::shared_ptr<const TriMesh>(mesh_ptr), tangent](std::size_t k) {
       FieldSpec at = spec;
       at.time = first + k;
       return evaluate_field(*mesh_ptr, at, tangent);
     };
   }
+  if (s.reverse && p.step_field)
+    p.step_field = [inner = std::move(p.step_field)](std::size_t k) {
+      std::vector<glm::vec3> v = inner(k);
+      for (glm::vec3& x : v) x = -x;
+      return v;
+    };
   FieldReport field_report;
   try {
     p.field =
@@ -256,6 +327,12 @@ PreparedScene prepare_scene(const Scene& s) {
   } catch (const InputError& e) {
     throw SettingError("field", mesh_label + ": " + e.what());
   }
+  if (s.reverse && !p.step_field)
+    for (glm::vec3& x : p.field) x = -x;
+  if (field_report.outside_volume > 0)
+    p.warnings.push_back(field_spec->path + ": " + std::to_string(field_report.outside_volume) +
+                         " of " + std::to_string(mesh.vertex_count()) +
+                         " vertices lie outside the volume (their vectors are zero)");
   if (field_report.non_finite_zeroed > 0)
     p.warnings.push_back(mesh_label + ": " + std::to_string(field_report.non_finite_zeroed) +
                          " vectors were NaN or infinite and are set to zero");

@@ -77,6 +77,9 @@ TriMesh loop_subdivide(const TriMesh& mesh, int levels) {
   // run through the same connectivity, so they line up with the positions.
   if (mesh.vectors.size() == mesh.positions.size())
     out.vectors = subdivided_points(mesh, mesh.vectors, levels, nullptr);
+  for (const auto& [name, values] : mesh.vector_arrays)
+    out.vector_arrays[name] = subdivided_points(mesh, values, levels, nullptr);
+  out.other_arrays = mesh.other_arrays;
   std::vector<std::pair<std::string, std::vector<float>>> scalars(mesh.scalars.begin(),
                                                                   mesh.scalars.end());
   for (std::size_t s = 0; s < scalars.size(); s += 3) {

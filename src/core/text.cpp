@@ -89,4 +89,25 @@ std::string format_vec3(const glm::vec3& v) {
   return format_number(v.x) + "," + format_number(v.y) + "," + format_number(v.z);
 }
 
+bool glob_match(std::string_view pattern, std::string_view text) {
+  // Iterative, with one backtrack point: linear in practice, never recursive.
+  std::size_t p = 0, t = 0, star = std::string_view::npos, resume = 0;
+  while (t < text.size()) {
+    if (p < pattern.size() && (pattern[p] == '?' || pattern[p] == text[t])) {
+      ++p;
+      ++t;
+    } else if (p < pattern.size() && pattern[p] == '*') {
+      star = p++;
+      resume = t;
+    } else if (star != std::string_view::npos) {
+      p = star + 1;
+      t = ++resume;
+    } else {
+      return false;
+    }
+  }
+  while (p < pattern.size() && pattern[p] == '*') ++p;
+  return p == pattern.size();
+}
+
 }  // namespace ibfvs

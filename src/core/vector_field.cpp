@@ -6,6 +6,7 @@
 #include <glm/geometric.hpp>
 
 #include "ibfvs/core/curvature.h"
+#include "ibfvs/core/dataset_io.h"
 #include "ibfvs/core/error.h"
 #include "ibfvs/core/lonlat_grid.h"
 #include "ibfvs/core/text.h"
@@ -34,14 +35,66 @@ void parse_options(const std::string& s, const std::vector<std::string>& parts, 
 
 }  // namespace
 
+std::string describe_arrays(const TriMesh& mesh) {
+  std::vector<std::pair<std::string, int>> all;
+  if (mesh.vectors.size() == mesh.positions.size() && !mesh.vectors.empty())
+    all.emplace_back("vx vy vz", 3);
+  for (const auto& [name, v] : mesh.vector_arrays) all.emplace_back(name, 3);
+  for (const auto& [name, v] : mesh.scalars) all.emplace_back(name, 1);
+  for (const auto& [name, c] : mesh.other_arrays) all.emplace_back(name, c);
+  if (all.empty()) return "none";
+  std::string out;
+  for (const auto& [name, c] : all)
+    out += (out.empty() ? "" : ", ") + name + " (" + std::to_string(c) + ")";
+  return out;
+}
+
+const std::vector<glm::vec3>& file_vectors(const TriMesh& mesh, const std::string& name) {
+  const std::size_t n = mesh.vertex_count();
+  if (name.empty()) {
+    if (mesh.vectors.size() == n && n > 0) return mesh.vectors;
+    if (mesh.vector_arrays.size() == 1) return mesh.vector_arrays.begin()->second;
+    if (mesh.vector_arrays.empty())
+      throw InputError(
+          "file: the mesh has no per-vertex vectors (PLY vx vy vz or a 3-component array); its "
+          "arrays: " +
+          describe_arrays(mesh));
+    throw InputError("file: the mesh has " + std::to_string(mesh.vector_arrays.size()) +
+                     " vector arrays; name one with file:NAME (arrays: " + describe_arrays(mesh) +
+                     ")");
+  }
+  if (const auto it = mesh.vector_arrays.find(name); it != mesh.vector_arrays.end())
+    return it->second;
+  if (mesh.scalars.count(name))
+    throw InputError("file:" + name + ": the array has 1 component; a field needs 3");
+  if (const auto it = mesh.other_arrays.find(name); it != mesh.other_arrays.end())
+    throw InputError("file:" + name + ": the array has " + std::to_string(it->second) +
+                     " components; a field needs 3");
+  throw InputError("file:" + name + ": no such array (arrays: " + describe_arrays(mesh) + ")");
+}
+
 FieldSpec FieldSpec::parse(std::string_view text) {
   FieldSpec spec;
   const std::string s(text);
-  if (s == "file") {
+  if (s == "file" || s.rfind("file:", 0) == 0) {
     spec.kind = FieldKind::File;
+    if (s.size() > 5) spec.array = s.substr(5);
     return spec;
   }
   const std::vector<std::string> parts = split_colons(s);
+  if (parts[0] == "sample") {
+    spec.kind = FieldKind::Sample;
+    if (parts.size() < 3 || parts.size() > 4 || parts[1].empty() || parts[2].empty())
+      throw InputError("expected sample:FILE:NAME[:OFFSET], got '" + s + "'");
+    spec.path = parts[1];
+    spec.array = parts[2];
+    if (parts.size() == 4) {
+      const double offset = parse_number(parts[3]);
+      if (!std::isfinite(offset)) throw InputError("the offset in '" + s + "' must be finite");
+      spec.offset = static_cast<float>(offset);
+    }
+    return spec;
+  }
   if (parts[0] == "elements") {
     spec.kind = FieldKind::Elements;
     spec.value = parts.size() > 1 ? parse_vec3(parts[1]) : glm::vec3(0.0f);
@@ -92,8 +145,8 @@ FieldSpec FieldSpec::parse(std::string_view text) {
   const std::string name = s.substr(0, colon);
   if (colon == std::string::npos || (name != "uniform" && name != "rotate"))
     throw InputError("unknown field '" + s +
-                     "' (expected file, uniform:X,Y,Z, rotate:X,Y,Z, elements, "
-                     "principal:min|max, gradient:down|up or wind:FILE)");
+                     "' (expected file[:NAME], uniform:X,Y,Z, rotate:X,Y,Z, elements, "
+                     "principal:min|max, gradient:down|up, wind:FILE or sample:FILE:NAME)");
   spec.kind = name == "uniform" ? FieldKind::Uniform : FieldKind::Rotate;
   spec.value = parse_vec3(std::string_view(s).substr(colon + 1));
   if (spec.kind == FieldKind::Rotate && glm::length(spec.value) == 0.0f)
@@ -105,7 +158,9 @@ std::string FieldSpec::text() const {
   const std::string v = format_vec3(value);
   switch (kind) {
     case FieldKind::File:
-      return "file";
+      return array.empty() ? "file" : "file:" + array;
+    case FieldKind::Sample:
+      return "sample:" + path + ":" + array + (offset != 0.0f ? ":" + format_number(offset) : "");
     case FieldKind::Uniform:
       return "uniform:" + v;
     case FieldKind::Rotate:
@@ -129,7 +184,8 @@ std::string FieldSpec::to_string() const {
   const auto vec = [&] { out << value.x << "," << value.y << "," << value.z; };
   switch (kind) {
     case FieldKind::File:
-      return "file";
+    case FieldKind::Sample:
+      return text();
     case FieldKind::Uniform:
       out << "uniform:";
       vec();
@@ -168,11 +224,44 @@ std::vector<glm::vec3> evaluate_field(const TriMesh& mesh, const FieldSpec& spec
   std::vector<glm::vec3> v(n);
   switch (spec.kind) {
     case FieldKind::File:
-      if (mesh.vectors.size() != n)
-        throw InputError(
-            "file: the mesh has no per-vertex vectors (PLY vertex properties vx vy vz)");
-      v = mesh.vectors;
+      v = file_vectors(mesh, spec.array);
       break;
+    case FieldKind::Sample: {
+      // Near-wall flow: each vertex moved `offset` along its normal; where
+      // that point lies outside the volume (the normal points into the
+      // body), against it.
+      if (spec.offset != 0.0f && mesh.normals.size() != n)
+        throw InputError("sampling off the surface needs vertex normals");
+      std::vector<glm::vec3> points(n);
+      for (std::size_t i = 0; i < n; ++i)
+        points[i] = mesh.positions[i] +
+                    (spec.offset != 0.0f ? spec.offset * mesh.normals[i] : glm::vec3(0.0f));
+      VolumeSample sample = sample_volume(spec.path, spec.array, spec.time, points);
+      std::vector<glm::vec3> retry_points;
+      std::vector<std::size_t> retry;
+      for (std::size_t i = 0; i < n; ++i)
+        if (!sample.found[i] && spec.offset != 0.0f) {
+          retry.push_back(i);
+          retry_points.push_back(mesh.positions[i] - spec.offset * mesh.normals[i]);
+        }
+      if (!retry.empty()) {
+        const VolumeSample again = sample_volume(spec.path, spec.array, spec.time, retry_points);
+        for (std::size_t k = 0; k < retry.size(); ++k)
+          if (again.found[k]) {
+            sample.values[retry[k]] = again.values[k];
+            sample.found[retry[k]] = 1;
+          }
+      }
+      for (std::size_t i = 0; i < n; ++i) {
+        v[i] = sample.found[i] ? sample.values[i] : glm::vec3(0.0f);
+        if (!sample.found[i]) ++report.outside_volume;
+      }
+      if (n > 0 && report.outside_volume == n)
+        throw InputError(spec.path +
+                         ": no vertex lies inside the volume (is it the right "
+                         "dataset, and the offset small enough?)");
+      break;
+    }
     case FieldKind::Uniform:
       std::fill(v.begin(), v.end(), spec.value);
       break;

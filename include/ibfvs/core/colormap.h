@@ -41,7 +41,8 @@ glm::vec3 color_map(ColorMap map, float t);
 /// A per-vertex scalar by name: a property of the mesh (PLY scalar, kmin and
 /// kmax after `ibfvs geometry`, a landscape's height), or one derived here:
 /// `speed` (|v| of `field`), `kmin`/`kmax` (computed when absent), `x`, `y`,
-/// `z` (coordinates). A leading '-' negates (`-kmax`: concavity). Throws
+/// `z` (coordinates), the magnitude of a named vector array (wallShearStress,
+/// U). A leading '-' negates (`-kmax`: concavity). Throws
 /// InputError listing the names available.
 std::vector<float> vertex_scalar(const TriMesh& mesh, const std::vector<glm::vec3>& field,
                                  std::string_view name);

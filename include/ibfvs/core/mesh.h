@@ -21,6 +21,12 @@ struct TriMesh {
   std::vector<Triangle> triangles;   ///< counter-clockwise vertex indices
   std::vector<glm::vec3> vectors;    ///< per-vertex vector field from the file (may be empty)
   std::map<std::string, std::vector<float>> scalars;  ///< other per-vertex properties by name
+  /// Named per-vertex 3-vectors (VTK and OpenFOAM arrays such as
+  /// wallShearStress or U); `field file:NAME` picks one.
+  std::map<std::string, std::vector<glm::vec3>> vector_arrays;
+  /// Arrays of neither 1 nor 3 components, by name: their component count,
+  /// for messages that say why they cannot be a field or a colour.
+  std::map<std::string, int> other_arrays;
 
   [[nodiscard]] std::size_t vertex_count() const { return positions.size(); }
   [[nodiscard]] std::size_t triangle_count() const { return triangles.size(); }
@@ -49,6 +55,14 @@ void compute_vertex_normals(TriMesh& mesh);
 /// coordinates, per-vertex arrays of the right length. Throws InputError
 /// whose message starts with `source`.
 void validate_mesh(const TriMesh& mesh, const std::string& source);
+
+/// Per-triangle values carried to the vertices: each vertex gets the
+/// area-weighted mean of the values of its triangles (a vertex of no
+/// triangle with non-zero area gets the plain mean, or zero). `values` has
+/// one entry per triangle; throws InputError otherwise.
+std::vector<float> triangle_to_vertex(const TriMesh& mesh, const std::vector<float>& values);
+std::vector<glm::vec3> triangle_to_vertex(const TriMesh& mesh,
+                                          const std::vector<glm::vec3>& values);
 
 /// Drops triangles with a repeated vertex index or zero area; returns how many.
 std::size_t remove_degenerate_triangles(TriMesh& mesh);

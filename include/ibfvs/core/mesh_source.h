@@ -3,6 +3,7 @@
 // (landscape, relief, globe, torus, cylinder), or the demo; then Loop
 // subdivision and the one-time vertex order for the GPU.
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,12 @@ struct LoadedMesh {
   std::size_t file_vertices = 0;     ///< vertex count as read, before subdivision
   std::vector<unsigned> vertex_order;  ///< new index of each vertex (GPU order); empty: unchanged
   std::vector<std::string> warnings;   ///< what the reader repaired, or the demo's fallback
+  /// A series (a .pvd, an OpenFOAM case's time folders, numbered files):
+  /// the steps' times (2 or more), else empty.
+  std::vector<double> step_times;
+  /// The arrays at step k on the file's vertices (file order, before
+  /// subdivision and GPU order); set with step_times.
+  std::function<TriMesh(std::size_t)> read_step;
 };
 
 /// Reads `path` (the reader's warnings in `warnings`), or with an empty path the
@@ -37,9 +44,20 @@ struct LoadedMesh {
 /// `cylinder[:RADIUS,LENGTH[,COUNT]]` is COUNT open cylinders along X stacked
 /// along Y (default one, radius 0.3, length 3). Both are for the paper's
 /// figures 3 and 4 and carry exact normals.
+/// VTK and OpenFOAM datasets (dataset_io.h) are read with their arrays;
+/// `blocks` picks blocks of a multiblock or patches of an OpenFOAM case. A
+/// file name with `*` names a numbered series (`run_*.vtp`, `wss*.ply`): the
+/// files that match, ordered by the last number in their names, are the steps
+/// of an unsteady field on the first one's mesh.
 /// Then subdivides `subdivide` times and, with `gpu_order`, orders the mesh for
 /// the GPU's vertex cache (optimize_for_gpu). Throws InputError naming the
 /// file, or SettingError("mesh", ...) for a malformed spec.
-LoadedMesh load_mesh(const std::string& path, int subdivide, bool gpu_order = true);
+LoadedMesh load_mesh(const std::string& path, int subdivide, bool gpu_order = true,
+                     const std::vector<std::string>& blocks = {});
+
+/// Reads one mesh file of any format ibfvs knows (OFF OBJ PLY STL, and the
+/// dataset formats), with its arrays. Throws InputError naming the file.
+TriMesh read_any_mesh(const std::string& path, const std::vector<std::string>& blocks = {},
+                      std::vector<std::string>* warnings = nullptr);
 
 }  // namespace ibfvs

@@ -95,7 +95,8 @@ struct ScalarRange {
   [[nodiscard]] std::string to_string() const;
 };
 
-/// A netCDF time index, or a range first..last played through.
+/// A time step index (netCDF, or a series' step), or a range first..last
+/// played through.
 struct TimeRange {
   std::size_t first = 0, last = 0;
   static TimeRange parse(std::string_view text);  ///< "A" or "A:B"; throws InputError
@@ -112,6 +113,9 @@ struct Scene {
   // ---- mesh
   std::string mesh;   ///< a file or a generated surface (mesh_source.h); empty: the demo
   int subdivide = 0;  ///< Loop subdivision levels, 0..8
+  /// Blocks of a .vtm or patches of an OpenFOAM case, names or patterns
+  /// (dataset_io.h); empty: all.
+  std::vector<std::string> blocks;
   /// The height axis: camera azimuth turns about it, elevation rises along it,
   /// gradient fields without their own axis use it. Unset: +Y.
   std::optional<glm::vec3> up;
@@ -122,7 +126,10 @@ struct Scene {
   std::optional<FieldSpec> default_field;  ///< when no field is given and the mesh has none
   std::vector<FlowElement> elements;       ///< potential-flow elements (field elements)
   TangentMode tangent = TangentMode::Project;
-  TimeRange time;                        ///< netCDF time index, or a range played through
+  /// netCDF time index or a series' step, or a range played through; unset:
+  /// index 0, and a series (.pvd, OpenFOAM times, numbered files) plays all
+  std::optional<TimeRange> time;
+  bool reverse = false;  ///< the field's vectors negated (OpenFOAM's wallShearStress)
   std::vector<std::string> field_steps;  ///< PLY files: the steps of an unsteady field
   int frames_per_step = 30;              ///< frames from one step to the next
 

@@ -36,4 +36,7 @@ std::string format_vec3(const glm::vec3& v);
 /// The shortest text that reads back as the same float.
 std::string format_number(double v);
 
+/// Shell-style match of a whole name: `*` any run of characters, `?` one.
+bool glob_match(std::string_view pattern, std::string_view text);
+
 }  // namespace ibfvs

@@ -17,19 +17,32 @@
 
 namespace ibfvs {
 
+/// The mesh's per-vertex vectors that `file[:NAME]` names: PLY's vx vy vz or
+/// the only 3-component array for an empty name. Throws InputError that
+/// lists the arrays there are, or says how many components NAME has.
+const std::vector<glm::vec3>& file_vectors(const TriMesh& mesh, const std::string& name);
+
+/// A one-line list of a mesh's arrays with their component counts, for
+/// messages: "U (3), p (1), Tensor (9)"; "none" when it has none.
+std::string describe_arrays(const TriMesh& mesh);
+
 /// Where the vectors come from.
 enum class FieldKind {
-  File,       ///< PLY vertex properties vx vy vz
+  File,       ///< the mesh file's vectors: PLY vx vy vz, or a named array
   Uniform,    ///< a constant 3D vector
   Rotate,     ///< v = w x (r - c), c the centre of the bounding box
   Elements,   ///< a uniform flow plus potential-flow elements
   Principal,  ///< unit principal directions, signed along a user vector
   Gradient,   ///< steepest descent or ascent of the height along a user axis
   Wind,       ///< eastward and northward components from a netCDF lon/lat grid
+  Sample,     ///< a volume dataset's vector array sampled at the vertices
 };
 
 /// A parsed field spec (the scene key field):
-///   file                                   PLY vertex properties vx vy vz
+///   file[:NAME]                            the mesh file's vector array NAME (VTK point
+///                                          or cell data, OpenFOAM fields); without NAME
+///                                          PLY's vx vy vz or the file's only 3-component
+///                                          array
 ///   uniform:X,Y,Z                          a constant vector
 ///   rotate:X,Y,Z                           rotation about the axis through the box centre
 ///   elements[:X,Y,Z]                       uniform flow X,Y,Z (default 0) plus `elements`
@@ -44,6 +57,11 @@ enum class FieldKind {
 ///   wind:FILE[:UVAR:VVAR]                  eastward and northward components (default
 ///                                          UWND, VWND) of a netCDF lon/lat grid at time
 ///                                          index `time`, on a sphere about the origin
+///   sample:FILE:NAME[:OFFSET]              the vector array NAME of a volume dataset
+///                                          (VTK, OpenFOAM) interpolated at the vertices
+///                                          moved OFFSET (world units, default 0) along
+///                                          their normals, or against them where that
+///                                          point lies outside the volume
 struct FieldSpec {
   FieldKind kind = FieldKind::Rotate;
   glm::vec3 value{0.0f, 1.0f, 0.0f};  ///< uniform vector, rotation axis, background flow,
@@ -54,7 +72,9 @@ struct FieldSpec {
   bool downhill = true;               ///< gradient: descent (true) or ascent
   bool normalize = false;             ///< gradient: unit vectors where the slope is not zero
   std::vector<FlowElement> elements;  ///< elements: the flow elements (the scene key element)
-  std::string path;                   ///< wind: the netCDF file
+  std::string path;                   ///< wind: the netCDF file; sample: the volume dataset
+  std::string array;                  ///< file, sample: the array's name (file: may be empty)
+  float offset = 0.0f;                ///< sample: distance along the normal
   std::string east = "UWND";          ///< wind: eastward component variable
   std::string north = "VWND";         ///< wind: northward component variable
   std::size_t time = 0;               ///< wind: time index, from 0
@@ -87,12 +107,13 @@ struct EnumNames<TangentMode> {
 struct FieldReport {
   std::size_t non_finite_zeroed = 0;  ///< vectors with NaN/inf set to zero
   float max_magnitude = 0.0f;         ///< after projection
+  std::size_t outside_volume = 0;     ///< sample: vertices outside the volume (set to zero)
 };
 
 /// Evaluates the field at every vertex. Needs `mesh.normals` for projection.
 /// Non-finite vectors are set to zero and counted in the report. Throws
-/// InputError when `spec.kind == File` and the mesh carries no vectors, or
-/// when every vector is non-finite.
+/// InputError when `spec.kind == File` and the mesh carries no such vectors
+/// (naming the arrays it has), or when every vector is non-finite.
 std::vector<glm::vec3> evaluate_field(const TriMesh& mesh, const FieldSpec& spec, TangentMode mode,
                                       FieldReport* report = nullptr);
 

@@ -1,0 +1,38 @@
+#pragma once
+// The dataset formats of dataset_io.h through VTK's own readers and writers,
+// from the VTK that Debian ships inside ParaView (paraview-dev 5.11: VTK 9.2).
+// Its own library (ibfvs::vtk) so that ibfvs::core stays free of VTK; front
+// ends call install_vtk_io() once, and the core's load_mesh, field sample:
+// and the writers then reach it.
+//
+// Read: legacy .vtk (4.2 and 5.1 layouts, ASCII and binary, any dataset
+// kind; arrays as SCALARS/VECTORS or FIELD data), XML .vtp .vtu .vts .vtr
+// .vti and .vtm multiblocks, .pvd series, OpenFOAM cases (.foam or the case
+// folder; boundary patches, time folders). Polygons and quads are
+// triangulated, strips unrolled, lines and vertices dropped; a volume shows
+// its outer surface. Cell arrays reach the vertices area-weighted.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "ibfvs/core/dataset_io.h"
+
+namespace ibfvs::vtk {
+
+/// Installs these readers and writers into the core (install_dataset_io)
+/// and routes VTK's own messages into the errors they raise instead of
+/// standard error. Idempotent.
+void install_vtk_io();
+
+/// The VTK version these readers come from, e.g. "9.2.20230111".
+std::string vtk_version();
+
+/// What dataset_io.h's functions do, callable directly.
+Dataset read(const DatasetRequest& request);
+VolumeSample sample(const std::filesystem::path& path, const std::string& array, std::size_t step,
+                    const std::vector<glm::vec3>& points);
+void write_polydata(const TriMesh& mesh, const std::vector<glm::vec2>* uv,
+                    const std::filesystem::path& path, const std::string& texture);
+
+}  // namespace ibfvs::vtk

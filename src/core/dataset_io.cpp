@@ -1,0 +1,72 @@
+#include "ibfvs/core/dataset_io.h"
+
+#include <algorithm>
+#include <cctype>
+#include <mutex>
+#include <optional>
+
+#include "ibfvs/core/error.h"
+
+namespace ibfvs {
+namespace fs = std::filesystem;
+
+namespace {
+
+std::mutex& io_mutex() {
+  static std::mutex m;
+  return m;
+}
+
+std::optional<DatasetIo>& installed() {
+  static std::optional<DatasetIo> io;
+  return io;
+}
+
+DatasetIo require(const fs::path& path) {
+  {
+    const std::lock_guard lock(io_mutex());
+    if (installed()) return *installed();
+  }
+  throw InputError(path.string() +
+                   ": VTK and OpenFOAM files need ibfvs built with ParaView's VTK (Debian's "
+                   "paraview-dev); this build left them out");
+}
+
+}  // namespace
+
+void install_dataset_io(DatasetIo io) {
+  const std::lock_guard lock(io_mutex());
+  installed() = std::move(io);
+}
+
+bool dataset_io_available() {
+  const std::lock_guard lock(io_mutex());
+  return installed().has_value();
+}
+
+bool is_dataset_path(const fs::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (ext == ".vtk" || ext == ".vtp" || ext == ".vtu" || ext == ".vtm" || ext == ".pvd" ||
+      ext == ".foam")
+    return true;
+  std::error_code ec;
+  return fs::is_directory(path, ec) && fs::is_regular_file(path / "system" / "controlDict", ec);
+}
+
+Dataset read_dataset(const DatasetRequest& request) {
+  return require(request.path).read(request);
+}
+
+VolumeSample sample_volume(const fs::path& path, const std::string& array, std::size_t step,
+                           const std::vector<glm::vec3>& points) {
+  return require(path).sample(path, array, step, points);
+}
+
+void write_polydata(const TriMesh& mesh, const std::vector<glm::vec2>* uv, const fs::path& path,
+                    const std::string& texture) {
+  require(path).write_polydata(mesh, uv, path, texture);
+}
+
+}  // namespace ibfvs

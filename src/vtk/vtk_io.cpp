@@ -1,0 +1,919 @@
+#include "ibfvs/vtk/vtk_io.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <mutex>
+#include <new>
+#include <optional>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include <vtkAppendFilter.h>
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkCompositeDataSet.h>
+#include <vtkDataArray.h>
+#include <vtkDataSetSurfaceFilter.h>
+#include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
+#include <vtkFloatArray.h>
+#include <vtkGenericDataObjectReader.h>
+#include <vtkIdTypeArray.h>
+#include <vtkInformation.h>
+#include <vtkMultiBlockDataSet.h>
+#include <vtkMultiPieceDataSet.h>
+#include <vtkNew.h>
+#include <vtkObjectFactory.h>
+#include <vtkOpenFOAMReader.h>
+#include <vtkOutputWindow.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkProbeFilter.h>
+#include <vtkSmartPointer.h>
+#include <vtkStaticCellLocator.h>
+#include <vtkStringArray.h>
+#include <vtkTriangleFilter.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkVersion.h>
+#include <vtkXMLDataElement.h>
+#include <vtkXMLDataParser.h>
+#include <vtkXMLGenericDataObjectReader.h>
+#include <vtkXMLPolyDataWriter.h>
+
+#include "ibfvs/core/error.h"
+#include "ibfvs/core/text.h"
+
+namespace ibfvs::vtk {
+namespace fs = std::filesystem;
+
+namespace {
+
+// ------------------------------------------------------------ VTK's messages
+// VTK reports problems through its output window (standard error by
+// default) and carries on with an empty output. All our VTK calls run under
+// one lock with this window installed, so that each read can turn the first
+// error into the one line the user sees.
+
+std::recursive_mutex& vtk_mutex() {
+  static std::recursive_mutex m;
+  return m;
+}
+
+// "ERROR: In /path/vtkXMLReader.cxx, line 12\nvtkXMLPolyDataReader (0x55): text\n\n" -> "text".
+std::string clean_message(const char* raw) {
+  std::string text = raw ? raw : "";
+  if (const std::size_t at = text.find("): "); at != std::string::npos) text = text.substr(at + 3);
+  while (!text.empty() && (text.back() == '\n' || text.back() == ' ' || text.back() == '\r'))
+    text.pop_back();
+  std::replace(text.begin(), text.end(), '\n', ' ');
+  return text;
+}
+
+class CaptureWindow : public vtkOutputWindow {
+ public:
+  static CaptureWindow* New();
+  vtkTypeMacro(CaptureWindow, vtkOutputWindow) void DisplayText(const char*) override {}
+  void DisplayErrorText(const char* text) override { errors.push_back(clean_message(text)); }
+  void DisplayWarningText(const char* text) override { warnings.push_back(clean_message(text)); }
+  void DisplayGenericWarningText(const char* text) override {
+    warnings.push_back(clean_message(text));
+  }
+  void DisplayDebugText(const char*) override {}
+  std::vector<std::string> errors, warnings;
+};
+vtkStandardNewMacro(CaptureWindow);
+
+CaptureWindow* capture_window() {
+  static vtkSmartPointer<CaptureWindow> window = [] {
+    auto w = vtkSmartPointer<CaptureWindow>::New();
+    vtkOutputWindow::SetInstance(w);
+    return w;
+  }();
+  return window;
+}
+
+// Holds the lock for one operation on one file; check() throws the first
+// error VTK reported since it began.
+class Guard {
+ public:
+  explicit Guard(fs::path path) : lock_(vtk_mutex()), path_(std::move(path)) {
+    capture_window()->errors.clear();
+    capture_window()->warnings.clear();
+  }
+  void check() const {
+    const auto& errors = capture_window()->errors;
+    if (!errors.empty()) fail(errors.front());
+  }
+  [[noreturn]] void fail(const std::string& problem) const {
+    throw InputError(path_.string() + ": " + problem);
+  }
+  const fs::path& path() const { return path_; }
+
+ private:
+  std::lock_guard<std::recursive_mutex> lock_;
+  fs::path path_;
+};
+
+std::string lower_extension(const fs::path& p) {
+  std::string ext = p.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+bool is_openfoam(const fs::path& p) {
+  std::error_code ec;
+  return lower_extension(p) == ".foam" || fs::is_directory(p, ec);
+}
+
+void require_file(const Guard& g) {
+  std::error_code ec;
+  if (!fs::exists(g.path(), ec)) g.fail("no such file");
+  if (!is_openfoam(g.path()) && !fs::is_regular_file(g.path(), ec)) g.fail("not a file");
+  if (!is_openfoam(g.path()) && fs::file_size(g.path(), ec) == 0) g.fail("the file is empty");
+}
+
+// ------------------------------------------------------------ reading one file
+
+// The OpenFOAM reader, set up for the boundary patches (surface) or the
+// internal mesh (volume); `blocks` picks patches.
+vtkSmartPointer<vtkOpenFOAMReader> openfoam_reader(const Guard& g, bool volume,
+                                                   const std::vector<std::string>& blocks) {
+  fs::path file = g.path();
+  std::error_code ec;
+  if (fs::is_directory(file, ec)) {
+    if (!fs::is_regular_file(file / "system" / "controlDict", ec))
+      g.fail("not an OpenFOAM case (no system/controlDict)");
+    file = file / "system" / "controlDict";
+  } else if (!fs::is_regular_file(file.parent_path().empty()
+                                      ? fs::path("system/controlDict")
+                                      : file.parent_path() / "system" / "controlDict",
+                                  ec)) {
+    g.fail("not in an OpenFOAM case (no system/controlDict beside it)");
+  }
+  auto reader = vtkSmartPointer<vtkOpenFOAMReader>::New();
+  reader->SetFileName(file.string().c_str());
+  reader->SetCreateCellToPoint(volume ? 1 : 0);  // surfaces: area-weighted here instead
+  reader->SetReadZones(0);
+  reader->SetSkipZeroTime(1);
+  reader->SetCacheMesh(1);
+  reader->UpdateInformation();
+  g.check();
+  std::vector<std::string> patches;
+  for (int i = 0; i < reader->GetNumberOfPatchArrays(); ++i)
+    patches.emplace_back(reader->GetPatchArrayName(i));
+  std::vector<bool> used(blocks.size(), false);
+  for (const std::string& name : patches) {
+    bool on = false;
+    if (volume) {
+      on = name == "internalMesh";
+    } else if (name.rfind("patch/", 0) == 0) {
+      const std::string bare = name.substr(6);
+      if (blocks.empty()) on = true;
+      for (std::size_t b = 0; b < blocks.size(); ++b)
+        if (glob_match(blocks[b], bare) || glob_match(blocks[b], name)) on = used[b] = true;
+    }
+    reader->SetPatchArrayStatus(name.c_str(), on ? 1 : 0);
+  }
+  for (std::size_t b = 0; b < blocks.size(); ++b)
+    if (!used[b]) {
+      std::string known;
+      for (const std::string& name : patches)
+        if (name.rfind("patch/", 0) == 0) known += (known.empty() ? "" : ", ") + name.substr(6);
+      g.fail("no patch matches '" + blocks[b] + "' (patches: " + (known.empty() ? "none" : known) +
+             ")");
+    }
+  // Every field, as cell data.
+  for (int i = 0; i < reader->GetNumberOfCellArrays(); ++i)
+    reader->SetCellArrayStatus(reader->GetCellArrayName(i), 1);
+  return reader;
+}
+
+std::vector<double> openfoam_times(vtkOpenFOAMReader* reader) {
+  std::vector<double> times;
+  if (vtkDoubleArray* t = reader->GetTimeValues())
+    for (vtkIdType i = 0; i < t->GetNumberOfTuples(); ++i) times.push_back(t->GetValue(i));
+  return times;
+}
+
+vtkSmartPointer<vtkDataObject> read_openfoam_step(vtkOpenFOAMReader* reader,
+                                                  const std::vector<double>& times,
+                                                  std::size_t step, const Guard& g) {
+  if (!times.empty()) {
+    if (step >= times.size())
+      g.fail("has " + std::to_string(times.size()) + " time steps, asked for step " +
+             std::to_string(step));
+    reader->UpdateTimeStep(times[step]);
+  } else {
+    reader->Update();
+  }
+  g.check();
+  vtkSmartPointer<vtkDataObject> out = reader->GetOutput();
+  return out;
+}
+
+// A single VTK file (legacy or XML, any dataset kind).
+vtkSmartPointer<vtkDataObject> read_vtk_file(const Guard& g) {
+  require_file(g);
+  vtkSmartPointer<vtkDataObject> out;
+  if (lower_extension(g.path()) == ".vtk") {
+    vtkNew<vtkGenericDataObjectReader> reader;
+    reader->SetFileName(g.path().string().c_str());
+    reader->ReadAllScalarsOn();
+    reader->ReadAllVectorsOn();
+    reader->ReadAllNormalsOn();
+    reader->ReadAllTensorsOn();
+    reader->ReadAllFieldsOn();
+    reader->ReadAllTCoordsOn();
+    reader->ReadAllColorScalarsOn();
+    reader->Update();
+    g.check();
+    out = reader->GetOutput();
+  } else {
+    vtkNew<vtkXMLGenericDataObjectReader> reader;
+    reader->SetFileName(g.path().string().c_str());
+    reader->Update();
+    g.check();
+    out = reader->GetOutput();
+  }
+  if (!out) g.fail("VTK could not read it (not a VTK file?)");
+  return out;
+}
+
+// ------------------------------------------------------------ .pvd series
+
+struct PvdEntry {
+  double time = 0.0;
+  fs::path file;
+};
+
+// The steps of a .pvd collection: for each distinct time, its files (parts).
+std::vector<std::pair<double, std::vector<fs::path>>> read_pvd(const Guard& g) {
+  require_file(g);
+  vtkNew<vtkXMLDataParser> parser;
+  parser->SetFileName(g.path().string().c_str());
+  if (!parser->Parse()) {
+    g.check();
+    g.fail("not a well-formed .pvd (XML) file");
+  }
+  vtkXMLDataElement* root = parser->GetRootElement();
+  if (!root || std::strcmp(root->GetName(), "VTKFile") != 0 || !root->GetAttribute("type") ||
+      std::strcmp(root->GetAttribute("type"), "Collection") != 0)
+    g.fail("not a VTK collection (.pvd): expected <VTKFile type=\"Collection\">");
+  vtkXMLDataElement* collection = root->FindNestedElementWithName("Collection");
+  if (!collection) g.fail("no <Collection> element");
+  std::vector<PvdEntry> entries;
+  for (int i = 0; i < collection->GetNumberOfNestedElements(); ++i) {
+    vtkXMLDataElement* e = collection->GetNestedElement(i);
+    if (std::strcmp(e->GetName(), "DataSet") != 0) continue;
+    const char* file = e->GetAttribute("file");
+    if (!file || !*file) g.fail("a <DataSet> without a file attribute");
+    PvdEntry entry;
+    if (const char* t = e->GetAttribute("timestep")) {
+      try {
+        entry.time = parse_number(t);
+      } catch (const InputError&) {
+        g.fail(std::string("timestep '") + t + "' is not a number");
+      }
+    }
+    entry.file = fs::path(file).is_absolute() ? fs::path(file) : g.path().parent_path() / file;
+    entries.push_back(entry);
+  }
+  if (entries.empty()) g.fail("the collection lists no data sets");
+  std::stable_sort(entries.begin(), entries.end(),
+                   [](const PvdEntry& a, const PvdEntry& b) { return a.time < b.time; });
+  std::vector<std::pair<double, std::vector<fs::path>>> steps;
+  for (const PvdEntry& e : entries) {
+    if (steps.empty() || steps.back().first != e.time) steps.push_back({e.time, {}});
+    steps.back().second.push_back(e.file);
+  }
+  return steps;
+}
+
+// ------------------------------------------------------------ blocks and surfaces
+
+struct Block {
+  std::string name, path;
+  vtkDataSet* data = nullptr;
+};
+
+void collect_blocks(vtkDataObject* obj, const std::string& name, const std::string& path,
+                    std::vector<Block>& out) {
+  if (!obj) return;
+  if (auto* mb = vtkMultiBlockDataSet::SafeDownCast(obj)) {
+    for (unsigned i = 0; i < mb->GetNumberOfBlocks(); ++i) {
+      std::string child = "block" + std::to_string(i);
+      if (mb->HasMetaData(i) && mb->GetMetaData(i)->Has(vtkCompositeDataSet::NAME()))
+        child = mb->GetMetaData(i)->Get(vtkCompositeDataSet::NAME());
+      collect_blocks(mb->GetBlock(i), child, path.empty() ? child : path + "/" + child, out);
+    }
+  } else if (auto* mp = vtkMultiPieceDataSet::SafeDownCast(obj)) {
+    for (unsigned i = 0; i < mp->GetNumberOfPieces(); ++i)
+      collect_blocks(mp->GetPieceAsDataObject(i), name, path, out);
+  } else if (auto* ds = vtkDataSet::SafeDownCast(obj)) {
+    out.push_back({name, path, ds});
+  }
+}
+
+// Connectivity in range and points finite, before any filter touches them.
+void check_cells(vtkCellArray* cells, vtkIdType points, const char* what, const Guard& g) {
+  if (!cells || cells->GetNumberOfCells() == 0) return;
+  vtkDataArray* conn = cells->GetConnectivityArray();
+  vtkDataArray* offsets = cells->GetOffsetsArray();
+  const vtkIdType n = conn->GetNumberOfTuples();
+  for (vtkIdType i = 0; i < n; ++i) {
+    const double id = conn->GetComponent(i, 0);
+    if (id < 0 || id >= static_cast<double>(points))
+      g.fail(std::string(what) + ": a cell refers to point " +
+             std::to_string(static_cast<long long>(id)) + " but there are only " +
+             std::to_string(points));
+  }
+  double last = 0.0;
+  for (vtkIdType i = 0; i < offsets->GetNumberOfTuples(); ++i) {
+    const double o = offsets->GetComponent(i, 0);
+    if (o < last || o > static_cast<double>(n)) g.fail(std::string(what) + ": malformed cell list");
+    last = o;
+  }
+}
+
+void check_dataset(vtkDataSet* ds, const Block& b, const Guard& g) {
+  const vtkIdType n = ds->GetNumberOfPoints();
+  const std::string where = b.path.empty() ? std::string("the data") : "block " + b.path;
+  if (auto* ps = vtkPointSet::SafeDownCast(ds); ps && ps->GetPoints()) {
+    double p[3];
+    for (vtkIdType i = 0; i < n; ++i) {
+      ps->GetPoints()->GetPoint(i, p);
+      if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+        g.fail(where + ": point " + std::to_string(i) +
+               " has a non-finite coordinate (NaN or infinity)");
+    }
+  }
+  if (auto* pd = vtkPolyData::SafeDownCast(ds)) {
+    check_cells(pd->GetVerts(), n, where.c_str(), g);
+    check_cells(pd->GetLines(), n, where.c_str(), g);
+    check_cells(pd->GetPolys(), n, where.c_str(), g);
+    check_cells(pd->GetStrips(), n, where.c_str(), g);
+  } else if (auto* ug = vtkUnstructuredGrid::SafeDownCast(ds)) {
+    check_cells(ug->GetCells(), n, where.c_str(), g);
+    if (vtkIdTypeArray* faces = ug->GetFaces())
+      if (faces->GetNumberOfTuples() > 0) {
+        // Polyhedra: [nfaces, (npts, ids...)...] per cell; ids in range.
+        const vtkIdType m = faces->GetNumberOfTuples();
+        for (vtkIdType i = 0; i < m;) {
+          const vtkIdType nf = faces->GetValue(i++);
+          for (vtkIdType f = 0; f < nf && i < m; ++f) {
+            const vtkIdType np = faces->GetValue(i++);
+            for (vtkIdType k = 0; k < np && i < m; ++k, ++i)
+              if (faces->GetValue(i) < 0 || faces->GetValue(i) >= n)
+                g.fail(where + ": a polyhedron face refers to a point out of range");
+          }
+        }
+      }
+  }
+}
+
+// Flat arrays: name -> (components, values tuple after tuple).
+using Arrays = std::map<std::string, std::pair<int, std::vector<float>>>;
+
+void take_arrays(vtkFieldData* data, vtkIdType tuples, Arrays& out) {
+  if (!data) return;
+  for (int i = 0; i < data->GetNumberOfArrays(); ++i) {
+    vtkDataArray* a = data->GetArray(i);
+    if (!a || a->GetNumberOfTuples() != tuples) continue;
+    std::string name = a->GetName() ? a->GetName() : "";
+    if (name.empty()) name = "array" + std::to_string(i);
+    if (name.rfind("vtk", 0) == 0) continue;  // vtkValidPointMask, vtkGhostType, ids
+    const int c = a->GetNumberOfComponents();
+    std::vector<float> values(static_cast<std::size_t>(tuples) * static_cast<std::size_t>(c));
+    std::vector<double> tuple(static_cast<std::size_t>(c));
+    for (vtkIdType t = 0; t < tuples; ++t) {
+      a->GetTuple(t, tuple.data());
+      for (int k = 0; k < c; ++k)
+        values[static_cast<std::size_t>(t) * static_cast<std::size_t>(c) +
+               static_cast<std::size_t>(k)] =
+            static_cast<float>(tuple[static_cast<std::size_t>(k)]);
+    }
+    out[name] = {c, std::move(values)};
+  }
+}
+
+// One block's surface, triangulated: positions, triangles and both kinds of
+// arrays (cell arrays per triangle).
+struct Surface {
+  std::vector<glm::vec3> positions;
+  std::vector<Triangle> triangles;
+  Arrays point_arrays, cell_arrays;
+};
+
+Surface block_surface(vtkDataSet* ds) {
+  vtkSmartPointer<vtkPolyData> poly = vtkPolyData::SafeDownCast(ds);
+  if (!poly) {
+    vtkNew<vtkDataSetSurfaceFilter> surface;  // the outer surface of a volume
+    surface->SetInputData(ds);
+    surface->Update();
+    poly = surface->GetOutput();
+  }
+  vtkNew<vtkTriangleFilter> triangles;  // polygons and strips to triangles; no lines, vertices
+  triangles->SetInputData(poly);
+  triangles->PassVertsOff();
+  triangles->PassLinesOff();
+  triangles->Update();
+  vtkPolyData* tri = triangles->GetOutput();
+  Surface s;
+  const vtkIdType n = tri->GetNumberOfPoints();
+  s.positions.resize(static_cast<std::size_t>(n));
+  double p[3];
+  for (vtkIdType i = 0; i < n; ++i) {
+    tri->GetPoint(i, p);
+    s.positions[static_cast<std::size_t>(i)] = glm::vec3(p[0], p[1], p[2]);
+  }
+  vtkCellArray* polys = tri->GetPolys();
+  s.triangles.reserve(static_cast<std::size_t>(polys->GetNumberOfCells()));
+  vtkIdType count = 0;
+  const vtkIdType* ids = nullptr;
+  std::vector<vtkIdType> kept;  // the cells that are triangles (all, from vtkTriangleFilter)
+  vtkIdType cell = tri->GetNumberOfVerts() + tri->GetNumberOfLines();
+  for (polys->InitTraversal(); polys->GetNextCell(count, ids); ++cell) {
+    if (count != 3) continue;
+    s.triangles.push_back({static_cast<std::uint32_t>(ids[0]), static_cast<std::uint32_t>(ids[1]),
+                           static_cast<std::uint32_t>(ids[2])});
+    kept.push_back(cell);
+  }
+  take_arrays(tri->GetPointData(), n, s.point_arrays);
+  Arrays cells;
+  take_arrays(tri->GetCellData(), tri->GetNumberOfCells(), cells);
+  for (auto& [name, array] : cells) {
+    const auto c = static_cast<std::size_t>(array.first);
+    std::vector<float> per_triangle(kept.size() * c);
+    for (std::size_t t = 0; t < kept.size(); ++t)
+      std::copy_n(
+          array.second.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(kept[t]) * c),
+          c, per_triangle.begin() + static_cast<std::ptrdiff_t>(t * c));
+    s.cell_arrays[name] = {array.first, std::move(per_triangle)};
+  }
+  return s;
+}
+
+// The blocks' surfaces as one mesh: points welded where blocks meet (the
+// patches of an OpenFOAM case share their edges), arrays missing from a
+// block NaN there, cell arrays carried to the vertices area-weighted.
+TriMesh merge_surfaces(std::vector<Surface>& surfaces, const std::vector<std::string>& names,
+                       std::vector<std::string>& warnings, const Guard& g) {
+  TriMesh mesh;
+  std::map<std::string, int> point_comps, cell_comps;
+  for (const Surface& s : surfaces) {
+    for (const auto& [name, a] : s.point_arrays) point_comps.emplace(name, a.first);
+    for (const auto& [name, a] : s.cell_arrays) cell_comps.emplace(name, a.first);
+  }
+  Arrays points, cells;
+  for (const auto& [name, c] : point_comps) points[name].first = c;
+  for (const auto& [name, c] : cell_comps) cells[name].first = c;
+  const bool weld = surfaces.size() > 1;
+  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> by_position;
+  const auto key = [](const glm::vec3& p) {
+    std::uint32_t b[3];
+    std::memcpy(b, &p, sizeof b);
+    return (static_cast<std::uint64_t>(b[0]) * 0x9E3779B97F4A7C15ull) ^
+           (static_cast<std::uint64_t>(b[1]) * 0xC2B2AE3D27D4EB4Full) ^ b[2];
+  };
+  for (std::size_t si = 0; si < surfaces.size(); ++si) {
+    Surface& s = surfaces[si];
+    std::vector<std::uint32_t> index(s.positions.size());
+    for (std::size_t i = 0; i < s.positions.size(); ++i) {
+      std::optional<std::uint32_t> same;
+      if (weld)
+        for (const std::uint32_t j : by_position[key(s.positions[i])])
+          if (mesh.positions[j] == s.positions[i]) {
+            same = j;
+            break;
+          }
+      if (same) {
+        index[i] = *same;
+        continue;
+      }
+      index[i] = static_cast<std::uint32_t>(mesh.positions.size());
+      if (weld) by_position[key(s.positions[i])].push_back(index[i]);
+      mesh.positions.push_back(s.positions[i]);
+      for (auto& [name, a] : points) {
+        const auto c = static_cast<std::size_t>(a.first);
+        const auto it = s.point_arrays.find(name);
+        for (std::size_t k = 0; k < c; ++k)
+          a.second.push_back(it != s.point_arrays.end() && it->second.first == a.first
+                                 ? it->second.second[i * c + k]
+                                 : std::nanf(""));
+      }
+    }
+    for (const Triangle& t : s.triangles) {
+      if (t[0] >= index.size() || t[1] >= index.size() || t[2] >= index.size())
+        g.fail("a triangle refers to a point out of range");
+      mesh.triangles.push_back({index[t[0]], index[t[1]], index[t[2]]});
+    }
+    for (auto& [name, a] : cells) {
+      const auto c = static_cast<std::size_t>(a.first);
+      const auto it = s.cell_arrays.find(name);
+      for (std::size_t t = 0; t < s.triangles.size(); ++t)
+        for (std::size_t k = 0; k < c; ++k)
+          a.second.push_back(it != s.cell_arrays.end() && it->second.first == a.first
+                                 ? it->second.second[t * c + k]
+                                 : std::nanf(""));
+    }
+    for (const auto& [name, c] : point_comps)
+      if (!s.point_arrays.count(name) && surfaces.size() > 1)
+        warnings.push_back(g.path().string() + ": block " + names[si] + " has no point array '" +
+                           name + "' (NaN there)");
+    s = Surface{};  // free as we go
+  }
+  const std::size_t n = mesh.positions.size();
+  const auto store = [&](const std::string& name, int c, std::vector<float> values, bool cell) {
+    if (c == 1) {
+      mesh.scalars[name] = cell ? triangle_to_vertex(mesh, values) : std::move(values);
+    } else if (c == 3) {
+      std::vector<glm::vec3> v(values.size() / 3);
+      for (std::size_t i = 0; i < v.size(); ++i)
+        v[i] = glm::vec3(values[3 * i], values[3 * i + 1], values[3 * i + 2]);
+      mesh.vector_arrays[name] = cell ? triangle_to_vertex(mesh, v) : std::move(v);
+    } else {
+      mesh.other_arrays[name] = c;
+    }
+  };
+  for (auto& [name, a] : points) {
+    if (a.second.size() != n * static_cast<std::size_t>(a.first)) continue;
+    store(name, a.first, std::move(a.second), false);
+  }
+  for (auto& [name, a] : cells) {
+    if (mesh.scalars.count(name) || mesh.vector_arrays.count(name)) continue;  // point data wins
+    store(name, a.first, std::move(a.second), true);
+  }
+  return mesh;
+}
+
+// Surfaces of the selected blocks of a data object, merged into one mesh.
+TriMesh surface_of(vtkDataObject* obj, const std::vector<std::string>& patterns,
+                   std::vector<std::string>* block_names, std::vector<std::string>& warnings,
+                   const Guard& g, bool patterns_applied) {
+  std::vector<Block> blocks;
+  collect_blocks(obj, "", "", blocks);
+  std::vector<Block> chosen;
+  if (patterns.empty() || patterns_applied) {
+    chosen = blocks;
+  } else {
+    std::vector<bool> used(patterns.size(), false);
+    for (const Block& b : blocks) {
+      bool on = false;
+      for (std::size_t k = 0; k < patterns.size(); ++k)
+        if (glob_match(patterns[k], b.name) || glob_match(patterns[k], b.path)) on = used[k] = true;
+      if (on) chosen.push_back(b);
+    }
+    for (std::size_t k = 0; k < patterns.size(); ++k)
+      if (!used[k]) {
+        std::string known;
+        for (const Block& b : blocks) known += (known.empty() ? "" : ", ") + b.path;
+        if (blocks.size() == 1 && blocks[0].path.empty())
+          g.fail("has no blocks to choose from (blocks '" + patterns[k] + "')");
+        g.fail("no block matches '" + patterns[k] +
+               "' (blocks: " + (known.empty() ? "none" : known) + ")");
+      }
+  }
+  std::vector<Surface> surfaces;
+  std::vector<std::string> names;
+  vtkIdType cells = 0, points = 0;
+  for (const Block& b : chosen) {
+    check_dataset(b.data, b, g);
+    cells += b.data->GetNumberOfCells();
+    points += b.data->GetNumberOfPoints();
+    Surface s = block_surface(b.data);
+    g.check();
+    if (s.triangles.empty()) continue;
+    surfaces.push_back(std::move(s));
+    names.push_back(b.path.empty() ? "(the data)" : b.path);
+  }
+  if (surfaces.empty())
+    g.fail("has no surface to show (" + std::to_string(points) + " points, " +
+           std::to_string(cells) + " cells, none of them a polygon, strip or volume cell" +
+           (blocks.empty() ? std::string(", no data set at all") : std::string()) + ")");
+  if (block_names) *block_names = names;
+  TriMesh mesh = merge_surfaces(surfaces, names, warnings, g);
+  return mesh;
+}
+
+// A mesh for ibfvs: degenerate triangles dropped, normals, checked.
+void finish(TriMesh& mesh, std::vector<std::string>& warnings, const Guard& g) {
+  const std::size_t dropped = remove_degenerate_triangles(mesh);
+  if (mesh.triangles.empty()) g.fail("every triangle has zero area");
+  if (dropped > 0)
+    warnings.push_back(g.path().string() + ": " + std::to_string(dropped) +
+                       " zero-area triangles dropped");
+  compute_vertex_normals(mesh);
+  validate_mesh(mesh, g.path().string());
+}
+
+// What one step of a dataset reads as a surface.
+using StepReader = std::function<vtkSmartPointer<vtkDataObject>(std::size_t, const Guard&)>;
+
+Dataset read_steps(const DatasetRequest& request, std::vector<double> times, StepReader reader,
+                   bool patterns_applied) {
+  Dataset d;
+  {
+    const Guard g(request.path);
+    vtkSmartPointer<vtkDataObject> first = reader(0, g);
+    d.mesh = surface_of(first, request.blocks, &d.blocks, d.warnings, g, patterns_applied);
+    finish(d.mesh, d.warnings, g);
+  }
+  if (times.size() > 1) {
+    d.times = std::move(times);
+    const std::size_t vertices = d.mesh.vertex_count();
+    d.step = [request, reader, patterns_applied, vertices](std::size_t k) {
+      const Guard g(request.path);
+      std::vector<std::string> ignored;
+      TriMesh mesh =
+          surface_of(reader(k, g), request.blocks, nullptr, ignored, g, patterns_applied);
+      remove_degenerate_triangles(mesh);
+      if (mesh.vertex_count() != vertices)
+        g.fail("step " + std::to_string(k) + " has " + std::to_string(mesh.vertex_count()) +
+               " vertices, the first step " + std::to_string(vertices) +
+               " (a changing mesh is not supported)");
+      return mesh;
+    };
+  }
+  return d;
+}
+
+// Turns out-of-memory and other exceptions from VTK into a line about the file.
+template <class F>
+auto guarded(const fs::path& path, F&& f) {
+  try {
+    return f();
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::bad_alloc&) {
+    throw InputError(path.string() + ": too large to read (out of memory)");
+  } catch (const std::exception& e) {
+    throw InputError(path.string() + ": " + e.what());
+  }
+}
+
+// ------------------------------------------------------------ volumes for sampling
+
+struct CachedVolume {
+  std::string key;
+  vtkSmartPointer<vtkDataSet> data;
+};
+
+vtkSmartPointer<vtkDataSet> read_volume(const fs::path& path, std::size_t step, const Guard& g) {
+  static CachedVolume cache;
+  std::error_code ec;
+  const auto stamp = fs::last_write_time(path, ec).time_since_epoch().count();
+  const std::string key = path.string() + "|" + std::to_string(step) + "|" + std::to_string(stamp);
+  if (cache.key == key && cache.data) return cache.data;
+  vtkSmartPointer<vtkDataObject> obj;
+  if (is_openfoam(path)) {
+    if (!fs::exists(path, ec)) g.fail("no such file");
+    auto reader = openfoam_reader(g, true, {});
+    obj = read_openfoam_step(reader, openfoam_times(reader), step, g);
+  } else if (lower_extension(path) == ".pvd") {
+    const auto steps = read_pvd(g);
+    if (step >= steps.size())
+      g.fail("has " + std::to_string(steps.size()) + " time steps, asked for step " +
+             std::to_string(step));
+    vtkNew<vtkMultiBlockDataSet> all;
+    unsigned i = 0;
+    for (const fs::path& file : steps[step].second) {
+      const Guard part(file);
+      all->SetBlock(i++, read_vtk_file(part));
+    }
+    obj = all;
+  } else {
+    if (step > 0) g.fail("is one file, one time step; asked for step " + std::to_string(step));
+    obj = read_vtk_file(g);
+  }
+  std::vector<Block> blocks;
+  collect_blocks(obj, "", "", blocks);
+  if (blocks.empty()) g.fail("holds no data set");
+  vtkSmartPointer<vtkDataSet> volume;
+  for (const Block& b : blocks) check_dataset(b.data, b, g);
+  if (blocks.size() == 1) {
+    volume = blocks[0].data;
+  } else {
+    vtkNew<vtkAppendFilter> append;
+    for (const Block& b : blocks) append->AddInputData(b.data);
+    append->Update();
+    g.check();
+    volume = append->GetOutput();
+  }
+  cache = {key, volume};
+  return volume;
+}
+
+std::string describe(vtkFieldData* data) {
+  std::string out;
+  for (int i = 0; data && i < data->GetNumberOfArrays(); ++i) {
+    vtkAbstractArray* a = data->GetAbstractArray(i);
+    if (!a || !a->GetName() || std::string(a->GetName()).rfind("vtk", 0) == 0) continue;
+    out += (out.empty() ? "" : ", ") + std::string(a->GetName()) + " (" +
+           std::to_string(a->GetNumberOfComponents()) + ")";
+  }
+  return out.empty() ? "none" : out;
+}
+
+}  // namespace
+
+// ------------------------------------------------------------ public
+
+std::string vtk_version() {
+  return vtkVersion::GetVTKVersionFull();
+}
+
+Dataset read(const DatasetRequest& request) {
+  return guarded(request.path, [&] {
+    const fs::path& path = request.path;
+    if (is_openfoam(path)) {
+      const Guard g(path);
+      require_file(g);
+      vtkSmartPointer<vtkOpenFOAMReader> reader = openfoam_reader(g, false, request.blocks);
+      const std::vector<double> times = openfoam_times(reader);
+      return read_steps(
+          request, times,
+          [reader, times](std::size_t k, const Guard& guard) {
+            return read_openfoam_step(reader, times, k, guard);
+          },
+          true);
+    }
+    if (lower_extension(path) == ".pvd") {
+      std::vector<std::pair<double, std::vector<fs::path>>> steps;
+      {
+        const Guard g(path);
+        steps = read_pvd(g);
+      }
+      std::vector<double> times;
+      for (const auto& s : steps) times.push_back(s.first);
+      return read_steps(
+          request, times,
+          [steps](std::size_t k, const Guard& guard) -> vtkSmartPointer<vtkDataObject> {
+            if (steps[k].second.size() == 1) {
+              const Guard part(steps[k].second[0]);
+              return read_vtk_file(part);
+            }
+            vtkNew<vtkMultiBlockDataSet> parts;  // parts of one time: blocks named by file
+            unsigned i = 0;
+            for (const fs::path& file : steps[k].second) {
+              const Guard part(file);
+              parts->SetBlock(i, read_vtk_file(part));
+              parts->GetMetaData(i++)->Set(vtkCompositeDataSet::NAME(),
+                                           file.stem().string().c_str());
+            }
+            guard.check();
+            return parts;
+          },
+          false);
+    }
+    return read_steps(
+        request, {}, [](std::size_t, const Guard& guard) { return read_vtk_file(guard); }, false);
+  });
+}
+
+VolumeSample sample(const fs::path& path, const std::string& array, std::size_t step,
+                    const std::vector<glm::vec3>& points) {
+  return guarded(path, [&] {
+    const Guard g(path);
+    vtkSmartPointer<vtkDataSet> volume = read_volume(path, step, g);
+    vtkNew<vtkPoints> pts;
+    pts->SetDataTypeToFloat();
+    pts->SetNumberOfPoints(static_cast<vtkIdType>(points.size()));
+    for (std::size_t i = 0; i < points.size(); ++i)
+      pts->SetPoint(static_cast<vtkIdType>(i), points[i].x, points[i].y, points[i].z);
+    vtkNew<vtkPolyData> where;
+    where->SetPoints(pts);
+    vtkNew<vtkProbeFilter> probe;
+    vtkNew<vtkStaticCellLocator> locator;
+    probe->SetCellLocatorPrototype(locator);
+    probe->SetInputData(where);
+    probe->SetSourceData(volume);
+    probe->Update();
+    g.check();
+    vtkDataSet* out = probe->GetOutput();
+    vtkDataArray* a = out->GetPointData()->GetArray(array.c_str());
+    if (!a) {
+      const bool has_point = volume->GetPointData()->GetAbstractArray(array.c_str()) != nullptr;
+      const bool has_cell = volume->GetCellData()->GetAbstractArray(array.c_str()) != nullptr;
+      if (!has_point && !has_cell)
+        g.fail("no array '" + array +
+               "' in the volume (point arrays: " + describe(volume->GetPointData()) +
+               "; cell arrays: " + describe(volume->GetCellData()) + ")");
+      g.fail("the array '" + array + "' is not numeric");
+    }
+    if (a->GetNumberOfComponents() != 3)
+      g.fail("the array '" + array + "' has " + std::to_string(a->GetNumberOfComponents()) +
+             " components; a field needs 3");
+    vtkDataArray* mask = out->GetPointData()->GetArray(probe->GetValidPointMaskArrayName());
+    VolumeSample result;
+    result.values.resize(points.size());
+    result.found.resize(points.size());
+    double v[3];
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const auto id = static_cast<vtkIdType>(i);
+      result.found[i] = mask ? static_cast<std::uint8_t>(mask->GetComponent(id, 0) != 0) : 1;
+      a->GetTuple(id, v);
+      result.values[i] = result.found[i] ? glm::vec3(v[0], v[1], v[2]) : glm::vec3(0.0f);
+    }
+    return result;
+  });
+}
+
+void write_polydata(const TriMesh& mesh, const std::vector<glm::vec2>* uv, const fs::path& path,
+                    const std::string& texture) {
+  guarded(path, [&] {
+    const Guard g(path);
+    vtkNew<vtkPoints> points;
+    points->SetDataTypeToFloat();
+    points->SetNumberOfPoints(static_cast<vtkIdType>(mesh.vertex_count()));
+    for (std::size_t i = 0; i < mesh.vertex_count(); ++i)
+      points->SetPoint(static_cast<vtkIdType>(i), mesh.positions[i].x, mesh.positions[i].y,
+                       mesh.positions[i].z);
+    vtkNew<vtkCellArray> polys;
+    polys->AllocateExact(static_cast<vtkIdType>(mesh.triangle_count()),
+                         static_cast<vtkIdType>(3 * mesh.triangle_count()));
+    for (const Triangle& t : mesh.triangles) {
+      const vtkIdType ids[3] = {t[0], t[1], t[2]};
+      polys->InsertNextCell(3, ids);
+    }
+    vtkNew<vtkPolyData> poly;
+    poly->SetPoints(points);
+    poly->SetPolys(polys);
+    const auto vectors = [&](const std::string& name, const std::vector<glm::vec3>& v) {
+      vtkNew<vtkFloatArray> a;
+      a->SetName(name.c_str());
+      a->SetNumberOfComponents(3);
+      a->SetNumberOfTuples(static_cast<vtkIdType>(v.size()));
+      for (std::size_t i = 0; i < v.size(); ++i)
+        a->SetTypedTuple(static_cast<vtkIdType>(i), &v[i].x);
+      poly->GetPointData()->AddArray(a);
+      return a.GetPointer();
+    };
+    if (mesh.normals.size() == mesh.vertex_count())
+      poly->GetPointData()->SetNormals(vectors("Normals", mesh.normals));
+    if (mesh.vectors.size() == mesh.vertex_count() && !mesh.vectors.empty())
+      poly->GetPointData()->SetVectors(vectors("vectors", mesh.vectors));
+    for (const auto& [name, v] : mesh.vector_arrays) vectors(name, v);
+    // Scalars NAMEx NAMEy NAMEz (the principal directions dminx.. of ibfvs
+    // geometry) become one 3-component array NAME, as ParaView shows them.
+    std::vector<std::string> joined;
+    for (const auto& [name, values] : mesh.scalars) {
+      if (name.size() < 2 || name.back() != 'x') continue;
+      const std::string stem = name.substr(0, name.size() - 1);
+      const auto y = mesh.scalars.find(stem + "y"), z = mesh.scalars.find(stem + "z");
+      if (y == mesh.scalars.end() || z == mesh.scalars.end()) continue;
+      joined.insert(joined.end(), {name, stem + "y", stem + "z"});
+      if (stem == "n" && mesh.normals.size() == mesh.vertex_count()) continue;
+      std::vector<glm::vec3> v(values.size());
+      for (std::size_t i = 0; i < v.size(); ++i) v[i] = {values[i], y->second[i], z->second[i]};
+      vectors(stem, v);
+    }
+    for (const auto& [name, values] : mesh.scalars) {
+      if (std::find(joined.begin(), joined.end(), name) != joined.end()) continue;
+      vtkNew<vtkFloatArray> a;
+      a->SetName(name.c_str());
+      a->SetNumberOfTuples(static_cast<vtkIdType>(values.size()));
+      for (std::size_t i = 0; i < values.size(); ++i)
+        a->SetValue(static_cast<vtkIdType>(i), values[i]);
+      poly->GetPointData()->AddArray(a);
+    }
+    if (uv) {
+      vtkNew<vtkFloatArray> t;
+      t->SetName("TCoords");
+      t->SetNumberOfComponents(2);
+      t->SetNumberOfTuples(static_cast<vtkIdType>(uv->size()));
+      for (std::size_t i = 0; i < uv->size(); ++i)
+        t->SetTypedTuple(static_cast<vtkIdType>(i), &(*uv)[i].x);
+      poly->GetPointData()->SetTCoords(t);
+    }
+    if (!texture.empty()) {
+      vtkNew<vtkStringArray> name;
+      name->SetName("TextureFile");
+      name->InsertNextValue(texture);
+      poly->GetFieldData()->AddArray(name);
+    }
+    vtkNew<vtkXMLPolyDataWriter> writer;
+    writer->SetFileName(path.string().c_str());
+    writer->SetInputData(poly);
+    writer->SetDataModeToAppended();
+    writer->SetCompressorTypeToZLib();
+    const int ok = writer->Write();
+    g.check();
+    if (!ok) g.fail("could not be written");
+  });
+}
+
+void install_vtk_io() {
+  {
+    const std::lock_guard lock(vtk_mutex());
+    capture_window();
+  }
+  install_dataset_io({read, sample, write_polydata});
+}
+
+}  // namespace ibfvs::vtk

@@ -4,10 +4,12 @@
 #include <cctype>
 #include <cmath>
 #include <cstring>
+#include <fstream>
 #include <map>
 #include <mutex>
 #include <new>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -24,6 +26,7 @@
 #include <vtkGenericDataObjectReader.h>
 #include <vtkIdTypeArray.h>
 #include <vtkInformation.h>
+#include <vtkLogger.h>
 #include <vtkMultiBlockDataSet.h>
 #include <vtkMultiPieceDataSet.h>
 #include <vtkNew.h>
@@ -67,7 +70,15 @@ std::recursive_mutex& vtk_mutex() {
 // "ERROR: In /path/vtkXMLReader.cxx, line 12\nvtkXMLPolyDataReader (0x55): text\n\n" -> "text".
 std::string clean_message(const char* raw) {
   std::string text = raw ? raw : "";
-  if (const std::size_t at = text.find("): "); at != std::string::npos) text = text.substr(at + 3);
+  if (const std::size_t at = text.find("): "); at != std::string::npos) {
+    text = text.substr(at + 3);
+  } else if (const std::size_t line = text.find(", line "); line != std::string::npos) {
+    // "Generic Warning: In vtkDataReader.cxx, line 1537\nError reading ..."
+    std::size_t k = line + 7;
+    while (k < text.size() && std::isdigit(static_cast<unsigned char>(text[k]))) ++k;
+    text = text.substr(k);
+  }
+  while (!text.empty() && (text.front() == '\n' || text.front() == ' ')) text.erase(0, 1);
   while (!text.empty() && (text.back() == '\n' || text.back() == ' ' || text.back() == '\r'))
     text.pop_back();
   std::replace(text.begin(), text.end(), '\n', ' ');
@@ -90,6 +101,9 @@ vtkStandardNewMacro(CaptureWindow);
 
 CaptureWindow* capture_window() {
   static vtkSmartPointer<CaptureWindow> window = [] {
+    // VTK's logger also writes errors to standard error; the window is
+    // where they are collected instead.
+    vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
     auto w = vtkSmartPointer<CaptureWindow>::New();
     vtkOutputWindow::SetInstance(w);
     return w;
@@ -108,6 +122,10 @@ class Guard {
   void check() const {
     const auto& errors = capture_window()->errors;
     if (!errors.empty()) fail(errors.front());
+    // The legacy reader only warns when data runs short ("Error reading
+    // ascii data. Possible mismatch of datasize with declaration.").
+    for (const std::string& w : capture_window()->warnings)
+      if (w.find("rror") != std::string::npos) fail(w);
   }
   [[noreturn]] void fail(const std::string& problem) const {
     throw InputError(path_.string() + ": " + problem);
@@ -217,9 +235,147 @@ vtkSmartPointer<vtkDataObject> read_openfoam_step(vtkOpenFOAMReader* reader,
   return out;
 }
 
+// ------------------------------------------------------------ counts before reading
+// VTK's readers allocate what a header declares before reading the data, and
+// abort the process when that fails (POINTS 400000000000). So the counts are
+// checked first against what the file could hold.
+
+// A count as a header gives it; fails on a negative or unreadable one.
+long double header_count(const std::string& word, const std::string& where, const Guard& g) {
+  if (!word.empty() && word[0] == '-') g.fail(where + ": negative count " + word);
+  try {
+    std::size_t used = 0;
+    const long double v = std::stold(word, &used);
+    if (used != word.size() || !std::isfinite(static_cast<double>(v)) || v < 0) throw 0;
+    return v;
+  } catch (...) {
+    g.fail(where + ": '" + word + "' is not a count");
+  }
+}
+
+void check_values(long double values, long double capacity, const std::string& where,
+                  const Guard& g) {
+  if (values > capacity)
+    g.fail(where + " declares " + std::to_string(static_cast<long long>(values)) +
+           " values, more than the file can hold (" +
+           std::to_string(static_cast<long long>(capacity)) + ")");
+}
+
+// Legacy files: every count is at most the file's size in values (a value
+// takes at least a byte in binary, two characters in ASCII).
+void precheck_legacy(const Guard& g) {
+  std::error_code ec;
+  const auto size = static_cast<long double>(fs::file_size(g.path(), ec));
+  std::ifstream in(g.path(), std::ios::binary);
+  std::string line;
+  long double tuples = 0;  // of the current POINT_DATA / CELL_DATA section
+  long double field_arrays = 0;
+  for (int number = 1; std::getline(in, line); ++number) {
+    std::istringstream words(line);
+    std::string key;
+    words >> key;
+    std::transform(key.begin(), key.end(), key.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
+    const std::string where = "line " + std::to_string(number) + " (" + key + ")";
+    std::vector<std::string> rest;
+    for (std::string w; words >> w && rest.size() < 4;) rest.push_back(w);
+    const auto count = [&](std::size_t i) {
+      if (i >= rest.size()) g.fail(where + ": a count is missing");
+      return header_count(rest[i], where, g);
+    };
+    if (field_arrays > 0 && !rest.empty() && rest.size() >= 3 &&
+        std::isalpha(static_cast<unsigned char>(line[0]))) {
+      // A FIELD's array: NAME COMPONENTS TUPLES TYPE.
+      --field_arrays;
+      check_values(header_count(rest[0], where, g) * header_count(rest[1], where, g), size, where,
+                   g);
+      continue;
+    }
+    if (key == "POINTS") {
+      check_values(3 * count(0), size, where, g);
+    } else if (key == "POLYGONS" || key == "LINES" || key == "VERTICES" ||
+               key == "TRIANGLE_STRIPS" || key == "CELLS") {
+      check_values(count(0) + count(1), size + 2, where, g);
+    } else if (key == "CELL_TYPES") {
+      check_values(count(0), size, where, g);
+    } else if (key == "POINT_DATA" || key == "CELL_DATA") {
+      tuples = count(0);
+      check_values(tuples, size, where, g);
+    } else if (key == "SCALARS") {
+      check_values(tuples * (rest.size() > 2 ? count(2) : 1), size, where, g);
+    } else if (key == "VECTORS" || key == "NORMALS") {
+      check_values(3 * tuples, size, where, g);
+    } else if (key == "TENSORS") {
+      check_values(9 * tuples, size, where, g);
+    } else if (key == "TEXTURE_COORDINATES" || key == "COLOR_SCALARS") {
+      check_values(tuples * count(1), size, where, g);
+    } else if (key == "FIELD") {
+      field_arrays = count(1);
+      check_values(field_arrays, size, where, g);
+    } else if (key == "DIMENSIONS") {
+      // Structured data: the points are implied; their surface must fit.
+      const long double nx = count(0), ny = count(1), nz = count(2);
+      if (nx * ny * nz > 2147483647.0L || 2 * (nx * ny + ny * nz + nx * nz) > 268435456.0L)
+        g.fail(where + ": a grid of " + rest[0] + " x " + rest[1] + " x " + rest[2] +
+               " points is too large to show");
+    }
+  }
+}
+
+// XML files: the counts in the attributes (NumberOfPoints, NumberOfCells,
+// NumberOfTuples..., extents) at most what the file could hold compressed
+// (zlib's best ratio is about 1000:1).
+void precheck_xml(const Guard& g) {
+  std::error_code ec;
+  const auto size = static_cast<long double>(fs::file_size(g.path(), ec));
+  const long double capacity = 1100.0L * size + 1e6L;
+  std::ifstream in(g.path(), std::ios::binary);
+  std::string head;
+  // The XML part: the whole file, up to appended binary data.
+  for (std::string line; std::getline(in, line);) {
+    if (line.find("<AppendedData") != std::string::npos) break;
+    head += line;
+    head += '\n';
+    if (head.size() > (std::size_t{64} << 20)) break;
+  }
+  for (std::size_t at = head.find("Number"); at != std::string::npos;
+       at = head.find("Number", at + 1)) {
+    const std::size_t eq = head.find("=\"", at);
+    if (eq == std::string::npos || eq - at > 32) continue;
+    const std::string name = head.substr(at, eq - at);
+    if (name.find_first_of(" <>/") != std::string::npos) continue;
+    const std::size_t end = head.find('"', eq + 2);
+    if (end == std::string::npos) break;
+    const std::string value = head.substr(eq + 2, end - eq - 2);
+    if (name == "NumberOfComponents") {
+      check_values(header_count(value, name, g), 1e6L, name, g);
+      continue;
+    }
+    check_values(header_count(value, name, g), capacity, name, g);
+  }
+  for (const char* attribute : {"WholeExtent=\"", " Extent=\""}) {
+    for (std::size_t at = head.find(attribute); at != std::string::npos;
+         at = head.find(attribute, at + 1)) {
+      const std::size_t begin = at + std::strlen(attribute);
+      std::istringstream words(head.substr(begin, head.find('"', begin) - begin));
+      long double points = 1;
+      for (int axis = 0; axis < 3; ++axis) {
+        long long lo = 0, hi = 0;
+        if (!(words >> lo >> hi) || hi < lo) g.fail("a malformed extent");
+        points *= static_cast<long double>(hi - lo + 1);
+      }
+      check_values(points, capacity, "an extent", g);
+    }
+  }
+}
+
 // A single VTK file (legacy or XML, any dataset kind).
 vtkSmartPointer<vtkDataObject> read_vtk_file(const Guard& g) {
   require_file(g);
+  if (lower_extension(g.path()) == ".vtk")
+    precheck_legacy(g);
+  else
+    precheck_xml(g);
   vtkSmartPointer<vtkDataObject> out;
   if (lower_extension(g.path()) == ".vtk") {
     vtkNew<vtkGenericDataObjectReader> reader;
@@ -594,7 +750,8 @@ TriMesh surface_of(vtkDataObject* obj, const std::vector<std::string>& patterns,
   }
   if (surfaces.empty())
     g.fail("has no surface to show (" + std::to_string(points) + " points, " +
-           std::to_string(cells) + " cells, none of them a polygon, strip or volume cell" +
+           std::to_string(cells) + (cells == 1 ? " cell" : " cells") +
+           ", none of them a polygon, strip or volume cell" +
            (blocks.empty() ? std::string(", no data set at all") : std::string()) + ")");
   if (block_names) *block_names = names;
   TriMesh mesh = merge_surfaces(surfaces, names, warnings, g);
@@ -754,20 +911,23 @@ Dataset read(const DatasetRequest& request) {
       return read_steps(
           request, times,
           [steps](std::size_t k, const Guard& guard) -> vtkSmartPointer<vtkDataObject> {
-            if (steps[k].second.size() == 1) {
-              const Guard part(steps[k].second[0]);
-              return read_vtk_file(part);
+            try {
+              if (steps[k].second.size() == 1) {
+                const Guard part(steps[k].second[0]);
+                return read_vtk_file(part);
+              }
+              vtkNew<vtkMultiBlockDataSet> parts;  // parts of one time: blocks named by file
+              unsigned i = 0;
+              for (const fs::path& file : steps[k].second) {
+                const Guard part(file);
+                parts->SetBlock(i, read_vtk_file(part));
+                parts->GetMetaData(i++)->Set(vtkCompositeDataSet::NAME(),
+                                             file.stem().string().c_str());
+              }
+              return parts;
+            } catch (const InputError& e) {
+              guard.fail(e.what());  // the collection's name first, then the part's
             }
-            vtkNew<vtkMultiBlockDataSet> parts;  // parts of one time: blocks named by file
-            unsigned i = 0;
-            for (const fs::path& file : steps[k].second) {
-              const Guard part(file);
-              parts->SetBlock(i, read_vtk_file(part));
-              parts->GetMetaData(i++)->Set(vtkCompositeDataSet::NAME(),
-                                           file.stem().string().c_str());
-            }
-            guard.check();
-            return parts;
           },
           false);
     }

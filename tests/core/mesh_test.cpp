@@ -4,6 +4,7 @@
 #include "ibfvs/core/error.h"
 #include "ibfvs/core/mesh.h"
 #include "ibfvs/core/procedural.h"
+#include "ibfvs/core/text.h"
 
 namespace ibfvs {
 namespace {
@@ -69,6 +70,33 @@ TEST(Mesh, ClosedOrientationSaysWhenBackFacesCanBeCulled) {
   std::swap(mixed.triangles[5][1], mixed.triangles[5][2]);  // one flipped triangle
   EXPECT_EQ(closed_orientation(mixed), 0);
   EXPECT_EQ(closed_orientation(TriMesh{}), 0);
+}
+
+}  // namespace
+}  // namespace ibfvs
+
+namespace ibfvs {
+namespace {
+
+TEST(Mesh, TriangleValuesReachTheVerticesAreaWeighted) {
+  TriMesh m;
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {2, 2, 0}, {9, 9, 9}};
+  m.triangles = {{0, 1, 2}, {1, 3, 2}};  // areas 0.5 and 1.5; vertex 4 of none
+  const std::vector<float> v = triangle_to_vertex(m, std::vector<float>{1, 5});
+  EXPECT_FLOAT_EQ(v[0], 1.0f);
+  EXPECT_FLOAT_EQ(v[1], 4.0f);
+  EXPECT_FLOAT_EQ(v[3], 5.0f);
+  EXPECT_FLOAT_EQ(v[4], 0.0f);
+  EXPECT_THROW(triangle_to_vertex(m, std::vector<float>{1}), InputError);
+}
+
+TEST(Text, GlobMatch) {
+  EXPECT_TRUE(glob_match("motorBike*", "motorBike_frt-fairing:001%1"));
+  EXPECT_TRUE(glob_match("*wing?", "leftwing2"));
+  EXPECT_TRUE(glob_match("*", ""));
+  EXPECT_FALSE(glob_match("wing", "wings"));
+  EXPECT_FALSE(glob_match("a*b*c", "aXbY"));
+  EXPECT_TRUE(glob_match("a*b*c", "aXbYc"));
 }
 
 }  // namespace

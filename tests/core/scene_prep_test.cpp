@@ -181,3 +181,78 @@ TEST(ScenePrep, UpStaysYForMeshesWithoutOne) {
 
 }  // namespace
 }  // namespace ibfvs
+
+namespace ibfvs {
+namespace {
+
+// Three PLY files step_1.ply .. step_10.ply (numbers, not text, order them)
+// of one triangle, vectors (k, 0, 0).
+fs::path write_ply_series() {
+  const fs::path dir = temp_dir() / "series";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  for (const int k : {1, 2, 10}) {
+    TriMesh m;
+    m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    m.triangles = {{0, 1, 2}};
+    compute_vertex_normals(m);
+    m.vectors.assign(3, glm::vec3(static_cast<float>(k), 0, 0));
+    write_ply(m, dir / ("step_" + std::to_string(k) + ".ply"));
+  }
+  return dir;
+}
+
+TEST(ScenePrep, NumberedFilesAreTheStepsOfAnUnsteadyField) {
+  const fs::path dir = write_ply_series();
+  Scene s;
+  s.mesh = (dir / "step_*.ply").string();
+  const PreparedScene p = prepare_scene(s);
+  ASSERT_EQ(p.step_count, 3u);
+  EXPECT_FLOAT_EQ(p.step_field(1)[0].x, 2.0f);
+  EXPECT_FLOAT_EQ(p.step_field(2)[0].x, 10.0f);  // step_10 after step_2
+  // One step by the time key, reversed.
+  s.time = TimeRange::parse("2");
+  s.reverse = true;
+  const PreparedScene one = prepare_scene(s);
+  EXPECT_EQ(one.step_count, 1u);
+  EXPECT_FLOAT_EQ(one.field[0].x, -10.0f);
+  s.time = TimeRange::parse("0:3");
+  try {
+    prepare_scene(s);
+    FAIL();
+  } catch (const SettingError& e) {
+    EXPECT_NE(std::string(e.what()).find("has 3 steps (0..2), asked for 0:3"), std::string::npos)
+        << e.what();
+  }
+  s.mesh = (dir / "nothing_*.ply").string();
+  s.time.reset();
+  EXPECT_THROW(prepare_scene(s), InputError);
+}
+
+TEST(ScenePrep, DatasetsWithoutTheVtkLibrarySayHowToGetThem) {
+  // The core tests do not install ibfvs::vtk: a .vtp is refused in one line.
+  Scene s;
+  s.mesh = "wing.vtp";
+  try {
+    prepare_scene(s);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("wing.vtp: VTK and OpenFOAM files need ibfvs built with "
+                                         "ParaView's VTK (Debian's paraview-dev)"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(ScenePrep, ReverseNegatesASteadyField) {
+  Scene s;
+  s.mesh = "torus";
+  s.field = FieldSpec::parse("rotate:0,1,0");
+  const PreparedScene a = prepare_scene(s);
+  s.reverse = true;
+  const PreparedScene b = prepare_scene(s);
+  for (std::size_t i = 0; i < a.field.size(); i += 97) EXPECT_EQ(a.field[i], -b.field[i]);
+}
+
+}  // namespace
+}  // namespace ibfvs

@@ -62,3 +62,49 @@ TEST(VectorField, NonFiniteVectorsAreZeroedAndCounted) {
 
 }  // namespace
 }  // namespace ibfvs
+
+namespace ibfvs {
+namespace {
+
+TEST(VectorField, FileArraysByName) {
+  EXPECT_EQ(FieldSpec::parse("file:wallShearStress").array, "wallShearStress");
+  EXPECT_EQ(FieldSpec::parse("file:wallShearStress").text(), "file:wallShearStress");
+  EXPECT_EQ(FieldSpec::parse("file").array, "");
+  const FieldSpec s = FieldSpec::parse("sample:case.foam:U:0.002");
+  EXPECT_EQ(s.kind, FieldKind::Sample);
+  EXPECT_EQ(s.path, "case.foam");
+  EXPECT_EQ(s.array, "U");
+  EXPECT_FLOAT_EQ(s.offset, 0.002f);
+  EXPECT_EQ(FieldSpec::parse(s.text()).offset, s.offset);
+  EXPECT_THROW(FieldSpec::parse("sample:case.foam"), InputError);
+  EXPECT_THROW(FieldSpec::parse("sample:a:U:x"), InputError);
+
+  TriMesh m;
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  m.triangles = {{0, 1, 2}};
+  compute_vertex_normals(m);
+  m.vector_arrays["U"] = {{1, 0, 0}, {1, 0, 0}, {1, 0, 0}};
+  m.scalars["p"] = {1, 2, 3};
+  m.other_arrays["T"] = 9;
+  // The only vector array needs no name; a scalar or a tensor says why not.
+  EXPECT_EQ(evaluate_field(m, FieldSpec::parse("file"), TangentMode::Project)[0],
+            glm::vec3(1, 0, 0));
+  const auto message = [&](const char* spec) {
+    try {
+      evaluate_field(m, FieldSpec::parse(spec), TangentMode::Project);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(message("file:p"), "file:p: the array has 1 component; a field needs 3");
+  EXPECT_EQ(message("file:T"), "file:T: the array has 9 components; a field needs 3");
+  EXPECT_EQ(message("file:V"), "file:V: no such array (arrays: U (3), p (1), T (9))");
+  m.vector_arrays["W"] = m.vector_arrays["U"];
+  EXPECT_EQ(message("file"),
+            "file: the mesh has 2 vector arrays; name one with file:NAME (arrays: U (3), W (3), "
+            "p (1), T (9))");
+}
+
+}  // namespace
+}  // namespace ibfvs

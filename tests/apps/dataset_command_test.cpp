@@ -1,0 +1,97 @@
+// VTK and OpenFOAM data through the command, as a CFD user runs it: arrays by
+// name, reversed wall shear stress, .vtp out of geometry and export, and one
+// line with exit status 1 for every kind of bad file.
+
+#include <filesystem>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "apps/command_runner.h"
+
+namespace ibfvs {
+namespace {
+
+using DatasetCommand = test::CommandTest;
+using test::Result;
+
+// A unit square of two triangles with point vectors v, a point scalar p and
+// a cell vector wss (as FIELD data), legacy ASCII.
+const char* kSquare = R"(# vtk DataFile Version 4.2
+square
+ASCII
+DATASET POLYDATA
+POINTS 4 float
+0 0 0  1 0 0  1 1 0  0 1 0
+POLYGONS 1 5
+4 0 1 2 3
+POINT_DATA 4
+VECTORS v float
+1 0 0  1 0 0  1 0 0  1 0 0
+SCALARS p float 1
+LOOKUP_TABLE default
+1 2 3 4
+CELL_DATA 1
+FIELD FieldData 1
+wss 3 1 float
+0 -1 0
+)";
+
+#ifdef IBFVS_HAVE_VTK
+
+TEST_F(DatasetCommand, RendersANamedArrayReversedColouredByAScalar) {
+  file("square.vtk", kSquare);
+  const Result r =
+      run("render square.vtk --field file:wss --reverse --color-by p --frames 3 --size 64x64 "
+          "--out a.png");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("field file:wss"), std::string::npos) << r.out;
+  EXPECT_TRUE(std::filesystem::exists(dir_ / "a.png"));
+}
+
+TEST_F(DatasetCommand, GeometryAndExportWriteVtp) {
+  file("square.vtk", kSquare);
+  Result r = run("geometry square.vtk -q -o curv.vtp");
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = run("render curv.vtp --field file:v --frames 2 --size 64x64 --out b.png --export model.vtp");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(std::filesystem::exists(dir_ / "model.vtp"));
+  EXPECT_TRUE(std::filesystem::exists(dir_ / "model.png"));
+  EXPECT_NE(test::read_file(dir_ / "model.vtp").find("TCoords"), std::string::npos);
+  // The curvature arrays came through: kmin as a scalar, dmin as a vector.
+  r = run("render curv.vtp --field file:dmin --color-by kmin --frames 2 --size 64x64 --out c.png");
+  EXPECT_EQ(r.status, 0) << r.err;
+}
+
+TEST_F(DatasetCommand, BadDataOneLineExitOne) {
+  file("square.vtk", kSquare);
+  expect_error("render square.vtk --field file:nope --frames 1 --out x.png",
+               "square.vtk: file:nope: no such array (arrays: v (3), wss (3), p (1))");
+  expect_error("render square.vtk --field file:p --frames 1 --out x.png",
+               "file:p: the array has 1 component; a field needs 3");
+  expect_error("render square.vtk --frames 1 --out x.png", "name one with file:NAME");
+  expect_error("render square.vtk --blocks wing --frames 1 --out x.png",
+               "square.vtk: has no blocks to choose from");
+  file("garbage.vtp", "this is not XML");
+  expect_error("render garbage.vtp --frames 1 --out x.png", "garbage.vtp: ");
+  file("huge.vtk",
+       "# vtk DataFile Version 4.2\nx\nASCII\nDATASET POLYDATA\nPOINTS "
+       "900000000000 float\n0 0 0\n");
+  expect_error("render huge.vtk --frames 1 --out x.png", "more than the file can hold");
+  expect_error("render square.vtk --field sample:nowhere.vtu:U:0.1 --frames 1 --out x.png",
+               "nowhere.vtu: no such file");
+  expect_error("geometry square.vtk -o out.vtx", "must be a .ply or .vtp file");
+}
+
+#else
+
+TEST_F(DatasetCommand, WithoutVtkTheBuildSaysSo) {
+  file("square.vtk", kSquare);
+  expect_error("render square.vtk --frames 1 --out x.png",
+               "VTK and OpenFOAM files need ibfvs built with ParaView's VTK");
+}
+
+#endif
+
+}  // namespace
+}  // namespace ibfvs

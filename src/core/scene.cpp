@@ -268,8 +268,8 @@ std::vector<SceneKey> make_keys() {
        [](Scene& s, std::string_view t) { s.displace = Displacement::parse(t); },
        [](const Scene& s) { return s.displace ? one(s.displace->to_string()) : none(); }},
       {"color_by", KeyKind::String,
-       "colour the surface by a per-vertex scalar: a mesh property, speed, kmin, kmax, x, y, z "
-       "(a leading - negates)",
+       "colour the surface by a per-vertex scalar: a mesh property or array (a vector array: its "
+       "magnitude), speed, kmin, kmax, x, y, z (a leading - negates)",
        [](Scene& s, std::string_view t) { s.color_by = t; },
        [](const Scene& s) { return s.color_by.empty() ? none() : one(s.color_by); }},
       IBFVS_ENUM_KEY(color_map, ColorMap, "colour map for color_by"),

@@ -73,7 +73,7 @@ TEST_F(GeometryCommand, BadInputFailsCleanly) {
   expect_error("geometry", "mesh");
   expect_error("geometry missing.off", "missing.off: no such file");
   file("sq.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n");
-  expect_error("geometry sq.off -o out.obj", "--out: must be a .ply file");
+  expect_error("geometry sq.off -o out.obj", "--out: must be a .ply or .vtp file");
   expect_error("geometry sq.off -o nodir/out.ply", "--out: the folder 'nodir'");
   expect_error("geometry sq.off --subdivide 9", "--subdivide");
   file("bad.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 9\n");

@@ -261,7 +261,7 @@ TEST_F(RenderCommand, UnsteadyFields) {
   expect_error("render --mesh f0.ply --time 3:1 --out x.png",
                "--time: the range 3:1 runs backwards");
   expect_error("render --mesh f0.ply --time 0:2 --out x.png",
-               "--time: a range A:B needs field wind");
+               "--time: a range A:B needs a series");
   expect_error("render --mesh f0.ply --time x --out x.png", "--time");
   expect_error("render --mesh f0.ply --frames-per-step 0 --out x.png", "--frames-per-step");
   const std::string coads = std::string(IBFVS_TEST_DATA_DIR) + "/earth/coads_climatology.cdf";
@@ -472,7 +472,7 @@ TEST_F(RenderCommand, StylesLockingAndTopology) {
         << name;
     EXPECT_EQ(model.images.at(0).width, 48) << name;
   }
-  expect_error(m + "--export topo.ply", "--export: must be a .obj, .gltf or .glb file");
+  expect_error(m + "--export topo.ply", "--export: must be a .obj, .gltf, .glb or .vtp file");
   expect_error(m + "--noise-space world", "--noise-space");
   const Result o =
       run("render --mesh landscape:2:6:24 --noise-space object --orbit 2 --size 32x32 "

@@ -38,6 +38,8 @@ Scene busy_scene() {
       {"element", "1,0,0,1,0,1,-1,2,0,0.1"},
       {"tangent", "3d"},
       {"time", "2:5"},
+      {"blocks", "motorBike*,wing"},
+      {"reverse", "true"},
       {"field_step", "a.ply"},
       {"field_step", "b.ply"},
       {"frames_per_step", "12"},

@@ -5,6 +5,7 @@
 // own writers, or by hand where the exact bytes matter).
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -557,6 +558,45 @@ TEST_F(VtkIo, MissingAndWrongSizedArraysNameWhatThereIs) {
   }
   EXPECT_THROW(file_vectors(d.mesh, "T"), InputError);
   EXPECT_THROW(file_vectors(d.mesh, ""), InputError);  // two vector arrays: name one
+}
+
+}  // namespace
+}  // namespace ibfvs
+
+namespace ibfvs {
+namespace {
+
+// On the motorBike case of scripts/cfd_motorbike.sh (skipped without it):
+// OpenFOAM's wallShearStress, reversed, points along the near-wall flow
+// (U sampled 5 mm off the wall), as docs/cfd.md says.
+TEST_F(VtkIo, ReversedWallShearStressFollowsTheNearWallFlow) {
+  const fs::path foam = fs::path(IBFVS_TEST_DATA_DIR) / "cfd" / "motorBike" / "motorBike.foam";
+  if (!fs::exists(foam)) GTEST_SKIP() << "no " << foam << " (scripts/cfd_motorbike.sh makes it)";
+  Scene scene;
+  scene.mesh = foam.string();
+  scene.blocks = {"motorBike*"};
+  scene.time = TimeRange::parse("4");
+  scene.field = FieldSpec::parse("file:wallShearStress");
+  scene.reverse = true;
+  const PreparedScene wss = prepare_scene(scene);
+  const std::vector<glm::vec3> near_wall = evaluate_field(
+      *wss.mesh, FieldSpec::parse("sample:" + foam.string() + ":U:0.005"), TangentMode::Project);
+  double sum = 0.0;
+  std::size_t n = 0, along = 0;
+  for (std::size_t i = 0; i < near_wall.size(); ++i) {
+    const float a = glm::length(wss.field[i]), b = glm::length(near_wall[i]);
+    if (a < 1e-9f || b < 1e-6f) continue;
+    const double c = glm::dot(wss.field[i], near_wall[i]) / (a * b);
+    sum += c;
+    along += c > 0.0;
+    ++n;
+  }
+  ASSERT_GT(n, 1000u);
+  std::printf(
+      "reversed wallShearStress vs U 5 mm off the wall: mean cosine %.3f, %.1f%% of %zu "
+      "vertices within 90 degrees\n",
+      sum / static_cast<double>(n), 100.0 * static_cast<double>(along) / static_cast<double>(n), n);
+  EXPECT_GT(sum / static_cast<double>(n), 0.5);
 }
 
 }  // namespace

@@ -1061,6 +1061,7 @@ void write_polydata(const TriMesh& mesh, const std::vector<glm::vec2>* uv, const
     writer->SetFileName(path.string().c_str());
     writer->SetInputData(poly);
     writer->SetDataModeToAppended();
+    writer->SetEncodeAppendedData(0);  // raw bytes: smaller and faster than base64
     writer->SetCompressorTypeToZLib();
     const int ok = writer->Write();
     g.check();

@@ -482,13 +482,17 @@ void check_cells(vtkCellArray* cells, vtkIdType points, const char* what, const 
   vtkDataArray* conn = cells->GetConnectivityArray();
   vtkDataArray* offsets = cells->GetOffsetsArray();
   const vtkIdType n = conn->GetNumberOfTuples();
-  for (vtkIdType i = 0; i < n; ++i) {
-    const double id = conn->GetComponent(i, 0);
-    if (id < 0 || id >= static_cast<double>(points))
+  const auto check_ids = [&](const auto* ids) {
+    const auto bad = std::find_if(ids, ids + n, [&](auto id) { return id < 0 || id >= points; });
+    if (bad != ids + n)
       g.fail(std::string(what) + ": a cell refers to point " +
-             std::to_string(static_cast<long long>(id)) + " but there are only " +
+             std::to_string(static_cast<long long>(*bad)) + " but there are only " +
              std::to_string(points));
-  }
+  };
+  if (cells->IsStorage64Bit())
+    check_ids(cells->GetConnectivityArray64()->GetPointer(0));
+  else
+    check_ids(cells->GetConnectivityArray32()->GetPointer(0));
   double last = 0.0;
   for (vtkIdType i = 0; i < offsets->GetNumberOfTuples(); ++i) {
     const double o = offsets->GetComponent(i, 0);
@@ -546,6 +550,11 @@ void take_arrays(vtkFieldData* data, vtkIdType tuples, Arrays& out) {
     if (name.rfind("vtk", 0) == 0) continue;  // vtkValidPointMask, vtkGhostType, ids
     const int c = a->GetNumberOfComponents();
     std::vector<float> values(static_cast<std::size_t>(tuples) * static_cast<std::size_t>(c));
+    if (auto* f = vtkFloatArray::SafeDownCast(a)) {  // the common case: copy as it is
+      std::copy_n(f->GetPointer(0), values.size(), values.begin());
+      out[name] = {c, std::move(values)};
+      continue;
+    }
     std::vector<double> tuple(static_cast<std::size_t>(c));
     for (vtkIdType t = 0; t < tuples; ++t) {
       a->GetTuple(t, tuple.data());
@@ -574,12 +583,18 @@ Surface block_surface(vtkDataSet* ds) {
     surface->Update();
     poly = surface->GetOutput();
   }
-  vtkNew<vtkTriangleFilter> triangles;  // polygons and strips to triangles; no lines, vertices
-  triangles->SetInputData(poly);
-  triangles->PassVertsOff();
-  triangles->PassLinesOff();
-  triangles->Update();
-  vtkPolyData* tri = triangles->GetOutput();
+  // Polygons and strips to triangles, lines and vertices dropped; a mesh of
+  // triangles alone (most files) is taken as it is (the filter would copy
+  // it: a second on six million triangles).
+  vtkSmartPointer<vtkPolyData> tri = poly;
+  if (poly->GetNumberOfStrips() > 0 || poly->GetPolys()->IsHomogeneous() != 3) {
+    vtkNew<vtkTriangleFilter> triangles;
+    triangles->SetInputData(poly);
+    triangles->PassVertsOff();
+    triangles->PassLinesOff();
+    triangles->Update();
+    tri = triangles->GetOutput();
+  }
   Surface s;
   const vtkIdType n = tri->GetNumberOfPoints();
   s.positions.resize(static_cast<std::size_t>(n));
@@ -621,6 +636,28 @@ Surface block_surface(vtkDataSet* ds) {
 TriMesh merge_surfaces(std::vector<Surface>& surfaces, const std::vector<std::string>& names,
                        std::vector<std::string>& warnings, const Guard& g) {
   TriMesh mesh;
+  const auto store = [&](const std::string& name, int c, std::vector<float> values, bool cell) {
+    if (c == 1) {
+      mesh.scalars[name] = cell ? triangle_to_vertex(mesh, values) : std::move(values);
+    } else if (c == 3) {
+      std::vector<glm::vec3> v(values.size() / 3);
+      for (std::size_t i = 0; i < v.size(); ++i)
+        v[i] = glm::vec3(values[3 * i], values[3 * i + 1], values[3 * i + 2]);
+      mesh.vector_arrays[name] = cell ? triangle_to_vertex(mesh, v) : std::move(v);
+    } else {
+      mesh.other_arrays[name] = c;
+    }
+  };
+  if (surfaces.size() == 1) {  // one block: its arrays as they are, no copy per value
+    Surface& s = surfaces[0];
+    mesh.positions = std::move(s.positions);
+    mesh.triangles = std::move(s.triangles);
+    for (auto& [name, a] : s.point_arrays) store(name, a.first, std::move(a.second), false);
+    for (auto& [name, a] : s.cell_arrays)
+      if (!mesh.scalars.count(name) && !mesh.vector_arrays.count(name))  // point data wins
+        store(name, a.first, std::move(a.second), true);
+    return mesh;
+  }
   std::map<std::string, int> point_comps, cell_comps;
   for (const Surface& s : surfaces) {
     for (const auto& [name, a] : s.point_arrays) point_comps.emplace(name, a.first);
@@ -685,18 +722,6 @@ TriMesh merge_surfaces(std::vector<Surface>& surfaces, const std::vector<std::st
     s = Surface{};  // free as we go
   }
   const std::size_t n = mesh.positions.size();
-  const auto store = [&](const std::string& name, int c, std::vector<float> values, bool cell) {
-    if (c == 1) {
-      mesh.scalars[name] = cell ? triangle_to_vertex(mesh, values) : std::move(values);
-    } else if (c == 3) {
-      std::vector<glm::vec3> v(values.size() / 3);
-      for (std::size_t i = 0; i < v.size(); ++i)
-        v[i] = glm::vec3(values[3 * i], values[3 * i + 1], values[3 * i + 2]);
-      mesh.vector_arrays[name] = cell ? triangle_to_vertex(mesh, v) : std::move(v);
-    } else {
-      mesh.other_arrays[name] = c;
-    }
-  };
   for (auto& [name, a] : points) {
     if (a.second.size() != n * static_cast<std::size_t>(a.first)) continue;
     store(name, a.first, std::move(a.second), false);

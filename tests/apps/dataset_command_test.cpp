@@ -2,6 +2,7 @@
 // name, reversed wall shear stress, .vtp out of geometry and export, and one
 // line with exit status 1 for every kind of bad file.
 
+#include <cstdio>
 #include <filesystem>
 #include <string>
 
@@ -61,6 +62,33 @@ TEST_F(DatasetCommand, GeometryAndExportWriteVtp) {
   // The curvature arrays came through: kmin as a scalar, dmin as a vector.
   r = run("render curv.vtp --field file:dmin --color-by kmin --frames 2 --size 64x64 --out c.png");
   EXPECT_EQ(r.status, 0) << r.err;
+}
+
+// A .pvd of three legacy files whose vectors turn: played through, each step
+// frames_per_step frames; a single step by --time; a range too long refused.
+TEST_F(DatasetCommand, PvdSeriesPlaysThroughItsSteps) {
+  std::string pvd = "<VTKFile type=\"Collection\"><Collection>\n";
+  const std::string square = kSquare;
+  const std::size_t vectors = square.find("VECTORS v float\n") + 16;
+  const std::size_t after = square.find('\n', vectors);
+  for (int k = 0; k < 3; ++k) {
+    const std::string v = std::to_string(k) + " 1 0  ";
+    const std::string step = square.substr(0, vectors) + v + v + v + v + square.substr(after);
+    char name[16], entry[80];
+    std::snprintf(name, sizeof name, "s%d.vtk", k);
+    std::snprintf(entry, sizeof entry, "<DataSet timestep=\"%d\" file=\"%s\"/>\n", k, name);
+    file(name, step);
+    pvd += entry;
+  }
+  file("run.pvd", pvd + "</Collection></VTKFile>\n");
+  Result r =
+      run("render run.pvd --field file:v --frames-per-step 2 --frames 7 --size 64x64 "
+          "--out a.png");
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = run("render run.pvd --field file:v --time 2 --frames 2 --size 64x64 --out b.png");
+  ASSERT_EQ(r.status, 0) << r.err;
+  expect_error("render run.pvd --field file:v --time 1:3 --frames 2 --out c.png",
+               "run.pvd: has 3 steps (0..2), asked for 1:3");
 }
 
 TEST_F(DatasetCommand, BadDataOneLineExitOne) {

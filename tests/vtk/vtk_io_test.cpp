@@ -21,6 +21,7 @@
 #include <vtkPolyData.h>
 #include <vtkPolyDataWriter.h>
 #include <vtkUnstructuredGrid.h>
+#include <vtkUnstructuredGridWriter.h>
 #include <vtkXMLMultiBlockDataWriter.h>
 #include <vtkXMLPolyDataWriter.h>
 #include <vtkXMLUnstructuredGridWriter.h>
@@ -228,15 +229,39 @@ vtkSmartPointer<vtkUnstructuredGrid> hex_block() {
 }
 
 TEST_F(VtkIo, VolumeGridShowsItsOuterSurface) {
-  const fs::path path = dir_ / "block.vtu";
-  vtkNew<vtkXMLUnstructuredGridWriter> w;
-  w->SetInputData(hex_block());
-  w->SetFileName(path.c_str());
-  ASSERT_EQ(w->Write(), 1);
-  const Dataset d = read_dataset({path, {}});
-  EXPECT_EQ(d.mesh.triangle_count(), 6u * 4u * 2u);  // 6 sides of 2 x 2 quads
-  EXPECT_EQ(d.mesh.vertex_count(), 26u);             // all but the centre point
-  ASSERT_TRUE(d.mesh.vector_arrays.count("U"));
+  std::vector<fs::path> files;
+  for (const int mode : {vtkXMLWriter::Ascii, vtkXMLWriter::Binary, vtkXMLWriter::Appended})
+    for (const bool zlib : {false, true}) {
+      files.push_back(dir_ / ("block" + std::to_string(mode) + (zlib ? "z" : "") + ".vtu"));
+      vtkNew<vtkXMLUnstructuredGridWriter> w;
+      w->SetInputData(hex_block());
+      w->SetFileName(files.back().c_str());
+      w->SetDataMode(mode);
+      w->SetEncodeAppendedData(false);
+      if (zlib)
+        w->SetCompressorTypeToZLib();
+      else
+        w->SetCompressorTypeToNone();
+      ASSERT_EQ(w->Write(), 1);
+    }
+  for (const int version : {42, 51}) {
+    files.push_back(dir_ / ("block" + std::to_string(version) + ".vtk"));
+    vtkNew<vtkUnstructuredGridWriter> w;  // legacy UNSTRUCTURED_GRID, binary
+    w->SetInputData(hex_block());
+    w->SetFileName(files.back().c_str());
+    w->SetFileVersion(version);
+    w->SetFileTypeToBinary();
+    ASSERT_EQ(w->Write(), 1);
+  }
+  for (const fs::path& path : files) {
+    SCOPED_TRACE(path.string());
+    const Dataset d = read_dataset({path, {}});
+    EXPECT_EQ(d.mesh.triangle_count(), 6u * 4u * 2u);  // 6 sides of 2 x 2 quads
+    EXPECT_EQ(d.mesh.vertex_count(), 26u);             // all but the centre point
+    ASSERT_TRUE(d.mesh.vector_arrays.count("U"));
+    // U = (x, 2y, 3z) came along with its points.
+    EXPECT_EQ(d.mesh.vector_arrays.at("U")[5], d.mesh.positions[5] * glm::vec3(1, 2, 3));
+  }
 }
 
 fs::path write_multiblock(const TempDir& dir) {

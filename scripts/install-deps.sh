@@ -14,6 +14,9 @@ packages=(
   # The VTK and OpenFOAM readers: the VTK inside Debian's ParaView (about
   # 1 GiB with ParaView itself), never libvtk9-dev (docs/data.md).
   paraview-dev
+  # The Python module: pybind11, Debian's Python with numpy; pytest for its
+  # tests, xarray for docs/python.md's netCDF example.
+  pybind11-dev python3-dev python3-numpy python3-pytest python3-xarray
 )
 sudo=""
 if [[ $(id -u) -ne 0 ]]; then sudo="sudo"; fi

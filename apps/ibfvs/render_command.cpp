@@ -11,7 +11,6 @@
 
 #include <CLI/CLI.hpp>
 
-#include "ibfvs/core/dataset_io.h"
 #include "ibfvs/core/error.h"
 #include "ibfvs/core/file_names.h"
 #include "ibfvs/core/image.h"
@@ -19,6 +18,7 @@
 #include "ibfvs/core/scene_prep.h"
 #include "ibfvs/gl/context.h"
 #include "ibfvs/progress.h"
+#include "ibfvs/render/export.h"
 #include "ibfvs/render/session.h"
 #include "ibfvs/video_writer.h"
 
@@ -191,16 +191,8 @@ int run_render(const Scene& o) {
   const OutputKind kind = output_kind(out, "--out");
   if (kind == OutputKind::PngSequence) check_pattern(out.string());
   ensure_parent(out, "--out");
-  const std::string export_ext = lower_extension(o.export_model);
   if (!o.export_model.empty()) {
-    if (export_ext != ".obj" && export_ext != ".gltf" && export_ext != ".glb" &&
-        export_ext != ".vtp")
-      throw InputError("--export: must be a .obj, .gltf, .glb or .vtp file, got '" +
-                       o.export_model + "'");
-    if (export_ext == ".vtp" && !dataset_io_available())
-      throw InputError("--export: " + o.export_model +
-                       ": .vtp needs ibfvs built with ParaView's VTK (Debian's paraview-dev); "
-                       "this build left it out");
+    check_export_path(o.export_model, "--export");
     ensure_parent(o.export_model, "--export");
   }
   if (!o.texture_out.empty()) {
@@ -253,45 +245,19 @@ int run_render(const Scene& o) {
   }
   if (!o.export_model.empty()) {
     // F_t as an 8-bit RGB image and each vertex's position in it (section 3.7).
-    const fs::path model(o.export_model);
-    fs::path png = model;
-    png.replace_extension(".png");
-    const ImageF tex = renderer.read_texture();
-    ImageU8 rgb(tex.width, tex.height, 3);
-    for (std::size_t i = 0; i < rgb.pixels.size() / 3; ++i)
-      for (int c = 0; c < 3; ++c)
-        rgb.pixels[i * 3 + c] = static_cast<std::uint8_t>(
-            std::lround(std::clamp(tex.pixels[i * 4 + c], 0.0f, 1.0f) * 255.0f));
-    write_png(rgb, png);
-    std::vector<glm::vec2> uv(mesh.vertex_count());
-    std::size_t outside = 0;
-    for (std::size_t i = 0; i < uv.size(); ++i) {
-      const glm::vec2 px = project_to_pixels(renderer.texture_view_projection(), mesh.positions[i],
-                                             size.width, size.height);
-      const glm::vec2 t(px.x / static_cast<float>(size.width),
-                        px.y / static_cast<float>(size.height));
-      uv[i] = glm::clamp(t, glm::vec2(0.0f), glm::vec2(1.0f));
-      outside += uv[i] != t;
-    }
-    std::string written = model.string();
-    if (export_ext == ".obj") {
-      write_obj_textured(mesh, uv, model, png.filename().string());
-      written += ", " + fs::path(model).replace_extension(".mtl").string();
-    } else if (export_ext == ".vtp") {
-      // For ParaView: texture coordinates TCoords, the PNG's name in field data.
-      write_polydata(mesh, &uv, model, png.filename().string());
-    } else {
-      write_gltf_textured(mesh, uv, model, png);
-      if (export_ext == ".gltf")
-        written += ", " + fs::path(model).replace_extension(".bin").string();
-    }
-    if (outside > 0)
+    const ExportReport report = export_textured_model(renderer, mesh, o.export_model);
+    if (report.outside > 0)
       std::fprintf(stderr,
                    "ibfvs: warning: %zu vertices lie outside the view that made the texture; "
                    "their texture coordinates are clamped to the image border\n",
-                   outside);
-    if (!o.quiet) std::printf("ibfvs: exported %s and %s\n", written.c_str(), png.c_str());
+                   report.outside);
+    std::string written;
+    for (std::size_t i = 0; i + 1 < report.files.size(); ++i)
+      written += (i ? ", " : "") + report.files[i].string();
+    if (!o.quiet)
+      std::printf("ibfvs: exported %s and %s\n", written.c_str(), report.files.back().c_str());
   }
+
   if (!o.quiet) {
     std::printf(
         "ibfvs: wrote %s (%d frames, %dx%d) from %s: %zu vertices, %zu triangles, field %s, "

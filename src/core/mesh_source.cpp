@@ -230,6 +230,19 @@ std::vector<std::string> series_files(const std::string& path) {
   return files;
 }
 
+// After reading: subdivision (errors name the mesh) and the GPU's vertex order.
+void finish_loaded(LoadedMesh& out, int subdivide, bool gpu_order) {
+  out.file_vertices = out.mesh.vertex_count();
+  if (subdivide > 0) {
+    try {
+      out.mesh = loop_subdivide(out.mesh, subdivide);
+    } catch (const InputError& e) {
+      throw InputError(out.name + ": " + e.what());
+    }
+  }
+  if (gpu_order) out.vertex_order = optimize_for_gpu(out.mesh);
+}
+
 }  // namespace
 
 TriMesh read_any_mesh(const std::string& path, const std::vector<std::string>& blocks,
@@ -319,15 +332,17 @@ LoadedMesh load_mesh(const std::string& path, int subdivide, bool gpu_order,
     out.warnings = report.warnings;
     out.name = path;
   }
-  out.file_vertices = out.mesh.vertex_count();
-  if (subdivide > 0) {
-    try {
-      out.mesh = loop_subdivide(out.mesh, subdivide);
-    } catch (const InputError& e) {
-      throw InputError(out.name + ": " + e.what());
-    }
-  }
-  if (gpu_order) out.vertex_order = optimize_for_gpu(out.mesh);
+  finish_loaded(out, subdivide, gpu_order);
+  return out;
+}
+
+LoadedMesh load_mesh(TriMesh mesh, const std::string& name, int subdivide, bool gpu_order) {
+  LoadedMesh out;
+  validate_mesh(mesh, name);
+  if (mesh.normals.size() != mesh.vertex_count()) compute_vertex_normals(mesh);
+  out.mesh = std::move(mesh);
+  out.name = name;
+  finish_loaded(out, subdivide, gpu_order);
   return out;
 }
 

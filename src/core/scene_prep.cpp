@@ -131,7 +131,9 @@ glm::vec3 thinnest_axis(const TriMesh& mesh) {
   return up;
 }
 
-PreparedScene prepare_scene(const Scene& s) {
+namespace {
+
+PreparedScene prepare(const Scene& s, std::optional<LoadedMesh> given) {
   check(s);
   PreparedScene p;
   p.scene = s;
@@ -157,15 +159,17 @@ PreparedScene prepare_scene(const Scene& s) {
   }
 
   // ---- mesh
+  const bool in_memory = given.has_value();
   LoadedMesh loaded =
-      for_key("mesh", [&] { return load_mesh(s.mesh, s.subdivide, true, s.blocks); });
+      in_memory ? std::move(*given)
+                : for_key("mesh", [&] { return load_mesh(s.mesh, s.subdivide, true, s.blocks); });
   for (const std::string& w : loaded.warnings) p.warnings.push_back(w);
   auto mesh_ptr = std::make_shared<TriMesh>(std::move(loaded.mesh));
   TriMesh& mesh = *mesh_ptr;
   p.demo = loaded.demo;
-  p.mesh_name = loaded.demo ? loaded.name : fs::path(s.mesh).filename().string();
+  p.mesh_name = loaded.demo || in_memory ? loaded.name : fs::path(s.mesh).filename().string();
   // Messages about the mesh's data name the file as given.
-  const std::string mesh_label = loaded.demo ? p.mesh_name : s.mesh;
+  const std::string mesh_label = loaded.demo || in_memory ? p.mesh_name : s.mesh;
 
   // ---- a series: its steps (all, or the time key's range or step)
   const bool series = !loaded.step_times.empty();
@@ -409,6 +413,18 @@ PreparedScene prepare_scene(const Scene& s) {
   p.mesh = std::move(mesh_ptr);
   p.field_spec = *field_spec;
   return p;
+}
+
+}  // namespace
+
+PreparedScene prepare_scene(const Scene& scene) {
+  return prepare(scene, std::nullopt);
+}
+
+PreparedScene prepare_scene(const Scene& scene, TriMesh mesh, const std::string& name) {
+  return prepare(scene, for_key("mesh", [&] {
+                   return load_mesh(std::move(mesh), name, scene.subdivide, true);
+                 }));
 }
 
 }  // namespace ibfvs

@@ -2,6 +2,7 @@
 
 #include <cstdlib>
 #include <cstring>
+#include <map>
 #include <mutex>
 #include <sstream>
 
@@ -42,6 +43,37 @@ bool ContextOptions::default_debug() {
 #endif
 }
 
+namespace {
+
+// EGL displays are one per process and device: terminating one destroys
+// every context on it. Contexts count their display's users and terminate it
+// with the last.
+std::mutex& display_mutex() {
+  static std::mutex m;
+  return m;
+}
+std::map<EGLDisplay, int>& display_users() {
+  static std::map<EGLDisplay, int> users;
+  return users;
+}
+void retain_display(EGLDisplay d) {
+  const std::lock_guard lock(display_mutex());
+  ++display_users()[d];
+}
+// Terminates the display when no context uses it (a failed try on a display
+// that others use leaves it alone).
+void release_display(EGLDisplay d, bool retained) {
+  const std::lock_guard lock(display_mutex());
+  auto& users = display_users();
+  const auto it = users.find(d);
+  if (retained && it != users.end() && --it->second > 0) return;
+  if (!retained && it != users.end()) return;
+  if (it != users.end()) users.erase(it);
+  eglTerminate(d);
+}
+
+}  // namespace
+
 struct HeadlessContext::Impl {
   EGLDisplay display = EGL_NO_DISPLAY;
   EGLContext context = EGL_NO_CONTEXT;
@@ -52,7 +84,7 @@ struct HeadlessContext::Impl {
     if (display != EGL_NO_DISPLAY) {
       eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
       if (context != EGL_NO_CONTEXT) eglDestroyContext(display, context);
-      eglTerminate(display);
+      release_display(display, true);
     }
   }
 
@@ -65,7 +97,7 @@ struct HeadlessContext::Impl {
     }
     if (!eglBindAPI(EGL_OPENGL_API)) {
       log << name << ": no desktop OpenGL API; ";
-      eglTerminate(dpy);
+      release_display(dpy, false);
       return false;
     }
     const EGLint config_attribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
@@ -75,7 +107,7 @@ struct HeadlessContext::Impl {
         has_extension(eglQueryString(dpy, EGL_EXTENSIONS), "EGL_KHR_no_config_context");
     if (!no_config && (!eglChooseConfig(dpy, config_attribs, &config, 1, &count) || count == 0)) {
       log << name << ": no OpenGL config; ";
-      eglTerminate(dpy);
+      release_display(dpy, false);
       return false;
     }
     const EGLint ctx_attribs[] = {EGL_CONTEXT_MAJOR_VERSION,
@@ -92,18 +124,19 @@ struct HeadlessContext::Impl {
     if (ctx == EGL_NO_CONTEXT) {
       log << name << ": no OpenGL 4.5 core context (EGL error 0x" << std::hex << eglGetError()
           << std::dec << "); ";
-      eglTerminate(dpy);
+      release_display(dpy, false);
       return false;
     }
     if (!eglMakeCurrent(dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx)) {
       log << name << ": cannot make the context current without a surface; ";
       eglDestroyContext(dpy, ctx);
-      eglTerminate(dpy);
+      release_display(dpy, false);
       return false;
     }
     display = dpy;
     context = ctx;
     platform = name;
+    retain_display(dpy);
     return true;
   }
 };
@@ -156,6 +189,10 @@ HeadlessContext& HeadlessContext::operator=(HeadlessContext&&) noexcept = defaul
 void HeadlessContext::make_current() {
   if (!eglMakeCurrent(impl_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, impl_->context))
     throw GraphicsError("EGL: cannot make the context current");
+}
+
+void HeadlessContext::release_current() {
+  eglMakeCurrent(impl_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
 }
 
 std::string HeadlessContext::renderer() const {

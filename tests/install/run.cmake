@@ -23,3 +23,18 @@ execute_process(COMMAND "${WORK_DIR}/build/consumer" RESULT_VARIABLE rc)
 if(rc)
   message(FATAL_ERROR "the consumer failed: ${rc}")
 endif()
+# The Python package, where it was built: importable from the prefix alone.
+if(PYTHON)
+  file(GLOB _pkg "${WORK_DIR}/prefix/lib/python3*/dist-packages/ibfvs/__init__.py")
+  if(NOT _pkg)
+    message(FATAL_ERROR "cmake --install did not install the Python package ibfvs")
+  endif()
+  get_filename_component(_site "${_pkg}" DIRECTORY)
+  get_filename_component(_site "${_site}" DIRECTORY)
+  execute_process(COMMAND "${CMAKE_COMMAND}" -E env "PYTHONPATH=${_site}" "${PYTHON}" -c
+                          "import ibfvs; assert ibfvs.render('torus', size=(32, 32), frames=2).shape == (32, 32, 3)"
+                  RESULT_VARIABLE rc)
+  if(rc)
+    message(FATAL_ERROR "the installed Python package failed: ${rc}")
+  endif()
+endif()

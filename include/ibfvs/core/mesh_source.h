@@ -55,6 +55,11 @@ struct LoadedMesh {
 LoadedMesh load_mesh(const std::string& path, int subdivide, bool gpu_order = true,
                      const std::vector<std::string>& blocks = {});
 
+/// A mesh the caller made (arrays, a host's data): validated (InputError
+/// naming `name`), normals computed when it has none, then subdivided and
+/// ordered like a file's.
+LoadedMesh load_mesh(TriMesh mesh, const std::string& name, int subdivide, bool gpu_order = true);
+
 /// Reads one mesh file of any format ibfvs knows (OFF OBJ PLY STL, and the
 /// dataset formats), with its arrays. Throws InputError naming the file.
 TriMesh read_any_mesh(const std::string& path, const std::vector<std::string>& blocks = {},

@@ -55,6 +55,12 @@ void apply_texture_settings(const Scene& scene, RenderSettings& settings);
 /// SettingError naming the key whose value is wrong.
 PreparedScene prepare_scene(const Scene& scene);
 
+/// The same for a mesh the caller already has (arrays from Python, a host
+/// application's data), standing in for the scene's mesh key: checked,
+/// normals computed when it has none, subdivided and ordered like a file's.
+/// `name` is what messages call it.
+PreparedScene prepare_scene(const Scene& scene, TriMesh mesh, const std::string& name);
+
 /// The prepared scene for another image size: the same mesh (shared, not read
 /// again), field and scalars, with dt from the step in pixels (unless the
 /// scene gives dt) and the object-noise cell for that size. Throws

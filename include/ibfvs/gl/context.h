@@ -31,6 +31,9 @@ class HeadlessContext {
   HeadlessContext& operator=(const HeadlessContext&) = delete;
 
   void make_current();
+  /// Makes no context current on this thread (so that another thread may
+  /// make this one current).
+  void release_current();
   /// "Mesa llvmpipe (LLVM 15.0.6, 256 bits) | OpenGL 4.5 (Core Profile) ..."
   [[nodiscard]] std::string renderer() const;
   /// Which EGL platform: "device" or "surfaceless".

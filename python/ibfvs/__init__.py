@@ -1,0 +1,237 @@
+"""ibfvs: dense, animated, flow-aligned texture on curved surfaces.
+
+Image Based Flow Visualization for Curved Surfaces (van Wijk, IEEE
+Visualization 2003) on numpy arrays, VTK-style meshes and scene files,
+rendered headless (EGL) on the GPU or Mesa's llvmpipe. docs/python.md has
+worked examples.
+
+    import ibfvs
+    image = ibfvs.render(points, triangles, vectors, size=(512, 512), frames=150)
+
+Options are the scene keys of `ibfvs render` (docs/scenes.md) with
+underscores: alpha, beta, scale, step, tangent, background, seed, camera,
+image_normalize, style, ... with the same defaults.
+"""
+
+from __future__ import annotations
+
+import base64
+import os
+import tempfile
+from collections.abc import Mapping
+
+import numpy as np
+
+from . import _ibfvs
+
+__all__ = ["render", "Animation", "Video", "keys", "has_vtk"]
+
+has_vtk = _ibfvs.has_vtk
+
+
+def keys():
+    """Every scene key as (name, help, default) with default a list of text forms."""
+    return _ibfvs.keys()
+
+
+_KEY_NAMES = {k[0] for k in _ibfvs.keys()}
+
+
+def _text(key, value):
+    """A Python value in the key's text form: True -> "true", (1, 2) -> "1,2"."""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, (str, os.PathLike)):
+        return os.fspath(value)
+    if isinstance(value, (int, float, np.integer, np.floating)):
+        return repr(float(value)) if isinstance(value, (float, np.floating)) else str(int(value))
+    if key == "size" and len(value) == 2:
+        return f"{int(value[0])}x{int(value[1])}"
+    try:
+        return ",".join(_text(key, v) for v in value)
+    except TypeError:
+        raise TypeError(f"option {key}: cannot use a {type(value).__name__}") from None
+
+
+def _options(options):
+    """Options as (key, text) pairs; repeatable keys (element) take lists."""
+    out = []
+    for key, value in options.items():
+        if key not in _KEY_NAMES:
+            close = sorted(k for k in _KEY_NAMES if k[:3] == key[:3])
+            raise TypeError(f"unknown option '{key}'" + (f" (did you mean {', '.join(close)}?)" if close else ""))
+        if value is None:
+            continue
+        if key in ("element", "field_step", "scalar") and isinstance(value, (list, tuple)) and value and not isinstance(value[0], (int, float)):
+            out.extend((key, _text(key, v)) for v in value)
+        else:
+            out.append((key, _text(key, value)))
+    return out
+
+
+def _check_index_array(triangles):
+    a = np.asarray(triangles)
+    if a.dtype.kind not in "iu":
+        raise TypeError(f"triangles must be integers (int32 or int64), got {a.dtype}")
+    return a
+
+
+def _check_float_array(name, values):
+    a = np.asarray(values)
+    if a.dtype.kind not in "fiu":
+        raise TypeError(f"{name} must be numbers (float32, float64 or integers), got {a.dtype}")
+    return a
+
+
+def _faces_to_triangles(faces):
+    """A VTK-style cell array [n, i0, ..., n, ...] as triangles (polygons fanned)
+    and, per triangle, the index of the cell it came from."""
+    faces = np.asarray(faces)
+    if faces.dtype.kind not in "iu" or faces.ndim != 1:
+        raise TypeError("faces must be a flat integer array [n, i0, i1, ..., n, ...]")
+    tris, cells = [], []
+    i, cell = 0, 0
+    size = len(faces)
+    while i < size:
+        n = int(faces[i])
+        if n < 0 or i + 1 + n > size:
+            raise ValueError(f"faces: cell {cell} says {n} points but the array ends before")
+        ids = faces[i + 1:i + 1 + n]
+        for k in range(1, n - 1):
+            tris.append((ids[0], ids[k], ids[k + 1]))
+            cells.append(cell)
+        i += 1 + n
+        cell += 1
+    return np.asarray(tris, dtype=np.int64).reshape(-1, 3), np.asarray(cells, dtype=np.int64)
+
+
+def _mesh_arrays(mesh):
+    """points, triangles, point arrays and cell arrays (per triangle) of an
+    object with `points`, a VTK-style `faces` and `point_data`/`cell_data`."""
+    points = _check_float_array("points", mesh.points)
+    triangles, cells = _faces_to_triangles(mesh.faces)
+    point_arrays = {str(k): np.asarray(v) for k, v in getattr(mesh, "point_data", {}).items()}
+    cell_arrays = {}
+    for k, v in getattr(mesh, "cell_data", {}).items():
+        v = np.asarray(v)
+        if v.dtype.kind in "fiu":
+            cell_arrays[str(k)] = v[cells] if len(v) == cells.max(initial=-1) + 1 else v
+    point_arrays = {k: v for k, v in point_arrays.items() if v.dtype.kind in "fiu"}
+    return points, triangles, point_arrays, cell_arrays
+
+
+class Animation(_ibfvs.Animation):
+    """An IBFVS animation in its own headless GL context.
+
+    Animation(points, triangles, vectors, **options)   arrays
+    Animation(mesh, vectors="U", **options)            a VTK-style mesh (PyVista's PolyData)
+    Animation("wing.vtp", field="file:U", ...)         a mesh or dataset file
+    Animation("scene.toml", **options)                 a scene file
+
+    vectors: (n, 3) per point or (m, 3) per triangle, or the name of an array.
+    """
+
+    def __init__(self, source=None, triangles=None, vectors=None, **options):
+        if "size" in options and isinstance(options["size"], (tuple, list)):
+            options["size"] = tuple(options["size"])
+        point_arrays, cell_arrays = {}, {}
+        name = "arrays"
+        if source is None or isinstance(source, (str, os.PathLike)):
+            if triangles is not None:
+                raise TypeError("a file takes no triangles")
+            path = "" if source is None else os.fspath(source)
+            if isinstance(vectors, str):
+                options.setdefault("field", "file:" + vectors)
+            if path.endswith(".toml"):
+                super().__init__(path, _options(options))
+            else:
+                if path:
+                    options["mesh"] = path
+                super().__init__("", _options(options))
+            return
+        if hasattr(source, "points") and hasattr(source, "faces"):
+            if triangles is not None:
+                raise TypeError("a mesh object takes no separate triangles")
+            points, triangles, point_arrays, cell_arrays = _mesh_arrays(source)
+            name = type(source).__name__
+        else:
+            points = _check_float_array("points", source)
+            if triangles is None:
+                raise TypeError("arrays need triangles: Animation(points, triangles, vectors)")
+            triangles = _check_index_array(triangles)
+        if isinstance(vectors, str):
+            options.setdefault("field", "file:" + vectors)
+        elif vectors is not None:
+            v = _check_float_array("vectors", vectors)
+            n_points, n_tris = len(np.asarray(points)), len(np.asarray(triangles))
+            if v.ndim != 2 or v.shape[1] != 3:
+                raise ValueError(f"vectors must have shape (n, 3), got {v.shape}")
+            if len(v) == n_points:
+                point_arrays["vectors"] = v
+            elif len(v) == n_tris:
+                cell_arrays["vectors"] = v
+            else:
+                raise ValueError(f"vectors has {len(v)} rows: expected one per point ({n_points}) "
+                                 f"or one per triangle ({n_tris})")
+            options.setdefault("field", "file:vectors")
+        super().__init__(points, triangles, point_arrays, cell_arrays, _options(options), name)
+
+    def set(self, **options):
+        """Change settings: texture settings and the camera live, others rebuild."""
+        self._set(_options(options))
+
+    def frames(self, count, *, alpha=False):
+        """Iterate over COUNT new frames, each a numpy image (copied)."""
+        for _ in range(count):
+            self.step()
+            yield np.array(self.image(alpha))
+
+    def __iter__(self):
+        while True:
+            self.step()
+            yield np.array(self.image(False))
+
+    # ---- Jupyter
+    def _repr_png_(self):
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "frame.png")
+            self.save_png(path)
+            with open(path, "rb") as f:
+                return f.read()
+
+    def video(self, frames=90, fps=30.0):
+        """The next FRAMES frames as an MP4 Video, shown in Jupyter as an
+        HTML5 <video>."""
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "animation.mp4")
+            self.write_video(path, frames, fps)
+            with open(path, "rb") as f:
+                return Video(f.read())
+
+
+class Video:
+    """An MP4 video in memory; Jupyter shows it as an HTML5 <video>."""
+
+    def __init__(self, data: bytes):
+        self.data = data
+
+    def save(self, path):
+        with open(path, "wb") as f:
+            f.write(self.data)
+
+    def _repr_html_(self):
+        encoded = base64.b64encode(self.data).decode("ascii")
+        return f'<video controls loop autoplay muted src="data:video/mp4;base64,{encoded}"></video>'
+
+
+def render(points, triangles=None, vectors=None, *, size=(512, 512), frames=150, alpha_channel=False, **options):
+    """Render FRAMES frames and return the last as uint8 (H, W, 3), or
+    (H, W, 4) with alpha_channel=True, rows top first.
+
+    points, triangles, vectors as for Animation (arrays, a VTK-style mesh, or a
+    file with vectors naming its array); options are the scene keys."""
+    if frames < 1:
+        raise ValueError("frames must be at least 1")
+    anim = Animation(points, triangles, vectors, size=size, **options)
+    anim.step(frames)
+    return np.array(anim.image(alpha_channel))

@@ -1,0 +1,385 @@
+// The Python module ibfvs._ibfvs (pybind11): an animation on the library's
+// Session in its own headless EGL context. The package ibfvs (python/ibfvs)
+// wraps it: inputs as people have them, render(), Jupyter display.
+//
+// Errors become Python exceptions (InputError and SettingError: ValueError;
+// GraphicsError: RuntimeError); the GIL is released while frames render.
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <glm/trigonometric.hpp>
+
+#include "ibfvs/core/camera.h"
+#include "ibfvs/core/error.h"
+#include "ibfvs/core/image.h"
+#include "ibfvs/core/scene.h"
+#include "ibfvs/core/scene_prep.h"
+#include "ibfvs/gl/context.h"
+#include "ibfvs/render/export.h"
+#include "ibfvs/render/session.h"
+#include "ibfvs/video_writer.h"
+#ifdef IBFVS_HAVE_VTK
+#include "ibfvs/vtk/vtk_io.h"
+#endif
+
+namespace py = pybind11;
+
+namespace ibfvs::python {
+namespace {
+
+using Options = std::vector<std::pair<std::string, std::string>>;
+
+// Keys whose change the renderer takes live (as the viewer's panel does).
+const std::set<std::string, std::less<>> kLiveKeys = {
+    "alpha",       "beta",        "vg",         "profile",     "background", "surface_color",
+    "color_map",   "color_range", "beta_range", "advect_view", "inject",     "spike_width",
+    "noise_space", "filter",      "contrast",   "resample"};
+
+Scene scene_from(const std::string& scene_file, const Options& options) {
+  Scene scene = scene_file.empty() ? Scene{} : read_scene(scene_file);
+  std::vector<Setting> settings;
+  for (const auto& [key, text] : options) settings.push_back({key, text, ""});
+  apply_settings(scene, settings);
+  return scene;
+}
+
+// A numpy view of an image the capsule keeps alive, rows top first (the
+// image is stored bottom-up: a negative row stride, no copy).
+template <class Image, class T>
+py::array top_first(Image image, bool drop_alpha) {
+  auto* owned = new Image(std::move(image));
+  py::capsule keep(owned, [](void* p) { delete static_cast<Image*>(p); });
+  const auto w = static_cast<py::ssize_t>(owned->width);
+  const auto h = static_cast<py::ssize_t>(owned->height);
+  const auto c = static_cast<py::ssize_t>(owned->channels);
+  const auto item = static_cast<py::ssize_t>(sizeof(T));
+  T* last_row = owned->pixels.data() + (h - 1) * w * c;
+  return py::array_t<T>({h, w, drop_alpha ? std::min<py::ssize_t>(c, 3) : c},
+                        {-w * c * item, c * item, item}, last_row, keep);
+}
+
+class Animation {
+  // The context current on the calling thread for one call, one call at a
+  // time (Python threads may call while another renders without the GIL).
+  class Current {
+   public:
+    explicit Current(const Animation& a) : lock_(a.mutex_), context_(a.context_) {
+      context_.make_current();
+    }
+    ~Current() { context_.release_current(); }
+    Current(const Current&) = delete;
+    Current& operator=(const Current&) = delete;
+
+   private:
+    std::lock_guard<std::mutex> lock_;
+    gl::HeadlessContext& context_;
+  };
+
+ public:
+  // A mesh from arrays (mesh set) or the scene's own mesh key.
+  Animation(Scene desc, std::optional<TriMesh> mesh, std::string name)
+      : desc_(std::move(desc)), mesh_(std::move(mesh)), name_(std::move(name)) {
+    const Current current(*this);
+    session_ = std::make_unique<Session>(prepare(desc_));
+  }
+  ~Animation() {
+    const Current current(*this);  // the GL objects go with their context current
+    session_.reset();
+  }
+  Animation(const Animation&) = delete;
+  Animation& operator=(const Animation&) = delete;
+
+  void step(int frames) {
+    if (frames < 0) throw SettingError("frames", "must not be negative");
+    py::gil_scoped_release release;
+    const Current current(*this);
+    for (int k = 0; k < frames; ++k) session_->advance();
+  }
+
+  py::array image(bool alpha) {
+    const Current current(*this);
+    return top_first<ImageU8, std::uint8_t>(session_->read_output(), !alpha);
+  }
+
+  py::array texture() {
+    const Current current(*this);
+    return top_first<ImageF, float>(session_->renderer().read_texture(), false);
+  }
+
+  // Any key: texture settings live, the step rescales dt, the camera moves;
+  // anything else prepares the scene again (the texture starts afresh).
+  void set(const Options& options) {
+    Scene desc = desc_;
+    std::vector<Setting> settings;
+    bool live = true, camera = false, step = false;
+    for (const auto& [key, text] : options) {
+      settings.push_back({key, text, ""});
+      camera = camera || key == "camera" || key == "look_at" || key == "fov" || key == "ortho";
+      step = step || key == "step";
+      live = live && (kLiveKeys.count(key) || key == "camera" || key == "look_at" || key == "fov" ||
+                      key == "ortho" || key == "step" || key == "orbit");
+    }
+    apply_settings(desc, settings);
+    const Current current(*this);
+    if (!live) {
+      session_ = std::make_unique<Session>(prepare(desc));
+      desc_ = desc;
+      return;
+    }
+    PreparedScene& p = session_->scene();
+    RenderSettings s = session_->renderer().settings();
+    apply_texture_settings(desc, s);
+    s.validate();
+    session_->renderer().update_settings(s);
+    p.settings = s;
+    if (step) session_->set_dt(session_->dt() * desc.step / desc_.step);
+    if (camera) {
+      CameraParams params = desc.camera;
+      params.up = p.camera.up;
+      p.camera = params;
+      session_->camera() = Camera(mesh_bounds(*p.mesh), params,
+                                  static_cast<float>(p.width) / static_cast<float>(p.height));
+    }
+    p.scene = desc;
+    desc_ = desc;
+  }
+
+  void lock() {
+    const Current current(*this);
+    session_->renderer().lock();
+  }
+  void unlock() {
+    const Current current(*this);
+    session_->renderer().unlock();
+  }
+  [[nodiscard]] bool locked() const { return session_->renderer().locked(); }
+
+  // Renders `frames` more frames into a video file (any of the command's
+  // containers); returns the path.
+  std::string write_video(const std::string& path, int frames, double fps) {
+    if (frames < 1) throw SettingError("frames", "a video needs at least one frame");
+    if (!app::is_video_path(path))
+      throw InputError(path + ": not a video file name (.mp4 .mkv .webm .mov .avi .gif)");
+    py::gil_scoped_release release;
+    const Current current(*this);
+    const PreparedScene& p = session_->scene();
+    app::VideoWriter video(path, p.width, p.height, fps);
+    for (int k = 0; k < frames; ++k) {
+      session_->advance();
+      ImageU8 frame = video.spare();
+      session_->renderer().read_output(frame);
+      video.write(std::move(frame));
+    }
+    video.close();
+    return path;
+  }
+
+  // The surface with the current texture (section 3.7; lock first to keep
+  // the texture where it is): .obj, .gltf, .glb or .vtp, the PNG beside it.
+  std::vector<std::string> export_model(const std::string& path) {
+    const Current current(*this);
+    const ExportReport report =
+        export_textured_model(session_->renderer(), *session_->scene().mesh, path);
+    std::vector<std::string> files;
+    for (const auto& f : report.files) files.push_back(f.string());
+    return files;
+  }
+
+  void save_png(const std::string& path) {
+    const Current current(*this);
+    write_png(session_->read_output(), path);
+  }
+
+  [[nodiscard]] int frame() const { return session_->frame(); }
+  [[nodiscard]] std::pair<int, int> size() const {
+    return {session_->scene().width, session_->scene().height};
+  }
+  [[nodiscard]] std::size_t step_count() const { return session_->scene().step_count; }
+  [[nodiscard]] std::string renderer_name() const {
+    const Current current(*this);
+    return context_.renderer();
+  }
+  [[nodiscard]] std::vector<std::string> warnings() const { return session_->scene().warnings; }
+  [[nodiscard]] std::string scene_toml_text() const { return scene_toml(desc_); }
+
+ private:
+  PreparedScene prepare(const Scene& desc) const {
+    return mesh_ ? prepare_scene(desc, *mesh_, name_) : prepare_scene(desc);
+  }
+
+  mutable std::mutex mutex_;
+  mutable gl::HeadlessContext context_;
+  Scene desc_;
+  std::optional<TriMesh> mesh_;
+  std::string name_;
+  std::unique_ptr<Session> session_;
+};
+
+// ---------------------------------------------------------------- arrays in
+
+template <class T>
+using Array = py::array_t<T, py::array::c_style | py::array::forcecast>;
+
+std::size_t rows_of(const py::array& a, py::ssize_t columns, const char* what) {
+  if (a.ndim() != 2 || a.shape(1) != columns) {
+    std::string shape = "(";
+    for (py::ssize_t d = 0; d < a.ndim(); ++d)
+      shape += (d ? ", " : "") + std::to_string(a.shape(d));
+    throw py::value_error(std::string(what) + " must have shape (n, " + std::to_string(columns) +
+                          "), got " + shape + (a.ndim() == 1 ? ",)" : ")"));
+  }
+  return static_cast<std::size_t>(a.shape(0));
+}
+
+std::vector<glm::vec3> vec3s(const Array<double>& a, const char* what) {
+  const std::size_t n = rows_of(a, 3, what);
+  std::vector<glm::vec3> out(n);
+  const double* d = a.data();
+  for (std::size_t i = 0; i < n; ++i)
+    out[i] = glm::vec3(static_cast<float>(d[3 * i]), static_cast<float>(d[3 * i + 1]),
+                       static_cast<float>(d[3 * i + 2]));
+  return out;
+}
+
+// A TriMesh from arrays: points (n, 3), triangles (m, 3) of indices, named
+// per-vertex and per-triangle arrays (1 or 3 components).
+TriMesh mesh_from_arrays(const Array<double>& points, const Array<std::int64_t>& triangles,
+                         const std::map<std::string, py::array>& point_arrays,
+                         const std::map<std::string, py::array>& cell_arrays) {
+  TriMesh mesh;
+  mesh.positions = vec3s(points, "points");
+  const std::size_t n = mesh.positions.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const glm::vec3 p = mesh.positions[i];
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+      throw py::value_error("points: point " + std::to_string(i) +
+                            " has a non-finite coordinate (NaN or infinity)");
+  }
+  const std::size_t m = rows_of(triangles, 3, "triangles");
+  const std::int64_t* t = triangles.data();
+  mesh.triangles.resize(m);
+  for (std::size_t f = 0; f < m; ++f)
+    for (int k = 0; k < 3; ++k) {
+      const std::int64_t id = t[3 * f + static_cast<std::size_t>(k)];
+      if (id < 0 || static_cast<std::size_t>(id) >= n)
+        throw py::value_error("triangles: triangle " + std::to_string(f) + " refers to point " +
+                              std::to_string(id) + " but there are " + std::to_string(n) +
+                              " points");
+      mesh.triangles[f][static_cast<std::size_t>(k)] = static_cast<std::uint32_t>(id);
+    }
+  if (m == 0) throw py::value_error("triangles: there are none");
+  const auto add = [&](const std::string& name, const py::array& raw, bool per_triangle) {
+    const std::size_t expected = per_triangle ? m : n;
+    const Array<double> a = Array<double>::ensure(raw);
+    if (!a) throw py::type_error("array '" + name + "' is not numeric");
+    const std::size_t rows = a.ndim() >= 1 ? static_cast<std::size_t>(a.shape(0)) : 0;
+    if (rows != expected)
+      throw py::value_error("array '" + name + "' has " + std::to_string(rows) +
+                            " rows, expected " + std::to_string(expected) +
+                            (per_triangle ? " (one per triangle)" : " (one per point)"));
+    if (a.ndim() == 1 || (a.ndim() == 2 && a.shape(1) == 1)) {
+      std::vector<float> v(rows);
+      for (std::size_t i = 0; i < rows; ++i) v[i] = static_cast<float>(a.data()[i]);
+      mesh.scalars[name] = per_triangle ? triangle_to_vertex(mesh, v) : v;
+    } else if (a.ndim() == 2 && a.shape(1) == 3) {
+      std::vector<glm::vec3> v = vec3s(a, name.c_str());
+      mesh.vector_arrays[name] = per_triangle ? triangle_to_vertex(mesh, v) : v;
+    } else {
+      throw py::value_error("array '" + name + "' must have 1 or 3 components per row");
+    }
+  };
+  for (const auto& [name, a] : point_arrays) add(name, a, false);
+  for (const auto& [name, a] : cell_arrays)
+    if (!mesh.scalars.count(name) && !mesh.vector_arrays.count(name)) add(name, a, true);
+  return mesh;
+}
+
+}  // namespace
+}  // namespace ibfvs::python
+
+PYBIND11_MODULE(_ibfvs, m) {
+  using namespace ibfvs;
+  using ibfvs::python::Animation;
+  m.doc() = "ibfvs: image based flow visualization for curved surfaces (the C++ core)";
+#ifdef IBFVS_HAVE_VTK
+  vtk::install_vtk_io();
+  m.attr("has_vtk") = true;
+#else
+  m.attr("has_vtk") = false;
+#endif
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const SettingError& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    } catch (const InputError& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    } catch (const GraphicsError& e) {
+      PyErr_SetString(PyExc_RuntimeError, e.what());
+    }
+  });
+
+  m.def(
+      "keys",
+      [] {
+        std::vector<std::tuple<std::string, std::string, std::vector<std::string>>> out;
+        const Scene defaults;
+        for (const SceneKey& k : scene_keys())
+          out.emplace_back(std::string(k.name), k.help, k.get(defaults));
+        return out;
+      },
+      "Every scene key: (name, help, default text forms).");
+
+  py::class_<Animation>(m, "Animation")
+      .def(py::init([](const std::string& scene_file, const ibfvs::python::Options& options) {
+             return std::make_unique<Animation>(ibfvs::python::scene_from(scene_file, options),
+                                                std::nullopt, "");
+           }),
+           py::arg("scene_file"), py::arg("options"))
+      .def(py::init([](const ibfvs::python::Array<double>& points,
+                       const ibfvs::python::Array<std::int64_t>& triangles,
+                       const std::map<std::string, py::array>& point_arrays,
+                       const std::map<std::string, py::array>& cell_arrays,
+                       const ibfvs::python::Options& options, const std::string& name) {
+             TriMesh mesh =
+                 ibfvs::python::mesh_from_arrays(points, triangles, point_arrays, cell_arrays);
+             return std::make_unique<Animation>(ibfvs::python::scene_from("", options),
+                                                std::move(mesh), name);
+           }),
+           py::arg("points"), py::arg("triangles"), py::arg("point_arrays"), py::arg("cell_arrays"),
+           py::arg("options"), py::arg("name"))
+      .def("step", &Animation::step, py::arg("frames") = 1, "Render FRAMES more frames.")
+      .def("image", &Animation::image, py::arg("alpha") = true,
+           "The shown image, uint8 (H, W, 4) or (H, W, 3), rows top first (a view, no copy).")
+      .def("texture", &Animation::texture,
+           "The texture F_t, float32 (H, W, 4), rows top first (a view, no copy).")
+      .def("_set", &Animation::set, py::arg("options"))
+      .def("lock", &Animation::lock, "Lock the texture to the surface (section 3.7).")
+      .def("unlock", &Animation::unlock)
+      .def_property_readonly("locked", &Animation::locked)
+      .def("write_video", &Animation::write_video, py::arg("path"), py::arg("frames"),
+           py::arg("fps") = 30.0, "Render FRAMES more frames into a video file.")
+      .def("export", &Animation::export_model, py::arg("path"),
+           "The surface with the current texture as .obj, .gltf, .glb or .vtp (and the PNG);\n"
+           "returns the files written.")
+      .def("save_png", &Animation::save_png, py::arg("path"))
+      .def_property_readonly("frame", &Animation::frame)
+      .def_property_readonly("size", &Animation::size)
+      .def_property_readonly("step_count", &Animation::step_count)
+      .def_property_readonly("renderer", &Animation::renderer_name)
+      .def_property_readonly("warnings", &Animation::warnings)
+      .def("scene_toml", &Animation::scene_toml_text, "The scene in force as a scene file (TOML).");
+}

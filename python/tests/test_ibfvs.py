@@ -1,0 +1,188 @@
+"""The Python module as a user scripts it: arrays in every dtype and order,
+VTK-style meshes, files, live settings, numpy out, errors that are Python
+exceptions (never a dead interpreter), and the same pictures as the command."""
+
+import os
+import subprocess
+import threading
+
+import numpy as np
+import pytest
+
+import ibfvs
+
+SIZE = (64, 64)
+
+
+def torus(n_major=48, n_minor=16, R=1.0, r=0.35):
+    """A torus around +Y: points (n, 3), triangles (m, 3), a rotation about +Y."""
+    u = np.linspace(0, 2 * np.pi, n_major, endpoint=False)
+    v = np.linspace(0, 2 * np.pi, n_minor, endpoint=False)
+    uu, vv = np.meshgrid(u, v, indexing="ij")
+    x = (R + r * np.cos(vv)) * np.cos(uu)
+    z = (R + r * np.cos(vv)) * np.sin(uu)
+    y = r * np.sin(vv)
+    points = np.stack([x, y, z], axis=-1).reshape(-1, 3)
+    tris = []
+    for i in range(n_major):
+        for j in range(n_minor):
+            a = i * n_minor + j
+            b = ((i + 1) % n_major) * n_minor + j
+            c = ((i + 1) % n_major) * n_minor + (j + 1) % n_minor
+            d = i * n_minor + (j + 1) % n_minor
+            tris += [(a, b, c), (a, c, d)]
+    triangles = np.array(tris, dtype=np.int64)
+    vectors = np.cross([0.0, 1.0, 0.0], points)  # rotation about +Y
+    return points, triangles, vectors
+
+
+def test_render_returns_an_image_with_texture_on_the_surface_only():
+    p, t, v = torus()
+    image = ibfvs.render(p, t, v, size=SIZE, frames=20, camera=(0, 30, 0))
+    assert image.shape == (64, 64, 3) and image.dtype == np.uint8
+    # The corners are background (grey 0.5); the middle row crosses the torus
+    # and carries noise.
+    assert (image[0, 0] == 128).all() and (image[-1, -1] == 128).all()
+    row = image[32].astype(float)
+    assert row.std() > 10
+    rgba = ibfvs.render(p, t, v, size=SIZE, frames=2, alpha_channel=True)
+    assert rgba.shape == (64, 64, 4)
+
+
+def test_dtypes_and_orders_give_the_same_picture():
+    p, t, v = torus()
+    ref = ibfvs.render(p, t, v, size=SIZE, frames=10)
+    same = [
+        ibfvs.render(p.astype(np.float32), t.astype(np.int32), v.astype(np.float32), size=SIZE, frames=10),
+        ibfvs.render(np.asfortranarray(p), np.asfortranarray(t), np.asfortranarray(v), size=SIZE, frames=10),
+        ibfvs.render(p.tolist(), t.tolist(), v.tolist(), size=SIZE, frames=10),
+    ]
+    for other in same:
+        assert np.abs(other.astype(int) - ref.astype(int)).max() <= 1
+
+
+def test_vectors_per_triangle_and_by_name():
+    p, t, v = torus()
+    per_triangle = v[t].mean(axis=1)
+    a = ibfvs.render(p, t, per_triangle, size=SIZE, frames=5)
+    assert a.std() > 5
+
+
+class PolyLike:
+    """What PyVista's PolyData offers: points, a VTK cell array, data mappings."""
+
+    def __init__(self, points, triangles, point_data, cell_data=None):
+        self.points = points
+        self.faces = np.hstack([np.full((len(triangles), 1), 3), triangles]).ravel()
+        self.point_data = point_data
+        self.cell_data = cell_data or {}
+
+
+def test_duck_typed_mesh_with_named_arrays():
+    p, t, v = torus()
+    mesh = PolyLike(p, t, {"U": v, "height": p[:, 1]})
+    anim = ibfvs.Animation(mesh, vectors="U", size=SIZE, color_by="height")
+    anim.step(5)
+    assert anim.image().shape == (64, 64, 4)
+    # Quads in the cell array are fanned into triangles.
+    quads = PolyLike(p, t[:, :3], {"U": v})
+    quads.faces = np.hstack([[4, 0, 1, 2, 3], quads.faces])
+    ibfvs.Animation(quads, vectors="U", size=SIZE).step(1)
+
+
+def test_the_same_frames_as_the_command(tmp_path):
+    exe = os.environ.get("IBFVS_EXE")
+    if not exe:
+        pytest.skip("IBFVS_EXE not set")
+    args = ["--mesh", "torus", "--field", "rotate:0,1,0", "--frames", "12", "--size", "64x48"]
+    subprocess.run([exe, "render", *args, "--out", str(tmp_path / "cli.png"), "-q"], check=True)
+    anim = ibfvs.Animation("torus", field="rotate:0,1,0", size=(64, 48))
+    anim.step(12)
+    anim.save_png(str(tmp_path / "py.png"))
+    assert (tmp_path / "cli.png").read_bytes() == (tmp_path / "py.png").read_bytes()
+
+
+def test_images_are_views_and_the_texture_is_float():
+    p, t, v = torus()
+    anim = ibfvs.Animation(p, t, v, size=(80, 60))
+    anim.step(3)
+    image = anim.image()
+    assert image.shape == (60, 80, 4) and not image.flags.owndata
+    tex = anim.texture()
+    assert tex.dtype == np.float32 and tex.shape == (60, 80, 4)
+    assert anim.frame == 3 and anim.size == (80, 60)
+
+
+def test_live_settings_keep_the_animation_and_others_rebuild():
+    p, t, v = torus()
+    anim = ibfvs.Animation(p, t, v, size=SIZE)
+    anim.step(4)
+    anim.set(alpha=0.3, background=(0, 0, 0), camera=(40, 20, 0))
+    assert anim.frame == 4
+    anim.step(1)
+    assert (anim.image()[0, 0, :3] == 0).all()  # the new background, live
+    anim.set(scale=4)  # a new noise grid: the scene is prepared again
+    assert anim.frame == 0
+    with pytest.raises(ValueError, match="alpha"):
+        anim.set(alpha=7)
+
+
+def test_lock_iterate_and_video(tmp_path):
+    p, t, v = torus()
+    anim = ibfvs.Animation(p, t, v, size=SIZE)
+    frames = list(anim.frames(3))
+    assert len(frames) == 3 and frames[0].shape == (64, 64, 3)
+    anim.lock()
+    assert anim.locked
+    files = anim.export(str(tmp_path / "torus.glb"))
+    assert files == [str(tmp_path / "torus.glb"), str(tmp_path / "torus.png")]
+    assert all(os.path.getsize(f) > 100 for f in files)
+    with pytest.raises(ValueError, match="must be a .obj"):
+        anim.export(str(tmp_path / "torus.stl"))
+    path = anim.write_video(str(tmp_path / "a.mp4"), 10)
+    assert os.path.getsize(path) > 1000
+    assert anim._repr_png_()[:8] == b"\x89PNG\r\n\x1a\n"
+    video = anim.video(frames=3)
+    assert video.data[4:8] == b"ftyp" and "<video" in video._repr_html_()
+
+
+def test_errors_are_exceptions_with_a_reason():
+    p, t, v = torus()
+    bad = p.copy()
+    bad[5, 1] = np.nan
+    with pytest.raises(ValueError, match="point 5 has a non-finite"):
+        ibfvs.render(bad, t, v, size=SIZE, frames=1)
+    out_of_range = t.copy()
+    out_of_range[3, 2] = len(p) + 7
+    with pytest.raises(ValueError, match="triangle 3 refers to point"):
+        ibfvs.render(p, out_of_range, v, size=SIZE, frames=1)
+    with pytest.raises(ValueError, match="shape"):
+        ibfvs.render(p[:, :2], t, v, size=SIZE, frames=1)
+    with pytest.raises(TypeError, match="integers"):
+        ibfvs.render(p, t.astype(float), v, size=SIZE, frames=1)
+    with pytest.raises(ValueError, match="rows"):
+        ibfvs.render(p, t, v[:10], size=SIZE, frames=1)
+    with pytest.raises(TypeError, match="unknown option 'alfa'"):
+        ibfvs.render(p, t, v, size=SIZE, frames=1, alfa=0.2)
+    with pytest.raises(ValueError, match="step"):
+        ibfvs.render(p, t, v, size=SIZE, frames=1, step=-1)
+    with pytest.raises(ValueError, match="no such file"):
+        ibfvs.Animation("nowhere.off")
+
+
+def test_the_gil_is_released_while_rendering():
+    p, t, v = torus()
+    anim = ibfvs.Animation(p, t, v, size=(256, 256))
+    ticks = 0
+    worker = threading.Thread(target=anim.step, args=(60,))
+    worker.start()
+    while worker.is_alive():
+        ticks += 1
+    worker.join()
+    assert anim.frame == 60
+    assert ticks > 1000  # Python ran beside the rendering
+
+
+def test_keys_match_the_command():
+    names = [k[0] for k in ibfvs.keys()]
+    assert "alpha" in names and "image_normalize" in names and "style" in names

@@ -314,6 +314,7 @@ PYBIND11_MODULE(_ibfvs, m) {
   using namespace ibfvs;
   using ibfvs::python::Animation;
   m.doc() = "ibfvs: image based flow visualization for curved surfaces (the C++ core)";
+  gl::tune_process_for_rendering();  // as the command does: llvmpipe's threads and memory
 #ifdef IBFVS_HAVE_VTK
   vtk::install_vtk_io();
   m.attr("has_vtk") = true;

@@ -1,20 +1,17 @@
 // ibfvs: dense, animated, flow-aligned texture on curved surfaces
 // (van Wijk, Image Based Flow Visualization for Curved Surfaces, 2003).
 
-#include <malloc.h>
-#include <stdlib.h>
-
 #include <cstdio>
 #include <exception>
 #include <memory>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 
 #include "ibfvs/bench_command.h"
 #include "ibfvs/geometry_command.h"
+#include "ibfvs/gl/context.h"
 #include "ibfvs/quality_command.h"
 #include "ibfvs/render_command.h"
 #include "ibfvs/view_command.h"
@@ -23,18 +20,7 @@
 #endif
 
 int main(int argc, char** argv) {
-  // Mesa's llvmpipe allocates and frees large buffers every frame; glibc's
-  // default trimming hands them back to the kernel, and every frame then
-  // page-faults them in again (a quarter of the time in kernel page faults, 3x
-  // slower on the 75K-triangle bunny). Keep freed memory for reuse instead.
-  mallopt(M_MMAP_THRESHOLD, 32 << 20);
-  mallopt(M_TRIM_THRESHOLD, 1 << 30);
-  // llvmpipe runs one rasteriser thread per core. On two cores a third thread
-  // keeps both busy while one waits (the subdivided cow at 512x512: 150-180 ->
-  // 190-205 fps with glFinish per frame, no change at other sizes). Measured
-  // on two cores only, so only set there; the user's LP_NUM_THREADS wins and
-  // GPU drivers ignore it.
-  if (std::thread::hardware_concurrency() == 2) setenv("LP_NUM_THREADS", "3", 0);
+  ibfvs::gl::tune_process_for_rendering();
   CLI::App app{"ibfvs: image based flow visualization for curved surfaces"};
   app.require_subcommand(1, 1);
 #ifdef IBFVS_HAVE_VTK

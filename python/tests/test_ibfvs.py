@@ -186,3 +186,28 @@ def test_the_gil_is_released_while_rendering():
 def test_keys_match_the_command():
     names = [k[0] for k in ibfvs.keys()]
     assert "alpha" in names and "image_normalize" in names and "style" in names
+
+
+SQUARE_VTK = """# vtk DataFile Version 4.2
+square
+ASCII
+DATASET POLYDATA
+POINTS 4 float
+0 0 0  1 0 0  1 1 0  0 1 0
+POLYGONS 1 5
+4 0 1 2 3
+POINT_DATA 4
+VECTORS v float
+1 0 0  1 0 0  1 0 0  1 0 0
+"""
+
+
+@pytest.mark.skipif(not ibfvs.has_vtk, reason="built without ParaView's VTK")
+def test_vtk_files_through_the_dataset_readers(tmp_path):
+    path = tmp_path / "square.vtk"
+    path.write_text(SQUARE_VTK)
+    anim = ibfvs.Animation(path, vectors="v", size=SIZE)
+    anim.step(3)
+    assert anim.image().shape == (64, 64, 4)
+    with pytest.raises(ValueError, match="no such array"):
+        ibfvs.Animation(path, vectors="U", size=SIZE)

@@ -1,10 +1,14 @@
 #include "ibfvs/gl/context.h"
 
+#include <malloc.h>
+#include <stdlib.h>
+
 #include <cstdlib>
 #include <cstring>
 #include <map>
 #include <mutex>
 #include <sstream>
+#include <thread>
 
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>
@@ -189,6 +193,12 @@ HeadlessContext& HeadlessContext::operator=(HeadlessContext&&) noexcept = defaul
 void HeadlessContext::make_current() {
   if (!eglMakeCurrent(impl_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, impl_->context))
     throw GraphicsError("EGL: cannot make the context current");
+}
+
+void tune_process_for_rendering() {
+  mallopt(M_MMAP_THRESHOLD, 32 << 20);
+  mallopt(M_TRIM_THRESHOLD, 1 << 30);
+  if (std::thread::hardware_concurrency() == 2) setenv("LP_NUM_THREADS", "3", 0);
 }
 
 void HeadlessContext::release_current() {

@@ -2,7 +2,7 @@
 # Wall shear stress on a motorbike and rider, computed with Debian's OpenFOAM
 # (the simpleFoam motorBike tutorial of openfoam-examples), for ibfvs's
 # oil-flow pictures (docs/cfd.md). Not part of the set-up: it takes 7 to 15
-X
+# minutes on two cores. Output in git-ignored data/cfd/motorBike:
 #   motorBike.foam            the case, for ibfvs and ParaView (time 100..500)
 #   VTK/                      foamToVTK of the last time: the bike's patches
 #   motorBike.vtp             the same surface, one file: wallShearStress, p, yPlus, U

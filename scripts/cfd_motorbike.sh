@@ -9,6 +9,7 @@
 #                             (cell data)
 #
 # Usage: scripts/cfd_motorbike.sh [ITERATIONS]   (default 500, the tutorial's)
+# IBFVS_CFD_DIR=FOLDER puts the case elsewhere.
 #
 # Differences from the tutorial's Allrun: 2 MPI ranks instead of 6; no
 # potentialFoam (it diverges in Debian's 1912 build; simpleFoam starts from
@@ -17,7 +18,7 @@
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 iterations="${1:-500}"
-case_dir="$root/data/cfd/motorBike"
+case_dir="${IBFVS_CFD_DIR:-$root/data/cfd/motorBike}"  # IBFVS_CFD_DIR: elsewhere
 examples=/usr/share/doc/openfoam-examples/examples
 tutorial="$examples/incompressible/simpleFoam/motorBike"
 log() { printf '%s  %s\n' "$(date +%T)" "$*"; }
@@ -87,7 +88,7 @@ run wallShearStress simpleFoam -postProcess -func wallShearStress -noZero
 run yPlus simpleFoam -postProcess -func yPlus -noZero
 touch motorBike.foam
 run foamToVTK foamToVTK -latestTime -no-internal -one-boundary -patches '("motorBike.*")'
-cp VTK/motorBike_*/boundary.vtp motorBike.vtp
+cp VTK/*/boundary.vtp motorBike.vtp  # VTK/<case folder name>_<time>/
 end=$(date +%s)
 cells=$(grep -m1 -oE 'cells: +[0-9]+' log.snappyHexMesh | tail -n1 || true)
 log "done in $((end - start)) s (${cells:-cells: see log.snappyHexMesh}); the case: $case_dir/motorBike.foam"

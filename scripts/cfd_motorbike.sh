@@ -90,5 +90,5 @@ touch motorBike.foam
 run foamToVTK foamToVTK -latestTime -no-internal -one-boundary -patches '("motorBike.*")'
 cp VTK/*/boundary.vtp motorBike.vtp  # VTK/<case folder name>_<time>/
 end=$(date +%s)
-cells=$(grep -m1 -oE 'cells: +[0-9]+' log.snappyHexMesh | tail -n1 || true)
+cells=$(grep -oE 'cells: *[0-9]+' log.snappyHexMesh | tail -n1 || true)
 log "done in $((end - start)) s (${cells:-cells: see log.snappyHexMesh}); the case: $case_dir/motorBike.foam"

@@ -9,6 +9,7 @@
 #include <mutex>
 #include <new>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <string>
 #include <unordered_map>
@@ -283,9 +284,19 @@ void precheck_legacy(const Guard& g) {
       if (i >= rest.size()) g.fail(where + ": a count is missing");
       return header_count(rest[i], where, g);
     };
-    if (field_arrays > 0 && !rest.empty() && rest.size() >= 3 &&
-        std::isalpha(static_cast<unsigned char>(line[0]))) {
-      // A FIELD's array: NAME COMPONENTS TUPLES TYPE.
+    // A FIELD's array: NAME COMPONENTS TUPLES TYPE. Only a line of exactly
+    // that form counts (binary data or "nan" values may start with a letter).
+    const auto digits = [](const std::string& w) {
+      return !w.empty() && w.size() < 19 &&
+             std::all_of(w.begin(), w.end(), [](unsigned char c) { return std::isdigit(c); });
+    };
+    static const std::set<std::string, std::less<>> kTypes = {
+        "bit",          "unsigned_char", "char",        "signed_char",   "unsigned_short",
+        "short",        "unsigned_int",  "int",         "unsigned_long", "long",
+        "vtktypeint64", "vtktypeuint64", "float",       "double",        "vtkIdType",
+        "vtkidtype",    "string",        "utf8_string", "variant"};
+    if (field_arrays > 0 && rest.size() == 3 && digits(rest[0]) && digits(rest[1]) &&
+        kTypes.count(rest[2])) {
       --field_arrays;
       check_values(header_count(rest[0], where, g) * header_count(rest[1], where, g), size, where,
                    g);

@@ -508,6 +508,10 @@ TEST_F(VtkIo, BadLegacyFiles) {
   expect_bad(write_file(dir_ / "huge.vtk", legacy("POINTS 400000000000 float\n0 0 0\n", "")), "");
   expect_bad(write_file(dir_ / "huge_cells.vtk", legacy(pts, "POLYGONS 900000000000 4\n3 0 1 2\n")),
              "");
+  expect_bad(write_file(dir_ / "huge_field.vtk",
+                        legacy(pts, "POLYGONS 1 4\n3 0 1 2\n",
+                               "POINT_DATA 3\nFIELD FieldData 1\nwss 3 900000000000 float\n")),
+             "more than the file can hold");
   expect_bad(write_file(dir_ / "range.vtk", legacy(pts, "POLYGONS 1 4\n3 0 1 99\n")),
              "refers to point 99 but there are only 3");
   {

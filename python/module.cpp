@@ -9,6 +9,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -104,9 +105,18 @@ class Animation {
 
   void step(int frames) {
     if (frames < 0) throw SettingError("frames", "must not be negative");
-    py::gil_scoped_release release;
-    const Current current(*this);
-    for (int k = 0; k < frames; ++k) session_->advance();
+    // In chunks, with Ctrl-C (KeyboardInterrupt) checked between them.
+    constexpr int kChunk = 16;
+    for (int done = 0; done < frames;) {
+      const int n = std::min(kChunk, frames - done);
+      {
+        py::gil_scoped_release release;
+        const Current current(*this);
+        for (int k = 0; k < n; ++k) session_->advance();
+      }
+      done += n;
+      if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+    }
   }
 
   py::array image(bool alpha) {

@@ -211,3 +211,19 @@ def test_vtk_files_through_the_dataset_readers(tmp_path):
     assert anim.image().shape == (64, 64, 4)
     with pytest.raises(ValueError, match="no such array"):
         ibfvs.Animation(path, vectors="U", size=SIZE)
+
+
+def test_ctrl_c_interrupts_a_long_step():
+    import _thread
+    import time
+
+    p, t, v = torus()
+    anim = ibfvs.Animation(p, t, v, size=(128, 128))
+    timer = threading.Timer(0.3, _thread.interrupt_main)
+    timer.start()
+    start = time.perf_counter()
+    with pytest.raises(KeyboardInterrupt):
+        anim.step(100000)
+    assert time.perf_counter() - start < 30
+    assert 0 < anim.frame < 100000
+    anim.step(1)  # still usable

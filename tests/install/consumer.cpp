@@ -6,6 +6,12 @@
 #include "ibfvs/core/scene_prep.h"
 #include "ibfvs/gl/context.h"
 #include "ibfvs/render/session.h"
+#ifdef CONSUMER_WITH_VTK
+#include <fstream>
+
+#include "ibfvs/core/dataset_io.h"
+#include "ibfvs/vtk/vtk_io.h"
+#endif
 
 int main() {
   ibfvs::Scene scene;
@@ -28,5 +34,13 @@ int main() {
     for (int x = 0; x < image.width; ++x) surface += !grey(x, y);
   std::printf("consumer: %dx%d, %d surface pixels after %d frames on %s\n", image.width,
               image.height, surface, session.frame(), context.renderer().c_str());
-  return image.width == 96 && grey(0, 0) && surface > 2000 ? 0 : 1;
+  bool dataset_ok = true;
+#ifdef CONSUMER_WITH_VTK
+  ibfvs::vtk::install_vtk_io();
+  std::ofstream("consumer.vtk") << "# vtk DataFile Version 4.2\nq\nASCII\nDATASET POLYDATA\n"
+                                   "POINTS 4 float\n0 0 0 1 0 0 1 1 0 0 1 0\nPOLYGONS 1 5\n4 0 1 2 3\n";
+  dataset_ok = ibfvs::read_dataset({"consumer.vtk", {}}).mesh.triangle_count() == 2;
+  std::printf("consumer: read consumer.vtk through ibfvs::vtk: %s\n", dataset_ok ? "ok" : "wrong");
+#endif
+  return image.width == 96 && grey(0, 0) && surface > 2000 && dataset_ok ? 0 : 1;
 }

@@ -260,8 +260,7 @@ TEST_F(RenderCommand, UnsteadyFields) {
                "--field-step: cannot be combined with subdivide");
   expect_error("render --mesh f0.ply --time 3:1 --out x.png",
                "--time: the range 3:1 runs backwards");
-  expect_error("render --mesh f0.ply --time 0:2 --out x.png",
-               "--time: a range A:B needs a series");
+  expect_error("render --mesh f0.ply --time 0:2 --out x.png", "--time: a range A:B needs a series");
   expect_error("render --mesh f0.ply --time x --out x.png", "--time");
   expect_error("render --mesh f0.ply --frames-per-step 0 --out x.png", "--frames-per-step");
   const std::string coads = std::string(IBFVS_TEST_DATA_DIR) + "/earth/coads_climatology.cdf";

@@ -37,8 +37,9 @@ int main() {
   bool dataset_ok = true;
 #ifdef CONSUMER_WITH_VTK
   ibfvs::vtk::install_vtk_io();
-  std::ofstream("consumer.vtk") << "# vtk DataFile Version 4.2\nq\nASCII\nDATASET POLYDATA\n"
-                                   "POINTS 4 float\n0 0 0 1 0 0 1 1 0 0 1 0\nPOLYGONS 1 5\n4 0 1 2 3\n";
+  std::ofstream("consumer.vtk")
+      << "# vtk DataFile Version 4.2\nq\nASCII\nDATASET POLYDATA\n"
+         "POINTS 4 float\n0 0 0 1 0 0 1 1 0 0 1 0\nPOLYGONS 1 5\n4 0 1 2 3\n";
   dataset_ok = ibfvs::read_dataset({"consumer.vtk", {}}).mesh.triangle_count() == 2;
   std::printf("consumer: read consumer.vtk through ibfvs::vtk: %s\n", dataset_ok ? "ok" : "wrong");
 #endif

@@ -17,7 +17,6 @@
 #include <memory>
 #include <mutex>
 #include <optional>
-#include <set>
 #include <string>
 #include <vector>
 
@@ -42,12 +41,6 @@ namespace ibfvs::python {
 namespace {
 
 using Options = std::vector<std::pair<std::string, std::string>>;
-
-// Keys whose change the renderer takes live (as the viewer's panel does).
-const std::set<std::string, std::less<>> kLiveKeys = {
-    "alpha",       "beta",        "vg",         "profile",     "background", "surface_color",
-    "color_map",   "color_range", "beta_range", "advect_view", "inject",     "spike_width",
-    "noise_space", "filter",      "contrast",   "resample"};
 
 Scene scene_from(const std::string& scene_file, const Options& options) {
   Scene scene = scene_file.empty() ? Scene{} : read_scene(scene_file);
@@ -139,8 +132,8 @@ class Animation {
       settings.push_back({key, text, ""});
       camera = camera || key == "camera" || key == "look_at" || key == "fov" || key == "ortho";
       step = step || key == "step";
-      live = live && (kLiveKeys.count(key) || key == "camera" || key == "look_at" || key == "fov" ||
-                      key == "ortho" || key == "step" || key == "orbit");
+      live = live && (is_live_texture_key(key) || key == "camera" || key == "look_at" ||
+                      key == "fov" || key == "ortho" || key == "step" || key == "orbit");
     }
     apply_settings(desc, settings);
     const Current current(*this);

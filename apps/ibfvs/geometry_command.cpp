@@ -52,10 +52,7 @@ int run_geometry(const GeometryOptions& o) {
     const std::string ext = lower_extension(o.out);
     if (ext != ".ply" && ext != ".vtp")
       throw InputError("--out: must be a .ply or .vtp file, got '" + o.out + "'");
-    if (ext == ".vtp" && !dataset_io_available())
-      throw InputError("--out: " + o.out +
-                       ": .vtp needs ibfvs built with ParaView's VTK (Debian's paraview-dev); "
-                       "this build left it out");
+    if (ext == ".vtp") require_dataset_io(o.out, "--out");
     const fs::path parent = fs::path(o.out).parent_path();
     std::error_code ec;
     if (!parent.empty() && !fs::is_directory(parent, ec))

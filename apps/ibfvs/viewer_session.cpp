@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
-#include <set>
 
 #include <glm/matrix.hpp>
 #include <glm/trigonometric.hpp>
@@ -91,10 +90,6 @@ void ViewerSession::load(const std::string& path) {
 void ViewerSession::set(const std::string& key, const std::string& value) {
   Scene desc = desc_;
   apply_setting(desc, key, value);
-  static const std::set<std::string, std::less<>> live = {
-      "alpha",       "beta",        "vg",         "profile",     "background", "surface_color",
-      "color_map",   "color_range", "beta_range", "advect_view", "inject",     "spike_width",
-      "noise_space", "filter",      "contrast",   "resample"};
   if (key == "step") {
     session_->set_dt(session_->dt() * desc.step / desc_.step);
     apply_live(desc);  // the image-normalised step too
@@ -102,7 +97,7 @@ void ViewerSession::set(const std::string& key, const std::string& value) {
     set_noise_scale(desc.scale);
   } else if (key == "tangent") {
     set_tangent(desc.tangent);
-  } else if (live.count(key)) {
+  } else if (is_live_texture_key(key)) {
     apply_live(desc);
   } else if (!reload(desc)) {
     throw InputError(message);

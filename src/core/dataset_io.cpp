@@ -27,9 +27,8 @@ DatasetIo require(const fs::path& path) {
     const std::lock_guard lock(io_mutex());
     if (installed()) return *installed();
   }
-  throw InputError(path.string() +
-                   ": VTK and OpenFOAM files need ibfvs built with ParaView's VTK (Debian's "
-                   "paraview-dev); this build left them out");
+  require_dataset_io(path);
+  return {};  // not reached
 }
 
 }  // namespace
@@ -42,6 +41,13 @@ void install_dataset_io(DatasetIo io) {
 bool dataset_io_available() {
   const std::lock_guard lock(io_mutex());
   return installed().has_value();
+}
+
+void require_dataset_io(const fs::path& path, const std::string& what) {
+  if (!dataset_io_available())
+    throw InputError((what.empty() ? "" : what + ": ") + path.string() +
+                     ": VTK and OpenFOAM files need ibfvs built with ParaView's VTK (Debian's "
+                     "paraview-dev); this build left them out");
 }
 
 bool is_dataset_path(const fs::path& path) {

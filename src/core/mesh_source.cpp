@@ -324,12 +324,7 @@ LoadedMesh load_mesh(const std::string& path, int subdivide, bool gpu_order,
       out.read_step = std::move(d.step);
     }
   } else {
-    if (!blocks.empty())
-      throw SettingError("blocks",
-                         path + ": has no blocks (only .vtm files and OpenFOAM cases do)");
-    MeshReadReport report;
-    out.mesh = read_mesh(path, &report);
-    out.warnings = report.warnings;
+    out.mesh = read_any_mesh(path, blocks, &out.warnings);
     out.name = path;
   }
   finish_loaded(out, subdivide, gpu_order);

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <set>
+#include <string_view>
 
 #include <glm/trigonometric.hpp>
 
@@ -120,6 +122,14 @@ void apply_texture_settings(const Scene& s, RenderSettings& settings) {
     settings.color_range = {s.color_range->lo, s.color_range->hi};
   if (s.beta_range && !s.beta_range->percentile)
     settings.beta_range = {s.beta_range->lo, s.beta_range->hi};
+}
+
+bool is_live_texture_key(std::string_view key) {
+  static const std::set<std::string_view> live = {
+      "alpha",       "beta",        "vg",         "profile",     "background", "surface_color",
+      "color_map",   "color_range", "beta_range", "advect_view", "inject",     "spike_width",
+      "noise_space", "filter",      "contrast",   "resample"};
+  return live.count(key) > 0;
 }
 
 glm::vec3 thinnest_axis(const TriMesh& mesh) {

@@ -20,10 +20,7 @@ void check_export_path(const fs::path& path, const std::string& what) {
   if (ext != ".obj" && ext != ".gltf" && ext != ".glb" && ext != ".vtp")
     throw InputError(what + ": must be a .obj, .gltf, .glb or .vtp file, got '" + path.string() +
                      "'");
-  if (ext == ".vtp" && !dataset_io_available())
-    throw InputError(what + ": " + path.string() +
-                     ": .vtp needs ibfvs built with ParaView's VTK (Debian's paraview-dev); "
-                     "this build left it out");
+  if (ext == ".vtp") require_dataset_io(path, what);
 }
 
 ExportReport export_textured_model(const IbfvsRenderer& renderer, const TriMesh& mesh,

@@ -70,6 +70,10 @@ void install_dataset_io(DatasetIo io);
 /// True when the implementation is installed.
 bool dataset_io_available();
 
+/// Throws InputError "[WHAT: ]PATH: VTK and OpenFOAM files need ibfvs built
+/// with ParaView's VTK ..." unless the implementation is installed.
+void require_dataset_io(const std::filesystem::path& path, const std::string& what = {});
+
 /// True for a path the dataset formats read: .vtk .vtp .vtu .vtm .pvd .foam
 /// (any case) or a folder holding an OpenFOAM case (system/controlDict).
 bool is_dataset_path(const std::filesystem::path& path);

@@ -51,6 +51,10 @@ struct PreparedScene {
 /// which need the mesh and camera, are left as they are.
 void apply_texture_settings(const Scene& scene, RenderSettings& settings);
 
+/// True for a key whose change apply_texture_settings carries to a running
+/// renderer (alpha, beta, vg, profile, colours, filter, contrast, ...).
+bool is_live_texture_key(std::string_view key);
+
 /// Checks the scene and prepares it. Throws InputError naming the file, or
 /// SettingError naming the key whose value is wrong.
 PreparedScene prepare_scene(const Scene& scene);

@@ -177,6 +177,10 @@ void Framebuffer::attach_depth(const Renderbuffer& depth) {
   glNamedFramebufferRenderbuffer(id(), GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth.id());
 }
 
+void Framebuffer::attach_depth(const Texture2D& depth) {
+  glNamedFramebufferTexture(id(), GL_DEPTH_ATTACHMENT, depth.id(), 0);
+}
+
 void Framebuffer::finish(unsigned color_count) {
   std::vector<GLenum> buffers(color_count);
   for (unsigned i = 0; i < color_count; ++i) buffers[i] = GL_COLOR_ATTACHMENT0 + i;
@@ -356,6 +360,16 @@ void draw_triangles(std::size_t index_count, bool index32) {
   glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(index_count),
                  index32 ? GL_UNSIGNED_INT : GL_UNSIGNED_SHORT, nullptr);
 }
+void prepare_host_draw() {
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LEQUAL);
+  glDepthMask(GL_TRUE);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  glDisable(GL_BLEND);
+  glDisable(GL_CULL_FACE);
+  glDisable(GL_SCISSOR_TEST);
+}
+
 void finish() {
   glFinish();
 }
@@ -367,6 +381,18 @@ SavedState::SavedState() {
   glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &vertex_array_);
   glGetIntegerv(GL_TEXTURE_BINDING_2D, &texture_);
   glGetIntegerv(GL_VIEWPORT, viewport_);
+  glGetIntegerv(GL_ACTIVE_TEXTURE, &active_texture_);
+  for (int u = 0; u < 5; ++u) {
+    glActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + u));
+    glGetIntegerv(GL_TEXTURE_BINDING_2D, &unit_textures_[u]);
+  }
+  glActiveTexture(static_cast<GLenum>(active_texture_));
+  glGetIntegerv(GL_DEPTH_FUNC, &depth_func_);
+  glGetIntegerv(GL_CULL_FACE_MODE, &cull_face_mode_);
+  glGetIntegerv(GL_FRONT_FACE, &front_face_);
+  glGetBooleanv(GL_DEPTH_WRITEMASK, &depth_mask_);
+  glGetBooleanv(GL_COLOR_WRITEMASK, color_mask_);
+  scissor_ = glIsEnabled(GL_SCISSOR_TEST) == GL_TRUE;
   depth_test_ = glIsEnabled(GL_DEPTH_TEST) == GL_TRUE;
   cull_face_ = glIsEnabled(GL_CULL_FACE) == GL_TRUE;
   blend_ = glIsEnabled(GL_BLEND) == GL_TRUE;
@@ -387,7 +413,21 @@ SavedState::~SavedState() {
   glBindFramebuffer(GL_READ_FRAMEBUFFER, alive(read_framebuffer_, glIsFramebuffer));
   glUseProgram(alive(program_, glIsProgram));
   glBindVertexArray(alive(vertex_array_, glIsVertexArray));
+  for (int u = 0; u < 5; ++u) {
+    glActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + u));
+    glBindTexture(GL_TEXTURE_2D, alive(unit_textures_[u], glIsTexture));
+  }
+  glActiveTexture(static_cast<GLenum>(active_texture_));
   glBindTexture(GL_TEXTURE_2D, alive(texture_, glIsTexture));
+  glDepthFunc(static_cast<GLenum>(depth_func_));
+  glCullFace(static_cast<GLenum>(cull_face_mode_));
+  glFrontFace(static_cast<GLenum>(front_face_));
+  glDepthMask(depth_mask_);
+  glColorMask(color_mask_[0], color_mask_[1], color_mask_[2], color_mask_[3]);
+  if (scissor_)
+    glEnable(GL_SCISSOR_TEST);
+  else
+    glDisable(GL_SCISSOR_TEST);
   glViewport(viewport_[0], viewport_[1], viewport_[2], viewport_[3]);
   if (depth_test_)
     glEnable(GL_DEPTH_TEST);

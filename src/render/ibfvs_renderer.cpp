@@ -30,7 +30,7 @@ IbfvsRenderer::IbfvsRenderer(const RenderSettings& settings) : settings_(setting
   color_map_ = gl::Texture2D(256, 1, gl::Format::RGBA32F, true);
   const int w = settings_.width, h = settings_.height;
   output_ = gl::Texture2D(w, h, gl::Format::RGBA8, false);
-  depth_ = gl::Renderbuffer(w, h, gl::Format::Depth24);
+  depth_ = gl::Texture2D(w, h, gl::Format::Depth24, false);
   stats_ = gl::Texture2D(1, 1, gl::Format::RGBA32F, false);
   stats_framebuffer_ = gl::Framebuffer::create();
   stats_framebuffer_.attach_color(0, stats_);
@@ -60,6 +60,8 @@ IbfvsRenderer::IbfvsRenderer(const RenderSettings& settings) : settings_(setting
   grid_spike_width_ = grid_program_.location("u_spike_width");
   grid_seed_ = grid_program_.location("u_seed");
   empty_vao_ = gl::VertexArray::create();
+  host_program_ = gl::Program(shaders::kGridVertex, shaders::kHostFragment);
+  host_origin_ = host_program_.location("u_origin");
   apply_settings();
   static_cast<void>(current_variant());  // compile now: a shader error shows at construction
   reset();
@@ -375,7 +377,12 @@ void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
     gl::draw_triangles(index_count_, true);
     // The statistics change slowly: every kStatsEvery frames is enough, and
     // on llvmpipe each extra pass ends the frame's scene early.
-    if (settings_.contrast > 0.0f && frame_ % kStatsEvery == 0) statistics_pass(next);
+    if (settings_.contrast > 0.0f && frame_ % kStatsEvery == 0) {
+      if (defer_statistics_)
+        statistics_due_ = true;
+      else
+        statistics_pass(next, frame_);
+    }
   }
   displayed_ = next;
   texture_shift_ = glm::vec2(0.0f);
@@ -395,7 +402,14 @@ void IbfvsRenderer::clear_targets(gl::Framebuffer& fb) const {
   fb.clear_depth();  // the depth buffer is shared by both framebuffers
 }
 
-void IbfvsRenderer::statistics_pass(int texture_index) {
+void IbfvsRenderer::run_deferred_statistics() {
+  if (!statistics_due_) return;
+  statistics_due_ = false;
+  const gl::SavedState saved;
+  statistics_pass(displayed_, frame_ - 1);
+}
+
+void IbfvsRenderer::statistics_pass(int texture_index, int frame) {
   const StatsProgram& sp = stats_program_[colour_texture_ ? 0 : 1];
   stats_framebuffer_.bind();
   gl::set_viewport(stats_.width(), stats_.height());
@@ -406,7 +420,7 @@ void IbfvsRenderer::statistics_pass(int texture_index) {
                                           static_cast<float>(settings_.height)));
   sp.program.set(sp.stats_size, display_stats_size(settings_.width, settings_.height));
   // Golden-ratio steps: the grid visits other pixels every frame.
-  const auto f = static_cast<float>(frame_);
+  const auto f = static_cast<float>(frame);
   sp.program.set(sp.offset,
                  glm::vec2(std::fmod(f * 0.6180340f, 1.0f), std::fmod(f * 0.3819660f, 1.0f)));
   texture_[texture_index].bind(0);
@@ -500,6 +514,46 @@ std::vector<std::uint8_t> IbfvsRenderer::read_coverage() const {
   std::vector<std::uint8_t> covered(depth.pixels.size());
   for (std::size_t i = 0; i < covered.size(); ++i) covered[i] = depth.pixels[i] < 1.0f ? 1 : 0;
   return covered;
+}
+
+void IbfvsRenderer::draw_to_host(glm::ivec2 origin) const {
+  const gl::SavedState saved;
+  gl::prepare_host_draw();
+  host_program_.use();
+  host_program_.set(host_origin_, origin);
+  output_.bind(0);
+  depth_.bind(1);
+  gl::draw_attributeless_triangle(empty_vao_);
+}
+
+void IbfvsRenderer::write_texture_raw(const ImageF& texture) {
+  const int channels = colour_texture_ ? 4 : 2;
+  if (texture.width != settings_.width || texture.height != settings_.height ||
+      texture.channels != channels)
+    throw InputError("renderer: write_texture_raw needs a " + std::to_string(settings_.width) +
+                     "x" + std::to_string(settings_.height) + " image of " +
+                     std::to_string(channels) + " channels");
+  texture_[current_].upload_float(texture.pixels, channels);
+}
+
+ImageF IbfvsRenderer::read_output_raw() const {
+  ImageF image(settings_.width, settings_.height, 4);
+  output_.read_float(image.pixels, 4);
+  return image;
+}
+
+void IbfvsRenderer::write_output_raw(const ImageF& output) {
+  if (output.width != settings_.width || output.height != settings_.height ||
+      output.channels != 4)
+    throw InputError("renderer: write_output_raw needs a " + std::to_string(settings_.width) +
+                     "x" + std::to_string(settings_.height) + " RGBA image");
+  output_.upload_float(output.pixels, 4);
+}
+
+void IbfvsRenderer::set_probe_length(float world) {
+  if (!(world > 0.0f) || !std::isfinite(world))
+    throw InputError("renderer: the probe length must be a positive number");
+  probe_ = world;
 }
 
 void IbfvsRenderer::finish() const {

@@ -85,8 +85,12 @@ void Session::seek(double t) {
 }
 
 void Session::render(const Camera& camera) {
+  render(ViewState{camera.view(), camera.projection()});
+}
+
+void Session::render(const ViewState& view) {
   const gl::SavedState saved;
-  renderer_->render_frame({camera.view(), camera.projection()}, dt_);
+  renderer_->render_frame(view, dt_);
   ++frame_;
 }
 

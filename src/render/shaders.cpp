@@ -481,6 +481,20 @@ std::string ibfvs_fragment_source(const ShaderFeatures& features) {
   return with_defines(features, kIbfvsFragmentBody, features.object_noise);
 }
 
+const char* const kHostFragment = R"(#version 450 core
+layout(binding = 0) uniform sampler2D u_output;
+layout(binding = 1) uniform sampler2D u_depth;
+uniform ivec2 u_origin;  // the host viewport's lower left corner
+out vec4 o_color;
+void main() {
+  ivec2 p = ivec2(gl_FragCoord.xy) - u_origin;
+  float d = texelFetch(u_depth, p, 0).r;
+  if (d >= 1.0) discard;  // no surface: the host's background and other objects stay
+  o_color = vec4(texelFetch(u_output, p, 0).rgb, 1.0);
+  gl_FragDepth = d;
+}
+)";
+
 std::string stats_fragment_source(bool mono_texture) {
   return std::string("#version 450 core\n") + (mono_texture ? "#define IBFVS_MONO_TEXTURE\n" : "") +
          kStatsFragmentBody;

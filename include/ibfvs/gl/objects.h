@@ -95,7 +95,7 @@ enum class Format {
   RG16F,    ///< F_t while it is grey (value, depth); the image-space flow
   RGBA32F,  ///< exact read-back in tests
   R32F,     ///< noise phases
-  Depth24,  ///< depth renderbuffer
+  Depth24,  ///< depth (a renderbuffer, or a texture read with texelFetch)
 };
 
 /// 2D texture with immutable storage, linear filtering, clamped edges.
@@ -133,6 +133,8 @@ class Framebuffer : public Object<delete_framebuffer> {
   static Framebuffer create();
   void attach_color(unsigned index, const Texture2D& texture);
   void attach_depth(const Renderbuffer& depth);
+  /// A depth texture (Format::Depth24), for passes that read the depth later.
+  void attach_depth(const Texture2D& depth);
   /// Enables colour attachments 0..count-1 as draw buffers; throws GraphicsError if incomplete.
   void finish(unsigned color_count);
   void bind() const;
@@ -180,6 +182,10 @@ void draw_triangles(std::size_t index_count, bool index32);
 /// One triangle of three vertices with no attributes (the shader places them
 /// from gl_VertexID), for full-viewport passes; `vao` is any vertex array.
 void draw_attributeless_triangle(const VertexArray& vao);
+/// State for drawing into a host's framebuffer (the one bound, its viewport):
+/// depth test LEQUAL with depth writes, all colour channels, no blending,
+/// culling or scissor. SavedState puts the host's back.
+void prepare_host_draw();
 void finish();
 
 /// Saves the bindings a host application may rely on (draw and read
@@ -197,7 +203,10 @@ class SavedState {
  private:
   int draw_framebuffer_ = 0, read_framebuffer_ = 0, program_ = 0, vertex_array_ = 0;
   int texture_ = 0, viewport_[4] = {0, 0, 0, 0};
-  bool depth_test_ = false, cull_face_ = false, blend_ = false;
+  int active_texture_ = 0, unit_textures_[5] = {0, 0, 0, 0, 0};  // units 0-4, which ibfvs binds
+  int depth_func_ = 0, cull_face_mode_ = 0, front_face_ = 0;
+  unsigned char depth_mask_ = 1, color_mask_[4] = {1, 1, 1, 1};
+  bool depth_test_ = false, cull_face_ = false, blend_ = false, scissor_ = false;
   int blend_func_[4] = {1, 0, 1, 0};
   float blend_color_[4] = {0, 0, 0, 0};
 };

@@ -142,6 +142,33 @@ class IbfvsRenderer {
   /// part of a window of that size right of `left` pixels (a side panel) with
   /// its aspect kept, the rest in the background colour.
   void present(int window_width, int window_height, int left = 0) const;
+  /// Draws the last frame into the framebuffer bound now (a host's, such as
+  /// ParaView's) over its viewport, which must be the image size and start at
+  /// `origin`: F where the surface is, with the surface's depth, so that the
+  /// host's other objects hide it and it hides them as their own would; the
+  /// rest of the host's picture stays. Leaves the host's state as it was.
+  void draw_to_host(glm::ivec2 origin) const;
+  /// Replaces F_t (as read_texture_raw gives it: same size and channels), for
+  /// the depth compositing of a distributed render (core/composite.h).
+  void write_texture_raw(const ImageF& texture);
+  /// F as stored, RGBA float: the alpha channel holds D before the contrast
+  /// stage, which the contrast statistics read.
+  [[nodiscard]] ImageF read_output_raw() const;
+  /// Replaces F (as read_output_raw gives it), for the same compositing.
+  void write_output_raw(const ImageF& output);
+  /// A distributed render composites F_t and F after each frame; the
+  /// contrast statistics must then read the composited images: with `on`,
+  /// render_frame leaves its statistics pass for run_deferred_statistics().
+  void defer_statistics(bool on) { defer_statistics_ = on; }
+  /// The statistics pass render_frame left (nothing when none is due).
+  void run_deferred_statistics();
+  /// True when render_frame left a statistics pass (contrast on, every
+  /// kStatsEvery frames): F must then be composited too.
+  [[nodiscard]] bool statistics_due() const { return statistics_due_; }
+  /// World length of the probe step that projects a vector's direction
+  /// (set_mesh sets 1/1000 of the mesh's diagonal); pieces of one mesh on
+  /// several processes take the whole mesh's, so that they advect alike.
+  void set_probe_length(float world);
   /// Blocks until the GPU has finished every submitted frame.
   void finish() const;
 
@@ -160,7 +187,9 @@ class IbfvsRenderer {
     Uniforms u{};
     std::uint64_t applied = 0;  // settings_version_ last set
   };
-  void statistics_pass(int texture_index);  // for the contrast stage of the next frame
+  void statistics_pass(int texture_index, int frame);  // for the contrast stage of the next frame
+  bool defer_statistics_ = false;
+  bool statistics_due_ = false;
   void build_framebuffers();
   void clear_targets(gl::Framebuffer& fb) const;
   [[nodiscard]] shaders::ShaderFeatures features() const;
@@ -198,7 +227,9 @@ class IbfvsRenderer {
   gl::Program grid_program_;
   gl::VertexArray empty_vao_;  // for the attributeless grid pass
   int grid_noise_time_ = -1, grid_profile_ = -1, grid_spike_width_ = -1, grid_seed_ = -1;
-  gl::Renderbuffer depth_;
+  gl::Texture2D depth_;  // a texture: draw_to_host reads it
+  gl::Program host_program_;
+  int host_origin_ = -1;
   gl::Framebuffer framebuffer_[2];  // [i] draws into texture_[i], output_ (, flow_)
   gl::Buffer vertices_;
   gl::Buffer field_;

@@ -37,6 +37,8 @@ class Session {
   /// One frame seen by `camera` at the current time (the viewer's way:
   /// it moves the camera and the time itself).
   void render(const Camera& camera);
+  /// The same with the host's own matrices (ParaView's camera and actor).
+  void render(const ViewState& view);
   /// Moves an unsteady field to time t, in steps (looping); nothing for a steady one.
   void seek(double t);
 

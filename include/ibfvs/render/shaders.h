@@ -30,5 +30,8 @@ extern const char* const kGridVertex;
 std::string grid_fragment_source();
 /// The statistics pass of the contrast stage (grey F_t in two channels, or colour).
 std::string stats_fragment_source(bool mono_texture);
+/// Copies F and the surface's depth into a host's framebuffer (ParaView's),
+/// the background left as the host drew it.
+extern const char* const kHostFragment;
 
 }  // namespace ibfvs::shaders

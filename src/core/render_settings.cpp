@@ -19,6 +19,9 @@ void RenderSettings::validate() const {
     throw SettingError("size", "width and height must be between 1 and 16384 pixels");
   if (!in_unit(alpha)) throw SettingError("alpha", "must be between 0 and 1");
   if (!in_unit(beta)) throw SettingError("beta", "must be between 0 and 1");
+  if (!color_table.empty() && color_table.size() != 256)
+    throw SettingError("color_map", "a host's colour table needs 256 colours, not " +
+                                        std::to_string(color_table.size()));
   if (!(image_step >= 0.0f) || !std::isfinite(image_step))
     throw SettingError("step", "the image-space step must be a finite number of pixels >= 0");
   if (!(filter_length >= 0.0f && filter_length <= 32.0f))

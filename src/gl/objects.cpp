@@ -1,5 +1,7 @@
 #include "ibfvs/gl/objects.h"
 
+#include <array>
+
 #include <algorithm>
 #include <vector>
 
@@ -70,6 +72,49 @@ GLenum channel_format(int channels) {
   }
 }
 
+// Pixel transfers between client memory and GL, whatever a host left bound
+// (ParaView's VTK may leave a pixel buffer object bound, or row lengths and
+// skips set): plain tightly packed rows for the transfer, the host's
+// settings back afterwards.
+class PixelTransfer {
+ public:
+  explicit PixelTransfer(bool pack) : pack_(pack) {
+    glGetIntegerv(buffer_binding(), &buffer_);
+    for (std::size_t i = 0; i < names().size(); ++i) glGetIntegerv(names()[i], &values_[i]);
+    glBindBuffer(target(), 0);
+    for (std::size_t i = 0; i < names().size(); ++i)
+      glPixelStorei(names()[i], names()[i] == alignment() ? 4 : 0);
+  }
+  ~PixelTransfer() {
+    glBindBuffer(target(), static_cast<GLuint>(buffer_));
+    for (std::size_t i = 0; i < names().size(); ++i) glPixelStorei(names()[i], values_[i]);
+  }
+  PixelTransfer(const PixelTransfer&) = delete;
+  PixelTransfer& operator=(const PixelTransfer&) = delete;
+
+ private:
+  GLenum target() const { return pack_ ? GL_PIXEL_PACK_BUFFER : GL_PIXEL_UNPACK_BUFFER; }
+  GLenum buffer_binding() const {
+    return pack_ ? GL_PIXEL_PACK_BUFFER_BINDING : GL_PIXEL_UNPACK_BUFFER_BINDING;
+  }
+  GLenum alignment() const { return pack_ ? GL_PACK_ALIGNMENT : GL_UNPACK_ALIGNMENT; }
+  const std::array<GLenum, 5>& names() const {
+    static const std::array<GLenum, 5> pack = {GL_PACK_ALIGNMENT, GL_PACK_ROW_LENGTH,
+                                               GL_PACK_SKIP_ROWS, GL_PACK_SKIP_PIXELS,
+                                               GL_PACK_IMAGE_HEIGHT};
+    static const std::array<GLenum, 5> unpack = {GL_UNPACK_ALIGNMENT, GL_UNPACK_ROW_LENGTH,
+                                                 GL_UNPACK_SKIP_ROWS, GL_UNPACK_SKIP_PIXELS,
+                                                 GL_UNPACK_IMAGE_HEIGHT};
+    return pack_ ? pack : unpack;
+  }
+  bool pack_;
+  GLint buffer_ = 0;
+  std::array<GLint, 5> values_{};
+};
+
+// Clip distances a host may have enabled (VTK's clipping planes: 6).
+constexpr GLenum kClipDistances = 6;
+
 }  // namespace
 
 Buffer::Buffer(std::span<const std::byte> bytes, bool dynamic) {
@@ -139,7 +184,7 @@ void Texture2D::set_repeat(bool repeat) {
 void Texture2D::upload_float(std::span<const float> data, int channels) {
   const std::size_t need = static_cast<std::size_t>(width_) * height_ * channels;
   if (data.size() < need) throw GraphicsError("texture upload: not enough data");
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  const PixelTransfer transfer(false);
   glTextureSubImage2D(id(), 0, 0, 0, width_, height_, channel_format(channels), GL_FLOAT,
                       data.data());
 }
@@ -151,7 +196,7 @@ void Texture2D::bind(unsigned unit) const {
 void Texture2D::read_float(std::span<float> out, int channels) const {
   const std::size_t need = static_cast<std::size_t>(width_) * height_ * channels;
   if (out.size() < need) throw GraphicsError("texture read: buffer too small");
-  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  const PixelTransfer transfer(true);
   glGetTextureImage(id(), 0, channel_format(channels), GL_FLOAT,
                     static_cast<GLsizei>(need * sizeof(float)), out.data());
 }
@@ -208,7 +253,7 @@ void Framebuffer::read_rgba8(unsigned index, int width, int height,
   if (out.size() < need) throw GraphicsError("framebuffer read: buffer too small");
   glNamedFramebufferReadBuffer(id(), GL_COLOR_ATTACHMENT0 + index);
   glBindFramebuffer(GL_READ_FRAMEBUFFER, id());
-  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  const PixelTransfer transfer(true);
   glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, out.data());
 }
 
@@ -223,7 +268,7 @@ void Framebuffer::read_depth(int width, int height, std::span<float> out) const 
   const std::size_t need = static_cast<std::size_t>(width) * height;
   if (out.size() < need) throw GraphicsError("framebuffer depth read: buffer too small");
   glBindFramebuffer(GL_READ_FRAMEBUFFER, id());
-  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  const PixelTransfer transfer(true);
   glReadPixels(0, 0, width, height, GL_DEPTH_COMPONENT, GL_FLOAT, out.data());
 }
 
@@ -360,6 +405,18 @@ void draw_triangles(std::size_t index_count, bool index32) {
   glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(index_count),
                  index32 ? GL_UNSIGNED_INT : GL_UNSIGNED_SHORT, nullptr);
 }
+void prepare_own_draw() {
+  // Blending off above all: a host's (ParaView's) would blend the noise
+  // grid pass, which writes no alpha, into nothing.
+  glDisable(GL_BLEND);
+  glDisable(GL_SCISSOR_TEST);
+  glDisable(GL_STENCIL_TEST);
+  glDisable(GL_POLYGON_OFFSET_FILL);
+  for (GLenum c = 0; c < kClipDistances; ++c) glDisable(GL_CLIP_DISTANCE0 + c);
+  glDepthMask(GL_TRUE);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+}
+
 void prepare_host_draw() {
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LEQUAL);
@@ -368,6 +425,9 @@ void prepare_host_draw() {
   glDisable(GL_BLEND);
   glDisable(GL_CULL_FACE);
   glDisable(GL_SCISSOR_TEST);
+  glDisable(GL_STENCIL_TEST);
+  glDisable(GL_POLYGON_OFFSET_FILL);
+  for (GLenum c = 0; c < kClipDistances; ++c) glDisable(GL_CLIP_DISTANCE0 + c);
 }
 
 void finish() {
@@ -393,6 +453,10 @@ SavedState::SavedState() {
   glGetBooleanv(GL_DEPTH_WRITEMASK, &depth_mask_);
   glGetBooleanv(GL_COLOR_WRITEMASK, color_mask_);
   scissor_ = glIsEnabled(GL_SCISSOR_TEST) == GL_TRUE;
+  stencil_ = glIsEnabled(GL_STENCIL_TEST) == GL_TRUE;
+  polygon_offset_ = glIsEnabled(GL_POLYGON_OFFSET_FILL) == GL_TRUE;
+  for (GLenum c = 0; c < kClipDistances; ++c)
+    clip_distances_ |= glIsEnabled(GL_CLIP_DISTANCE0 + c) == GL_TRUE ? 1u << c : 0u;
   depth_test_ = glIsEnabled(GL_DEPTH_TEST) == GL_TRUE;
   cull_face_ = glIsEnabled(GL_CULL_FACE) == GL_TRUE;
   blend_ = glIsEnabled(GL_BLEND) == GL_TRUE;
@@ -428,6 +492,16 @@ SavedState::~SavedState() {
     glEnable(GL_SCISSOR_TEST);
   else
     glDisable(GL_SCISSOR_TEST);
+  if (stencil_)
+    glEnable(GL_STENCIL_TEST);
+  else
+    glDisable(GL_STENCIL_TEST);
+  if (polygon_offset_)
+    glEnable(GL_POLYGON_OFFSET_FILL);
+  else
+    glDisable(GL_POLYGON_OFFSET_FILL);
+  for (GLenum c = 0; c < kClipDistances; ++c)
+    if (clip_distances_ & (1u << c)) glEnable(GL_CLIP_DISTANCE0 + c);
   glViewport(viewport_[0], viewport_[1], viewport_[2], viewport_[3]);
   if (depth_test_)
     glEnable(GL_DEPTH_TEST);

@@ -199,7 +199,10 @@ void IbfvsRenderer::apply_settings() {
   grid_program_.set(grid_seed_, settings_.noise.seed);
   std::vector<float> table(256 * 4);
   for (int i = 0; i < 256; ++i) {
-    const glm::vec3 c = color_map(settings_.color_map, static_cast<float>(i) / 255.0f);
+    const glm::vec3 c =
+        settings_.color_table.size() == 256
+            ? settings_.color_table[static_cast<std::size_t>(i)]
+            : color_map(settings_.color_map, static_cast<float>(i) / 255.0f);
     table[4 * i] = c.r, table[4 * i + 1] = c.g, table[4 * i + 2] = c.b, table[4 * i + 3] = 1.0f;
   }
   color_map_.upload_float(table, 4);
@@ -296,6 +299,7 @@ void IbfvsRenderer::set_scalars(std::span<const float> color, std::span<const fl
 }
 
 void IbfvsRenderer::reset() {
+  gl::prepare_own_draw();
   if (colour_texture_ == grey(settings_.background)) allocate_texture(!grey(settings_.background));
   for (auto& fb : framebuffer_) clear_targets(fb);
   stats_framebuffer_.clear_color(0, glm::vec4(0.0f));  // no statistics before the first frame
@@ -327,6 +331,7 @@ void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
   const bool use_previous = settings_.advect_view == AdvectView::Previous && has_previous_;
   const int next = 1 - current_;
   gl::Framebuffer& fb = framebuffer_[next];
+  gl::prepare_own_draw();  // a host's scissor box, masks or stencil test must not apply here
   clear_targets(fb);
   if (index_count_ > 0) {
     const float noise_time = settings_.noise.rate * static_cast<float>(frame_);
@@ -406,6 +411,7 @@ void IbfvsRenderer::run_deferred_statistics() {
   if (!statistics_due_) return;
   statistics_due_ = false;
   const gl::SavedState saved;
+  gl::prepare_own_draw();
   statistics_pass(displayed_, frame_ - 1);
 }
 

@@ -116,11 +116,16 @@ CaptureWindow* capture_window() {
 // error VTK reported since it began.
 class Guard {
  public:
-  explicit Guard(fs::path path) : lock_(vtk_mutex()), path_(std::move(path)) {
+  // capture false: a host application's data in memory (ParaView's), whose
+  // output window stays the host's.
+  explicit Guard(fs::path path, bool capture = true) : path_(std::move(path)), capture_(capture) {
+    if (!capture_) return;
+    lock_ = std::unique_lock<std::recursive_mutex>(vtk_mutex());
     capture_window()->errors.clear();
     capture_window()->warnings.clear();
   }
   void check() const {
+    if (!capture_) return;
     const auto& errors = capture_window()->errors;
     if (!errors.empty()) fail(errors.front());
     // The legacy reader only warns when data runs short ("Error reading
@@ -134,8 +139,9 @@ class Guard {
   const fs::path& path() const { return path_; }
 
  private:
-  std::lock_guard<std::recursive_mutex> lock_;
+  std::unique_lock<std::recursive_mutex> lock_;
   fs::path path_;
+  bool capture_ = true;
 };
 
 std::string lower_extension(const fs::path& p) {
@@ -1103,6 +1109,13 @@ void write_polydata(const TriMesh& mesh, const std::vector<glm::vec2>* uv, const
     g.check();
     if (!ok) g.fail("could not be written");
   });
+}
+
+TriMesh surface_mesh(vtkDataObject* data, const std::string& name) {
+  if (!data) throw InputError(name + ": no data");
+  const Guard g(name, false);
+  std::vector<std::string> warnings;
+  return surface_of(data, {}, nullptr, warnings, g, true);
 }
 
 void install_vtk_io() {

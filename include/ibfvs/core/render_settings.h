@@ -5,6 +5,8 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include <vector>
+
 #include "ibfvs/core/colormap.h"
 #include "ibfvs/core/names.h"
 #include "ibfvs/core/noise.h"
@@ -54,6 +56,10 @@ struct RenderSettings {
   bool object_noise = false;               ///< G on a 3D lattice at the surface point (section 3.6)
   float object_cell = 0.05f;               ///< its spacing in world units
   ColorMap color_map = ColorMap::Viridis;  ///< map for the colour scalar
+  /// Non-empty: exactly 256 colours from the low to the high end of
+  /// color_range, used instead of color_map (a host's lookup table, such as
+  /// ParaView's colour map).
+  std::vector<glm::vec3> color_table;
   bool use_color = false;                  ///< colour F_s by the colour scalar (set_scalars)
   glm::vec2 color_range{0.0f, 1.0f};       ///< scalar values at the two ends of the map
   bool use_beta = false;                   ///< modulate beta by the beta scalar (paper 3.3, step 7)

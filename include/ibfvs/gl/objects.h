@@ -182,6 +182,10 @@ void draw_triangles(std::size_t index_count, bool index32);
 /// One triangle of three vertices with no attributes (the shader places them
 /// from gl_VertexID), for full-viewport passes; `vao` is any vertex array.
 void draw_attributeless_triangle(const VertexArray& vao);
+/// State for ibfvs's own passes into its own framebuffers whatever a host
+/// left: no scissor or stencil test, all colour channels and depth written.
+/// SavedState puts the host's back.
+void prepare_own_draw();
 /// State for drawing into a host's framebuffer (the one bound, its viewport):
 /// depth test LEQUAL with depth writes, all colour channels, no blending,
 /// culling or scissor. SavedState puts the host's back.
@@ -206,7 +210,9 @@ class SavedState {
   int active_texture_ = 0, unit_textures_[5] = {0, 0, 0, 0, 0};  // units 0-4, which ibfvs binds
   int depth_func_ = 0, cull_face_mode_ = 0, front_face_ = 0;
   unsigned char depth_mask_ = 1, color_mask_[4] = {1, 1, 1, 1};
-  bool depth_test_ = false, cull_face_ = false, blend_ = false, scissor_ = false;
+  bool depth_test_ = false, cull_face_ = false, blend_ = false, scissor_ = false, stencil_ = false;
+  bool polygon_offset_ = false;
+  unsigned clip_distances_ = 0;
   int blend_func_[4] = {1, 0, 1, 0};
   float blend_color_[4] = {0, 0, 0, 0};
 };

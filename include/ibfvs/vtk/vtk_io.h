@@ -18,6 +18,8 @@
 
 #include "ibfvs/core/dataset_io.h"
 
+class vtkDataObject;
+
 namespace ibfvs::vtk {
 
 /// Installs these readers and writers into the core (install_dataset_io)
@@ -27,6 +29,14 @@ void install_vtk_io();
 
 /// The VTK version these readers come from, e.g. "9.2.20230111".
 std::string vtk_version();
+
+/// The surface of data already in memory (a host's, such as the geometry
+/// ParaView hands a representation), as read() makes it of a file's: every
+/// block's polygons triangulated or a volume's outer surface, blocks welded,
+/// arrays by name (cell arrays area-weighted to the vertices), no normals
+/// computed. Leaves VTK's output window alone. Throws InputError starting
+/// with `name` when there is no surface.
+TriMesh surface_mesh(vtkDataObject* data, const std::string& name);
 
 /// What dataset_io.h's functions do, callable directly.
 Dataset read(const DatasetRequest& request);

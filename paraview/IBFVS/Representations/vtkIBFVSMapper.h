@@ -1,0 +1,60 @@
+// The mapper behind the "IBFVS" representation: ParaView's composite surface
+// mapper whose Render() draws the surface with the ibfvs library's animated
+// flow texture instead, one frame per call, in ParaView's own OpenGL context
+// (the library's passes into its own framebuffers, then F and its depth into
+// ParaView's). Without usable vectors it warns once and draws the plain
+// surface (the superclass), as it does for picking.
+//
+// Under MPI every rank draws its piece; after each frame the texture image
+// F_t (and F, for the contrast statistics) is composited by nearest depth
+// across the ranks (ibfvs/core/composite.h) through VTK's global controller.
+// The collectives run in every rank's Render(), empty pieces included (the
+// representation asks ParaView to render empty images).
+#ifndef vtkIBFVSMapper_h
+#define vtkIBFVSMapper_h
+
+#include "IBFVSRepresentationsModule.h"  // export macro
+#include "vtkCompositePolyDataMapper2.h"
+
+class IBFVSREPRESENTATIONS_EXPORT vtkIBFVSMapper : public vtkCompositePolyDataMapper2
+{
+public:
+  static vtkIBFVSMapper* New();
+  vtkTypeMacro(vtkIBFVSMapper, vtkCompositePolyDataMapper2);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  void Render(vtkRenderer* ren, vtkActor* act) override;
+  void ReleaseGraphicsResources(vtkWindow* window) override;
+
+  /// The vector array: association 0 point data, 1 cell data.
+  void SetVectors(int association, const char* name);
+
+  void SetAlpha(double value);
+  void SetBeta(double value);
+  void SetNoiseScale(double pixels);
+  void SetStepPixels(double pixels);
+  void SetTimeProfile(int profile);
+  void SetNoiseRate(double vg);
+  void SetImageNormalize(int on);
+  void SetFilterLength(double pixels);
+  void SetContrast(double contrast);
+  void SetSeed(int seed);
+
+  /// Frames drawn with the texture since it last started afresh.
+  int GetFrame();
+  /// Why the last Render() drew a plain surface; empty when it drew the texture.
+  const char* GetProblem();
+
+protected:
+  vtkIBFVSMapper();
+  ~vtkIBFVSMapper() override;
+
+private:
+  vtkIBFVSMapper(const vtkIBFVSMapper&) = delete;
+  void operator=(const vtkIBFVSMapper&) = delete;
+
+  class Internals;
+  Internals* Internal;
+};
+
+#endif

@@ -17,6 +17,11 @@ packages=(
   # The Python module: pybind11, Debian's Python with numpy; pytest for its
   # tests, xarray for docs/python.md's netCDF example.
   pybind11-dev python3-dev python3-numpy python3-pytest python3-xarray
+  # The ParaView plugin: what find_package(ParaView) needs beside paraview-dev
+  # (its Qt, MPI and OpenGL dependencies), pvpython and pvbatch for its
+  # tests, mpiexec for the distributed ones.
+  python3-paraview libutfcpp-dev mpi-default-dev mpi-default-bin qtbase5-dev
+  libqt5opengl5-dev qttools5-dev libqt5svg5-dev libglew-dev
 )
 sudo=""
 if [[ $(id -u) -ne 0 ]]; then sudo="sudo"; fi

@@ -6,8 +6,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <exception>
 #include <memory>
 #include <span>
@@ -18,7 +16,6 @@
 
 #include "ibfvs/core/composite.h"
 #include "ibfvs/core/error.h"
-#include "ibfvs/core/image.h"
 #include "ibfvs/core/scene.h"
 #include "ibfvs/core/scene_prep.h"
 #include "ibfvs/core/vector_field.h"
@@ -240,6 +237,15 @@ std::shared_ptr<ibfvs::TriMesh> take_surface(
   try
   {
     auto mesh = std::make_shared<ibfvs::TriMesh>(ibfvs::vtk::surface_mesh(input, "the input"));
+    bool any_vectors = false;
+    for (const auto& a : mesh->vector_arrays)
+      any_vectors = any_vectors || a.first != "Normals";
+    if (!any_vectors)
+    {
+      problem = "the data has no 3-component array to take as vectors (arrays: " +
+        array_names(*mesh) + ")";
+      return nullptr;
+    }
     if (vectors.empty())
     {
       problem = "no vector array chosen: set Vectors (SelectInputVectors) to a point or cell "
@@ -343,9 +349,6 @@ bool map_colours(const ibfvs::TriMesh& mesh, const char* name, vtkScalarsToColor
 void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor)
 {
   Internals& in = *this->Internal;
-  if (std::getenv("IBFVS_PARAVIEW_DEBUG"))
-    std::fprintf(stderr, "vtkIBFVSMapper::Render frame %d problem '%s'\n", in.frame,
-      in.last_problem.c_str());
   auto* window = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
   // Picking, and translucency (depth peeling draws a different number of
   // times on each rank): the plain surface, decided alike on every rank
@@ -521,38 +524,13 @@ void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor)
         : static_cast<float>(in.scene.step * world_per_pixel / header[kSpeed]);
     session->set_dt(dt);
     session->renderer().defer_statistics(ranks > 1);
-    while (glGetError() != GL_NO_ERROR) {}
     session->render(view);
-    if (std::getenv("IBFVS_PARAVIEW_DEBUG"))
-    {
-      for (GLenum e = glGetError(); e != GL_NO_ERROR; e = glGetError())
-        std::fprintf(stderr, "GL error 0x%x\n", e);
-      GLint clamp = 0; glGetIntegerv(GL_CLAMP_READ_COLOR, &clamp);
-      std::fprintf(stderr, "renderer %s version %s clamp %d\n", glGetString(GL_RENDERER), glGetString(GL_VERSION), clamp);
-      std::fprintf(stderr, "dt %g speed %g size %dx%d vertices %zu vectors %zu\n", dt,
-        header[kSpeed], width, height, in.mesh->positions.size(), in.mesh->vectors.size());
-      if (in.frame == 20)
-      {
-        ibfvs::write_png(session->read_output(), "/tmp/ibfvs-paraview-debug.png");
-        const ibfvs::ImageF t = session->renderer().read_texture_raw();
-        float lo = 1e9f, hi = -1e9f;
-        for (std::size_t i = 0; i < t.pixels.size(); i += 2)
-          if (t.pixels[i + 1] > -255.0f)
-            lo = std::min(lo, t.pixels[i]), hi = std::max(hi, t.pixels[i]);
-        GLboolean dm = 0, cm[4] = {};
-        glGetBooleanv(GL_DEPTH_WRITEMASK, &dm);
-        glGetBooleanv(GL_COLOR_WRITEMASK, cm);
-        std::size_t covered = 0; float dmax = -1e9f;
-        for (std::size_t i = 0; i < t.pixels.size(); i += 2) { covered += t.pixels[i + 1] > -255.0f; dmax = std::max(dmax, t.pixels[i+1]); }
-        std::fprintf(stderr, "channels %d covered %zu dmax %g first %g %g\n", t.channels, covered, dmax, t.pixels[0], t.pixels[1]);
-        std::fprintf(stderr, "F_t on surface %g..%g depthmask %d colormask %d%d%d%d scissor %d stencil %d\n", lo, hi, dm, cm[0], cm[1], cm[2], cm[3], glIsEnabled(GL_SCISSOR_TEST), glIsEnabled(GL_STENCIL_TEST));
-      }
-    }
   }
 
   // ---- under MPI: F_t (and F for the statistics) composited by nearest depth
   if (ranks > 1)
   {
+    const ibfvs::gl::SavedState saved; // the reads bind the library's framebuffers
     const int w = in.width, h = in.height;
     ibfvs::ImageF depth = session ? session->renderer().read_depth() : ibfvs::ImageF(w, h, 1, 1.0f);
     ibfvs::ImageF texture =
@@ -582,7 +560,6 @@ void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor)
     ibfvs::composite_nearest(images, depth, group);
     if (session)
     {
-      const ibfvs::gl::SavedState saved;
       session->renderer().write_texture_raw(texture);
       if (statistics)
       {

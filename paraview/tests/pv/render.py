@@ -1,0 +1,72 @@
+# Drives the IBFVS representation the way a user does, under pvpython or
+# pvbatch (also under mpiexec): load the plugin, open data, switch the
+# representation, render frames, save screenshots. Run by test_plugin.py
+# with one JSON argument:
+#   plugin     path of IBFVS.so
+#   data       a file (.vtp, .pvtp: pieces spread over the ranks, ...)
+#   pieces     also save a picture coloured by rank (the split)
+#   vectors    [association, name] for SelectInputVectors, or null
+#   color      [association, name] to colour by, or null
+#   frames     renders before the last screenshot; shots: frames to save at
+#   size       [w, h]; out: file name prefix; mask: also save the surface's mask
+#   properties {name: value} set on the representation
+import json
+import sys
+
+from paraview.simple import *  # noqa: F401,F403 (ParaView's own idiom)
+
+cfg = json.loads(sys.argv[1])
+LoadPlugin(cfg["plugin"], remote=False, ns=globals())
+
+source = OpenDataFile(cfg["data"])
+if cfg.get("pieces"):
+    source = ProcessIdScalars(Input=source)
+
+view = GetActiveViewOrCreate("RenderView")
+w, h = cfg.get("size", [320, 240])
+view.ViewSize = [w, h]
+view.OrientationAxesVisibility = 0
+view.UseColorPaletteForBackground = 0
+view.Background = [0.2, 0.3, 0.4]
+display = Show(source, view)
+view.CameraPosition = cfg.get("camera", [2.5, 1.5, 2.0])
+view.CameraFocalPoint = [0, 0, 0]
+view.CameraViewUp = [0, 0, 1]
+view.CameraViewAngle = 30
+
+if cfg.get("pieces"):
+    ColorBy(display, ("POINTS", "ProcessId"))
+    Render(view)
+    SaveScreenshot(cfg["out"] + "-pieces.png", view, ImageResolution=[w, h])
+    ColorBy(display, None)
+
+if cfg.get("mask"):
+    # The surface in flat magenta: where the texture may be, and nowhere else.
+    display.AmbientColor = [1, 0, 1]
+    display.DiffuseColor = [1, 0, 1]
+    display.Ambient, display.Diffuse = 1.0, 0.0
+    Render(view)
+    SaveScreenshot(cfg["out"] + "-mask.png", view, ImageResolution=[w, h])
+    display.AmbientColor = [1, 1, 1]
+    display.DiffuseColor = [1, 1, 1]
+    display.Ambient, display.Diffuse = 0.0, 1.0
+    Render(view)
+    SaveScreenshot(cfg["out"] + "-surface.png", view, ImageResolution=[w, h])
+
+available = list(display.Representation.Available)
+display.Representation = cfg.get("representation", "IBFVS")
+if cfg.get("vectors"):
+    display.SelectInputVectors = cfg["vectors"]
+for name, value in cfg.get("properties", {}).items():
+    setattr(display, name, value)
+if cfg.get("color"):
+    ColorBy(display, tuple(cfg["color"]))
+
+shots = set(cfg.get("shots", []))
+for frame in range(1, cfg["frames"] + 1):
+    Render(view)
+    if frame in shots:
+        SaveScreenshot("%s-%d.png" % (cfg["out"], frame), view, ImageResolution=[w, h])
+with open(cfg["out"] + ".json", "w") as f:
+    json.dump({"available": available}, f)
+print("rendered", cfg["frames"], "frames")

@@ -1,0 +1,224 @@
+"""The ParaView plugin as users drive it: pvpython and pvbatch (also under
+mpiexec) under Xvfb run pv/render.py; these tests write the data, read the
+screenshots and check the pictures. Debian's own Python with numpy runs
+them; it never imports ParaView (one VTK per process).
+
+Environment: IBFVS_PARAVIEW_PLUGIN (the built IBFVS.so), set by CTest.
+"""
+import json
+import os
+import shutil
+import subprocess
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+PLUGIN = os.environ.get("IBFVS_PARAVIEW_PLUGIN", "")
+SCRIPT = Path(__file__).parent / "pv" / "render.py"
+MPIEXEC = shutil.which("mpiexec")
+
+pytestmark = pytest.mark.skipif(
+    not (PLUGIN and Path(PLUGIN).exists() and shutil.which("pvbatch") and shutil.which("xvfb-run")),
+    reason="needs the built plugin (IBFVS_PARAVIEW_PLUGIN), ParaView and xvfb-run",
+)
+
+
+# ------------------------------------------------------------------ data
+
+
+def sphere(n=96):
+    """A UV sphere: points, triangles, and per point a swirl about z (v), a
+    2-component array (uv2) and a scalar (height)."""
+    theta = np.linspace(0.0, np.pi, n)
+    phi = np.linspace(0.0, 2.0 * np.pi, 2 * n, endpoint=False)
+    t, p = np.meshgrid(theta[1:-1], phi, indexing="ij")
+    pts = np.stack([np.sin(t) * np.cos(p), np.sin(t) * np.sin(p), np.cos(t)], -1).reshape(-1, 3)
+    pts = np.vstack([pts, [[0, 0, 1], [0, 0, -1]]])
+    rows, cols = len(theta) - 2, len(phi)
+    idx = np.arange(rows * cols).reshape(rows, cols)
+    tris = []
+    for i in range(rows - 1):
+        for j in range(cols):
+            a, b = idx[i, j], idx[i, (j + 1) % cols]
+            c, d = idx[i + 1, j], idx[i + 1, (j + 1) % cols]
+            tris += [[a, c, b], [b, c, d]]
+    north, south = len(pts) - 2, len(pts) - 1
+    for j in range(cols):
+        tris.append([north, idx[0, j], idx[0, (j + 1) % cols]])
+        tris.append([south, idx[rows - 1, (j + 1) % cols], idx[rows - 1, j]])
+    tris = np.array(tris)
+    v = np.stack([-pts[:, 1], pts[:, 0], 0.3 * np.ones(len(pts))], -1)
+    return pts, tris, {"v": v, "uv2": pts[:, :2].copy(), "height": pts[:, 2].copy()}
+
+
+def write_vtp(path, pts, tris, arrays):
+    def block(a):
+        return " ".join("%.7g" % x for x in np.asarray(a, dtype=float).ravel())
+
+    data = "".join(
+        '<DataArray type="Float32" Name="%s" NumberOfComponents="%d" format="ascii">%s</DataArray>'
+        % (name, 1 if a.ndim == 1 else a.shape[1], block(a))
+        for name, a in arrays.items())
+    path.write_text(
+        '<?xml version="1.0"?><VTKFile type="PolyData" version="1.0"><PolyData>'
+        '<Piece NumberOfPoints="%d" NumberOfPolys="%d"><PointData>%s</PointData>'
+        '<Points><DataArray type="Float32" NumberOfComponents="3" format="ascii">%s</DataArray></Points>'
+        '<Polys><DataArray type="Int64" Name="connectivity" format="ascii">%s</DataArray>'
+        '<DataArray type="Int64" Name="offsets" format="ascii">%s</DataArray></Polys>'
+        "</Piece></PolyData></VTKFile>"
+        % (len(pts), len(tris), data, block(pts), " ".join(map(str, tris.ravel())),
+           " ".join(str(3 * (k + 1)) for k in range(len(tris)))))
+
+
+def write_pieces(directory, pts, tris, arrays):
+    """The sphere in two pieces (x < 0, x >= 0 by triangle centroid), each with
+    its own copy of the boundary points, and the .pvtp naming them: a
+    parallel reader gives each rank a piece (ranks beyond two get none)."""
+    names = []
+    side = pts[tris].mean(axis=1)[:, 0] < 0.0
+    for k, keep in enumerate([side, ~side]):
+        t = tris[keep]
+        used = np.unique(t)
+        remap = -np.ones(len(pts), dtype=int)
+        remap[used] = np.arange(len(used))
+        name = "sphere_%d.vtp" % k
+        write_vtp(directory / name, pts[used], remap[t], {n: a[used] for n, a in arrays.items()})
+        names.append(name)
+    pdata = "".join(
+        '<PDataArray type="Float32" Name="%s" NumberOfComponents="%d"/>'
+        % (n, 1 if a.ndim == 1 else a.shape[1]) for n, a in arrays.items())
+    pieces = "".join('<Piece Source="%s"/>' % n for n in names)
+    path = directory / "sphere.pvtp"
+    path.write_text(
+        '<?xml version="1.0"?><VTKFile type="PPolyData" version="1.0"><PPolyData GhostLevel="0">'
+        '<PPointData>%s</PPointData><PPoints><PDataArray type="Float32" NumberOfComponents="3"/>'
+        "</PPoints>%s</PPolyData></VTKFile>" % (pdata, pieces))
+    return path
+
+
+@pytest.fixture(scope="module")
+def data(tmp_path_factory):
+    d = tmp_path_factory.mktemp("pvdata")
+    pts, tris, arrays = sphere()
+    write_vtp(d / "sphere.vtp", pts, tris, arrays)
+    write_vtp(d / "plain.vtp", pts, tris, {"height": arrays["height"]})
+    write_pieces(d, pts, tris, arrays)
+    return d
+
+
+# ------------------------------------------------------------------ running
+
+
+def run(cfg, tmp_path, ranks=1, batch=False):
+    cfg = dict(cfg, plugin=PLUGIN, out=str(tmp_path / cfg.get("name", "shot")))
+    exe = "pvbatch" if batch or ranks > 1 else "pvpython"
+    cmd = ["xvfb-run", "-a", "-s", "-screen 0 1024x768x24"]
+    if ranks > 1:
+        cmd += [MPIEXEC, "--allow-run-as-root", "--oversubscribe", "-n", str(ranks)]
+    cmd += [exe, str(SCRIPT), json.dumps(cfg)]
+    done = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stdout[-3000:] + done.stderr[-3000:]
+    return done, cfg["out"]
+
+
+def image(path):
+    raw = subprocess.run(["ffmpeg", "-v", "error", "-i", str(path), "-f", "rawvideo",
+                          "-pix_fmt", "rgb24", "-"], capture_output=True, check=True).stdout
+    probe = subprocess.run(["ffprobe", "-v", "error", "-show_entries", "stream=width,height",
+                            "-of", "csv=p=0", str(path)], capture_output=True, text=True,
+                           check=True).stdout.split(",")
+    w, h = int(probe[0]), int(probe[1])
+    return np.frombuffer(raw, np.uint8).reshape(h, w, 3).astype(int)
+
+
+BACKGROUND = np.array([51, 76, 102])  # view.Background 0.2, 0.3, 0.4
+
+
+def mask_of(out):
+    m = image(out + "-mask.png")
+    return (m[..., 0] > 200) & (m[..., 1] < 60) & (m[..., 2] > 200)
+
+
+def local_contrast(img, mask):
+    """Mean absolute difference between neighbouring pixels inside the mask:
+    texture has it, a smooth shaded surface hardly any."""
+    g = img.mean(axis=2)
+    inside = mask[:, 1:] & mask[:, :-1]
+    return np.abs(np.diff(g, axis=1))[inside].mean()
+
+
+# ------------------------------------------------------------------ tests
+
+
+def test_texture_on_the_surface_nothing_on_the_background_and_it_moves(data, tmp_path):
+    done, out = run({"data": str(data / "sphere.vtp"), "vectors": ["POINTS", "v"],
+                     "frames": 36, "shots": [30, 36], "mask": True}, tmp_path)
+    assert "IBFVS" in json.loads(Path(out + ".json").read_text())["available"]
+    mask = mask_of(out)
+    assert 0.15 < mask.mean() < 0.7
+    a, b = image(out + "-30.png"), image(out + "-36.png")
+    surface = image(out + "-surface.png")
+    # The background is the view's, untouched, in every frame.
+    for img in (a, b):
+        assert (np.abs(img[~mask] - BACKGROUND).max(axis=-1) <= 1).mean() > 0.995
+        # And the surface is covered (no background showing through).
+        assert (np.abs(img[mask] - BACKGROUND).max(axis=-1) <= 3).mean() < 0.01
+    # Dense texture on the surface, where the Surface representation is smooth.
+    assert local_contrast(a, mask) > 3 * local_contrast(surface, mask)
+    assert local_contrast(a, mask) > 4
+    # It moves: six frames later the surface differs, the background does not.
+    moved = np.abs(a - b).max(axis=-1)
+    assert (moved[mask] > 10).mean() > 0.3
+    assert (moved[~mask] > 1).mean() < 0.005
+
+
+def test_colour_by_a_scalar_through_paraviews_colour_map(data, tmp_path):
+    _, out = run({"data": str(data / "sphere.vtp"), "vectors": ["POINTS", "v"],
+                  "color": ["POINTS", "height"], "frames": 12, "shots": [12], "mask": True},
+                 tmp_path)
+    mask = mask_of(out)
+    img = image(out + "-12.png")
+    # ParaView's default map (Cool to Warm) over height: warm at the top of
+    # the sphere, cool at its bottom; texture over the colour, not grey.
+    rows = np.nonzero(mask.any(axis=1))[0]
+    third = (rows[-1] - rows[0]) // 3
+    top, bottom = mask.copy(), mask.copy()
+    top[rows[0] + third:] = False
+    bottom[:rows[-1] - third] = False
+    warmth = lambda m: (img[m][:, 0] - img[m][:, 2]).mean()  # noqa: E731
+    assert warmth(top) > 30
+    assert warmth(top) - warmth(bottom) > 40
+    assert local_contrast(img, mask) > 4
+
+
+@pytest.mark.parametrize("vectors,expected", [
+    (["POINTS", "uv2"], "the array 'uv2' has 2 components; IBFVS needs 3-component vectors"),
+    (["POINTS", "height"], "the array 'height' has 1 component"),
+    (None, "the data has no 3-component array to take as vectors (arrays: height (1))"),
+])
+def test_bad_vectors_warn_and_draw_the_plain_surface(data, tmp_path, vectors, expected):
+    source = data / ("plain.vtp" if vectors is None else "sphere.vtp")
+    done, out = run({"data": str(source), "vectors": vectors, "frames": 4, "shots": [4],
+                     "mask": True}, tmp_path)
+    text = done.stdout + done.stderr
+    assert "IBFVS: " + expected in text, text[-2000:]
+    assert text.count("IBFVS: ") == 1  # once, not every frame
+    # The plain surface, as the Surface representation draws it.
+    plain, surface = image(out + "-4.png"), image(out + "-surface.png")
+    assert np.abs(plain - surface).max() <= 2
+
+
+@pytest.mark.skipif(MPIEXEC is None, reason="needs mpiexec")
+@pytest.mark.parametrize("ranks", [2, 4])
+def test_distributed_picture_equals_the_single_process_one(data, tmp_path, ranks):
+    cfg = {"data": str(data / "sphere.pvtp"), "vectors": ["POINTS", "v"], "frames": 40,
+           "shots": [40], "pieces": True, "mask": True}
+    _, one = run(dict(cfg, name="one"), tmp_path, ranks=1, batch=True)
+    _, many = run(dict(cfg, name="many"), tmp_path, ranks=ranks)
+    # The data is split: the picture coloured by rank shows two ranks' pieces.
+    pieces = image(many + "-pieces.png")[mask_of(many)]
+    assert len(np.unique(pieces // 32, axis=0)) >= 2
+    single, distributed = image(one + "-40.png"), image(many + "-40.png")
+    differ = np.abs(single - distributed).max(axis=-1) > 2
+    assert differ.mean() < 0.001, "%d pixels differ" % differ.sum()

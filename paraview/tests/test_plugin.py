@@ -111,7 +111,8 @@ def data(tmp_path_factory):
 
 
 def run(cfg, tmp_path, ranks=1, batch=False):
-    cfg = dict(cfg, plugin=PLUGIN, out=str(tmp_path / cfg.get("name", "shot")))
+    cfg = dict({"plugin": PLUGIN}, **cfg)
+    cfg["out"] = str(tmp_path / cfg.get("name", "shot"))
     exe = "pvbatch" if batch or ranks > 1 else "pvpython"
     cmd = ["xvfb-run", "-a", "-s", "-screen 0 1024x768x24"]
     if ranks > 1:
@@ -222,3 +223,15 @@ def test_distributed_picture_equals_the_single_process_one(data, tmp_path, ranks
     single, distributed = image(one + "-40.png"), image(many + "-40.png")
     differ = np.abs(single - distributed).max(axis=-1) > 2
     assert differ.mean() < 0.001, "%d pixels differ" % differ.sum()
+
+
+def test_surface_lic_still_takes_its_vectors_with_the_plugin_loaded(data, tmp_path):
+    # Both offer SelectInputVectors; the plugin links the two, so Surface LIC
+    # draws as it does without the plugin.
+    cfg = {"data": str(data / "sphere.vtp"), "vectors": ["POINTS", "v"],
+           "representation": "Surface LIC", "frames": 1, "shots": [1], "mask": True}
+    _, alone = run(dict(cfg, name="alone", plugin=""), tmp_path)
+    _, loaded = run(dict(cfg, name="loaded"), tmp_path)
+    a, b = image(alone + "-1.png"), image(loaded + "-1.png")
+    assert local_contrast(a, mask_of(alone)) > 4  # LIC's streaks, not a plain surface
+    assert np.abs(a - b).max() <= 2

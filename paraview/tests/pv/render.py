@@ -2,7 +2,7 @@
 # pvbatch (also under mpiexec): load the plugin, open data, switch the
 # representation, render frames, save screenshots. Run by test_plugin.py
 # with one JSON argument:
-#   plugin     path of IBFVS.so
+#   plugin     path of IBFVS.so (empty: ParaView alone)
 #   data       a file (.vtp, .pvtp: pieces spread over the ranks, ...)
 #   pieces     also save a picture coloured by rank (the split)
 #   vectors    [association, name] for SelectInputVectors, or null
@@ -16,7 +16,8 @@ import sys
 from paraview.simple import *  # noqa: F401,F403 (ParaView's own idiom)
 
 cfg = json.loads(sys.argv[1])
-LoadPlugin(cfg["plugin"], remote=False, ns=globals())
+if cfg.get("plugin"):
+    LoadPlugin(cfg["plugin"], remote=False, ns=globals())
 
 source = OpenDataFile(cfg["data"])
 if cfg.get("pieces"):

@@ -10,23 +10,22 @@
 
 class pqView;
 
-class pqIBFVSAnimationManager : public QObject
-{
+class pqIBFVSAnimationManager : public QObject {
   Q_OBJECT
-public:
+ public:
   explicit pqIBFVSAnimationManager(QObject* parent = nullptr);
   ~pqIBFVSAnimationManager() override;
 
   void onStartup() {}
   void onShutdown() {}
 
-private Q_SLOTS:
+ private Q_SLOTS:
   void onViewAdded(pqView* view);
   void onViewRemoved(pqView* view);
   void onRenderEnded();
   void renderAnimatedViews();
 
-private:
+ private:
   QSet<pqView*> Views;
   QSet<pqView*> Pending;
   QTimer Timer;

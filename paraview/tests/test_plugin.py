@@ -235,3 +235,29 @@ def test_surface_lic_still_takes_its_vectors_with_the_plugin_loaded(data, tmp_pa
     a, b = image(alone + "-1.png"), image(loaded + "-1.png")
     assert local_contrast(a, mask_of(alone)) > 4  # LIC's streaks, not a plain surface
     assert np.abs(a - b).max() <= 2
+
+
+ROOT = Path(__file__).resolve().parents[2]
+BUILT_PLUGIN = "build/lib/ibfvs/paraview/IBFVS/IBFVS.so"
+
+
+@pytest.mark.parametrize("doc", ["README.md", "docs/paraview.md"])
+def test_the_pvpython_examples_in_the_docs_run(tmp_path, doc):
+    import re
+
+    blocks = re.findall(r"```pvpython\n(.*?)```", (ROOT / doc).read_text(), re.S)
+    assert blocks
+    for k, block in enumerate(blocks):
+        assert BUILT_PLUGIN in block
+        script = tmp_path / ("example%d.py" % k)
+        script.write_text(block.replace(BUILT_PLUGIN, PLUGIN))  # this build's plugin
+        done = subprocess.run(["xvfb-run", "-a", "pvpython", str(script)], cwd=tmp_path,
+                              capture_output=True, text=True, timeout=300)
+        assert done.returncode == 0, done.stdout[-2000:] + done.stderr[-2000:]
+        assert "IBFVS: " not in done.stdout + done.stderr  # no warning: the texture was drawn
+    shots = list(tmp_path.glob("*.png"))
+    assert shots
+    for shot in shots:
+        img = image(shot)
+        g = img.mean(axis=2)
+        assert np.abs(np.diff(g, axis=1)).mean() > 1  # texture, not a blank view

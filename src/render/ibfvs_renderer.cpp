@@ -199,10 +199,9 @@ void IbfvsRenderer::apply_settings() {
   grid_program_.set(grid_seed_, settings_.noise.seed);
   std::vector<float> table(256 * 4);
   for (int i = 0; i < 256; ++i) {
-    const glm::vec3 c =
-        settings_.color_table.size() == 256
-            ? settings_.color_table[static_cast<std::size_t>(i)]
-            : color_map(settings_.color_map, static_cast<float>(i) / 255.0f);
+    const glm::vec3 c = settings_.color_table.size() == 256
+                            ? settings_.color_table[static_cast<std::size_t>(i)]
+                            : color_map(settings_.color_map, static_cast<float>(i) / 255.0f);
     table[4 * i] = c.r, table[4 * i + 1] = c.g, table[4 * i + 2] = c.b, table[4 * i + 3] = 1.0f;
   }
   color_map_.upload_float(table, 4);
@@ -549,10 +548,9 @@ ImageF IbfvsRenderer::read_output_raw() const {
 }
 
 void IbfvsRenderer::write_output_raw(const ImageF& output) {
-  if (output.width != settings_.width || output.height != settings_.height ||
-      output.channels != 4)
-    throw InputError("renderer: write_output_raw needs a " + std::to_string(settings_.width) +
-                     "x" + std::to_string(settings_.height) + " RGBA image");
+  if (output.width != settings_.width || output.height != settings_.height || output.channels != 4)
+    throw InputError("renderer: write_output_raw needs a " + std::to_string(settings_.width) + "x" +
+                     std::to_string(settings_.height) + " RGBA image");
   output_.upload_float(output.pixels, 4);
 }
 

@@ -60,10 +60,10 @@ struct RenderSettings {
   /// color_range, used instead of color_map (a host's lookup table, such as
   /// ParaView's colour map).
   std::vector<glm::vec3> color_table;
-  bool use_color = false;                  ///< colour F_s by the colour scalar (set_scalars)
-  glm::vec2 color_range{0.0f, 1.0f};       ///< scalar values at the two ends of the map
-  bool use_beta = false;                   ///< modulate beta by the beta scalar (paper 3.3, step 7)
-  glm::vec2 beta_range{0.0f, 1.0f};  ///< beta scalar at which the texture strength is 0 and beta
+  bool use_color = false;             ///< colour F_s by the colour scalar (set_scalars)
+  glm::vec2 color_range{0.0f, 1.0f};  ///< scalar values at the two ends of the map
+  bool use_beta = false;              ///< modulate beta by the beta scalar (paper 3.3, step 7)
+  glm::vec2 beta_range{0.0f, 1.0f};   ///< beta scalar at which the texture strength is 0 and beta
   /// > 0: normalise the flow in image space, every vector moving this many
   /// pixels per frame (paper figure 2; image_normalized_step); dt then only
   /// says whether to move (0 stops, as when locked).

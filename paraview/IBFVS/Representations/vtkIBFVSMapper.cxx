@@ -42,62 +42,57 @@
 
 vtkStandardNewMacro(vtkIBFVSMapper);
 
-namespace
-{
+namespace {
 
 // The values each rank contributes to the frame's first reduction (a
 // maximum): whether some rank cannot draw the texture, whether some rank's
 // surface or settings changed (all then start afresh, so that the frame
 // counters and noise stay equal), and the whole surface's speed and bounds.
-enum Header
-{
+enum Header {
   kBad,
   kRebuild,
   kSpeed,
   kMinX,
   kMinY,
-  kMinZ, // negated
+  kMinZ,  // negated
   kMaxX,
   kMaxY,
   kMaxZ,
   kHeaderSize
 };
 
-glm::mat4 from_vtk_transposed(vtkMatrix4x4* m)
-{
+glm::mat4 from_vtk_transposed(vtkMatrix4x4* m) {
   // GetKeyMatrices hands matrices transposed for OpenGL: their storage is
   // the column-major order glm reads.
   glm::mat4 out;
   for (int c = 0; c < 4; ++c)
-    for (int r = 0; r < 4; ++r)
-      out[c][r] = static_cast<float>(m->GetElement(c, r));
+    for (int r = 0; r < 4; ++r) out[c][r] = static_cast<float>(m->GetElement(c, r));
   return out;
 }
 
-}
+}  // namespace
 
-class vtkIBFVSMapper::Internals
-{
-public:
+class vtkIBFVSMapper::Internals {
+ public:
   // ---- settings from the properties
   ibfvs::Scene scene;
   int association = 0;
   std::string vectors;
-  bool settings_changed = false; // live settings: applied without starting afresh
-  bool restart = true;           // noise scale or seed: a new renderer
+  bool settings_changed = false;  // live settings: applied without starting afresh
+  bool restart = true;            // noise scale or seed: a new renderer
 
   // ---- the surface
   vtkMTimeType input_time = 0;
   vtkDataObject* input = nullptr;
   std::string input_vectors;
-  std::shared_ptr<ibfvs::TriMesh> mesh; // null: this rank's piece is empty
-  std::string problem;                  // why this rank cannot draw the texture
-  float speed = 0.0f;                   // fastest vector of this piece
+  std::shared_ptr<ibfvs::TriMesh> mesh;  // null: this rank's piece is empty
+  std::string problem;                   // why this rank cannot draw the texture
+  float speed = 0.0f;                    // fastest vector of this piece
   bool geometry_changed = true;
 
   // ---- colour by ParaView's lookup table
   std::string colour_key;
-  std::vector<float> colour_t; // per vertex, position in the table [0, 1]
+  std::vector<float> colour_t;  // per vertex, position in the table [0, 1]
   std::vector<glm::vec3> colour_table;
 
   // ---- drawing
@@ -105,49 +100,37 @@ public:
   int width = 0, height = 0;
   int frame = 0;
   vtkWeakPointer<vtkOpenGLRenderWindow> window;
-  std::string warned; // the last problem warned about
+  std::string warned;  // the last problem warned about
   std::string last_problem;
 
   ~Internals() { this->Release(); }
 
-  void Release()
-  {
-    if (this->session && this->window)
-    {
+  void Release() {
+    if (this->session && this->window) {
       this->window->MakeCurrent();
       this->session.reset();
-    }
-    else
-    {
+    } else {
       // No context to delete its objects in: they go with the context.
       static_cast<void>(this->session.release());
     }
   }
 };
 
-vtkIBFVSMapper::vtkIBFVSMapper()
-  : Internal(new Internals)
-{
-}
+vtkIBFVSMapper::vtkIBFVSMapper() : Internal(new Internals) {}
 
-vtkIBFVSMapper::~vtkIBFVSMapper()
-{
+vtkIBFVSMapper::~vtkIBFVSMapper() {
   delete this->Internal;
 }
 
-void vtkIBFVSMapper::PrintSelf(ostream& os, vtkIndent indent)
-{
+void vtkIBFVSMapper::PrintSelf(ostream& os, vtkIndent indent) {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Vectors: " << this->Internal->vectors << "\n";
   os << indent << "Frame: " << this->Internal->frame << "\n";
 }
 
-void vtkIBFVSMapper::ReleaseGraphicsResources(vtkWindow* window)
-{
-  if (this->Internal->session)
-  {
-    if (auto* w = vtkOpenGLRenderWindow::SafeDownCast(window))
-    {
+void vtkIBFVSMapper::ReleaseGraphicsResources(vtkWindow* window) {
+  if (this->Internal->session) {
+    if (auto* w = vtkOpenGLRenderWindow::SafeDownCast(window)) {
       w->MakeCurrent();
       this->Internal->session.reset();
     }
@@ -158,34 +141,31 @@ void vtkIBFVSMapper::ReleaseGraphicsResources(vtkWindow* window)
 
 // ------------------------------------------------------------ settings
 
-void vtkIBFVSMapper::SetVectors(int association, const char* name)
-{
+void vtkIBFVSMapper::SetVectors(int association, const char* name) {
   const std::string n = name ? name : "";
-  if (n == this->Internal->vectors && association == this->Internal->association)
-    return;
+  if (n == this->Internal->vectors && association == this->Internal->association) return;
   this->Internal->vectors = n;
   this->Internal->association = association;
   this->Internal->geometry_changed = true;
   this->Modified();
 }
 
-#define IBFVS_SETTING(Name, Type, member, conversion, restarts)                                    \
-  void vtkIBFVSMapper::Set##Name(Type value)                                                       \
-  {                                                                                                \
-    auto v = conversion;                                                                           \
-    if (this->Internal->scene.member == v)                                                         \
-      return;                                                                                      \
-    this->Internal->scene.member = v;                                                              \
-    (restarts ? this->Internal->restart : this->Internal->settings_changed) = true;                \
-    this->Modified();                                                                              \
+#define IBFVS_SETTING(Name, Type, member, conversion, restarts)                     \
+  void vtkIBFVSMapper::Set##Name(Type value) {                                      \
+    auto v = conversion;                                                            \
+    if (this->Internal->scene.member == v) return;                                  \
+    this->Internal->scene.member = v;                                               \
+    (restarts ? this->Internal->restart : this->Internal->settings_changed) = true; \
+    this->Modified();                                                               \
   }
 IBFVS_SETTING(Alpha, double, alpha, static_cast<float>(std::clamp(value, 0.0, 1.0)), false)
 IBFVS_SETTING(Beta, double, beta, static_cast<float>(std::clamp(value, 0.0, 1.0)), false)
 IBFVS_SETTING(NoiseScale, double, scale, static_cast<float>(std::clamp(value, 1.0, 64.0)), true)
 IBFVS_SETTING(StepPixels, double, step, static_cast<float>(std::clamp(value, 0.0, 64.0)), false)
 IBFVS_SETTING(TimeProfile, int, profile,
-  static_cast<ibfvs::NoiseProfile>(std::clamp(value, 0, static_cast<int>(ibfvs::NoiseProfile::Random))),
-  false)
+              static_cast<ibfvs::NoiseProfile>(
+                  std::clamp(value, 0, static_cast<int>(ibfvs::NoiseProfile::Random))),
+              false)
 IBFVS_SETTING(NoiseRate, double, vg, static_cast<float>(std::clamp(value, 0.0, 1.0)), false)
 IBFVS_SETTING(ImageNormalize, int, image_normalize, value != 0, false)
 IBFVS_SETTING(FilterLength, double, filter, static_cast<float>(std::clamp(value, 0.0, 32.0)), false)
@@ -193,102 +173,84 @@ IBFVS_SETTING(Contrast, double, contrast, static_cast<float>(std::clamp(value, 0
 IBFVS_SETTING(Seed, int, seed, static_cast<std::uint32_t>(std::max(value, 0)), true)
 #undef IBFVS_SETTING
 
-int vtkIBFVSMapper::GetFrame()
-{
+int vtkIBFVSMapper::GetFrame() {
   return this->Internal->frame;
 }
 
-const char* vtkIBFVSMapper::GetProblem()
-{
+const char* vtkIBFVSMapper::GetProblem() {
   return this->Internal->last_problem.c_str();
 }
 
 // ------------------------------------------------------------ the surface
 
-namespace
-{
+namespace {
 
-std::string array_names(const ibfvs::TriMesh& mesh)
-{
+std::string array_names(const ibfvs::TriMesh& mesh) {
   std::string names;
   const auto add = [&](const std::string& name, int components) {
     names += (names.empty() ? "" : ", ") + name + " (" + std::to_string(components) + ")";
   };
-  for (const auto& a : mesh.scalars)
-    add(a.first, 1);
-  for (const auto& a : mesh.vector_arrays)
-    add(a.first, 3);
-  for (const auto& a : mesh.other_arrays)
-    add(a.first, a.second);
+  for (const auto& a : mesh.scalars) add(a.first, 1);
+  for (const auto& a : mesh.vector_arrays) add(a.first, 3);
+  for (const auto& a : mesh.other_arrays) add(a.first, a.second);
   return names.empty() ? "none" : names;
 }
 
 // The surface of this rank's piece with the chosen vectors; `problem` says
 // why there is none. An empty piece is no problem (null mesh).
-std::shared_ptr<ibfvs::TriMesh> take_surface(
-  vtkDataObject* input, const std::string& vectors, std::string& problem, float& speed)
-{
+std::shared_ptr<ibfvs::TriMesh> take_surface(vtkDataObject* input, const std::string& vectors,
+                                             std::string& problem, float& speed) {
   problem.clear();
   speed = 0.0f;
-  if (!input || input->GetNumberOfElements(vtkDataObject::POINT) == 0)
-  {
+  if (!input || input->GetNumberOfElements(vtkDataObject::POINT) == 0) {
     return nullptr;
   }
-  try
-  {
+  try {
     auto mesh = std::make_shared<ibfvs::TriMesh>(ibfvs::vtk::surface_mesh(input, "the input"));
     bool any_vectors = false;
-    for (const auto& a : mesh->vector_arrays)
-      any_vectors = any_vectors || a.first != "Normals";
-    if (!any_vectors)
-    {
-      problem = "the data has no 3-component array to take as vectors (arrays: " +
-        array_names(*mesh) + ")";
+    for (const auto& a : mesh->vector_arrays) any_vectors = any_vectors || a.first != "Normals";
+    if (!any_vectors) {
+      problem =
+          "the data has no 3-component array to take as vectors (arrays: " + array_names(*mesh) +
+          ")";
       return nullptr;
     }
-    if (vectors.empty())
-    {
-      problem = "no vector array chosen: set Vectors (SelectInputVectors) to a point or cell "
-                "array of 3 components (arrays: " +
-        array_names(*mesh) + ")";
+    if (vectors.empty()) {
+      problem =
+          "no vector array chosen: set Vectors (SelectInputVectors) to a point or cell "
+          "array of 3 components (arrays: " +
+          array_names(*mesh) + ")";
       return nullptr;
     }
     const auto it = mesh->vector_arrays.find(vectors);
-    if (it == mesh->vector_arrays.end())
-    {
+    if (it == mesh->vector_arrays.end()) {
       if (mesh->scalars.count(vectors))
         problem = "the array '" + vectors + "' has 1 component; IBFVS needs 3-component vectors";
       else if (const auto other = mesh->other_arrays.find(vectors);
                other != mesh->other_arrays.end())
         problem = "the array '" + vectors + "' has " + std::to_string(other->second) +
-          " components; IBFVS needs 3-component vectors";
+                  " components; IBFVS needs 3-component vectors";
       else
         problem = "no array named '" + vectors + "' (arrays: " + array_names(*mesh) + ")";
       return nullptr;
     }
     mesh->vectors = it->second;
-    for (const glm::vec3& v : mesh->vectors)
-    {
+    for (const glm::vec3& v : mesh->vectors) {
       const float s = glm::length(v);
-      if (std::isfinite(s))
-        speed = std::max(speed, s);
+      if (std::isfinite(s)) speed = std::max(speed, s);
     }
     // Normals from the data where it has them (ParaView's geometry filter,
     // or a filter that computed them with ghost cells): pieces then shade
     // alike along their boundaries.
-    if (const auto n = mesh->vector_arrays.find("Normals"); n != mesh->vector_arrays.end())
-    {
+    if (const auto n = mesh->vector_arrays.find("Normals"); n != mesh->vector_arrays.end()) {
       mesh->normals = n->second;
-      for (glm::vec3& v : mesh->normals)
-      {
+      for (glm::vec3& v : mesh->normals) {
         const float l = glm::length(v);
         v = l > 0.0f && std::isfinite(l) ? v / l : glm::vec3(0.0f, 0.0f, 1.0f);
       }
     }
     return mesh;
-  }
-  catch (const std::exception& e)
-  {
+  } catch (const std::exception& e) {
     problem = e.what();
     return nullptr;
   }
@@ -298,25 +260,17 @@ std::shared_ptr<ibfvs::TriMesh> take_surface(
 // points: the colour of a scalar the way the Surface representation maps
 // it (linear or log scale, magnitude or component of a vector array).
 bool map_colours(const ibfvs::TriMesh& mesh, const char* name, vtkScalarsToColors* lut,
-  std::vector<float>& t, std::vector<glm::vec3>& table)
-{
-  if (!name || !*name || !lut)
-    return false;
+                 std::vector<float>& t, std::vector<glm::vec3>& table) {
+  if (!name || !*name || !lut) return false;
   std::vector<float> values;
-  if (const auto s = mesh.scalars.find(name); s != mesh.scalars.end())
-  {
+  if (const auto s = mesh.scalars.find(name); s != mesh.scalars.end()) {
     values = s->second;
-  }
-  else if (const auto v = mesh.vector_arrays.find(name); v != mesh.vector_arrays.end())
-  {
+  } else if (const auto v = mesh.vector_arrays.find(name); v != mesh.vector_arrays.end()) {
     const bool component = lut->GetVectorMode() == vtkScalarsToColors::COMPONENT;
     const int c = std::clamp(lut->GetVectorComponent(), 0, 2);
     values.reserve(v->second.size());
-    for (const glm::vec3& x : v->second)
-      values.push_back(component ? x[c] : glm::length(x));
-  }
-  else
-  {
+    for (const glm::vec3& x : v->second) values.push_back(component ? x[c] : glm::length(x));
+  } else {
     return false;
   }
   const double* range = lut->GetRange();
@@ -325,15 +279,13 @@ bool map_colours(const ibfvs::TriMesh& mesh, const char* name, vtkScalarsToColor
   const double lo = f(range[0]), hi = f(range[1]);
   const double span = hi > lo ? hi - lo : 1.0;
   t.resize(values.size());
-  for (std::size_t i = 0; i < values.size(); ++i)
-  {
+  for (std::size_t i = 0; i < values.size(); ++i) {
     const double x = log && values[i] <= 0.0f ? lo : f(values[i]);
     const double u = (x - lo) / span;
     t[i] = std::isfinite(u) ? static_cast<float>(std::clamp(u, 0.0, 1.0)) : 0.0f;
   }
   table.resize(256);
-  for (int i = 0; i < 256; ++i)
-  {
+  for (int i = 0; i < 256; ++i) {
     const double u = lo + span * i / 255.0;
     double rgb[3];
     lut->GetColor(log ? std::pow(10.0, u) : u, rgb);
@@ -342,19 +294,17 @@ bool map_colours(const ibfvs::TriMesh& mesh, const char* name, vtkScalarsToColor
   return true;
 }
 
-}
+}  // namespace
 
 // ------------------------------------------------------------ one frame
 
-void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor)
-{
+void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor) {
   Internals& in = *this->Internal;
   auto* window = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
   // Picking, and translucency (depth peeling draws a different number of
   // times on each rank): the plain surface, decided alike on every rank
   // before any collective.
-  if (ren->GetSelector() || !window || actor->GetProperty()->GetOpacity() < 1.0)
-  {
+  if (ren->GetSelector() || !window || actor->GetProperty()->GetOpacity() < 1.0) {
     in.last_problem = ren->GetSelector() ? "" : "IBFVS draws opaque surfaces (Opacity 1)";
     this->Superclass::Render(ren, actor);
     return;
@@ -369,8 +319,7 @@ void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor)
   vtkDataObject* input = this->GetInputDataObject(0, 0);
   const vtkMTimeType input_time = input ? input->GetMTime() : 0;
   if (in.geometry_changed || input != in.input || input_time != in.input_time ||
-    in.vectors != in.input_vectors)
-  {
+      in.vectors != in.input_vectors) {
     in.input = input;
     in.input_time = input_time;
     in.input_vectors = in.vectors;
@@ -378,10 +327,9 @@ void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor)
     in.colour_key.clear();
     in.geometry_changed = true;
   }
-  if (in.problem.empty() && epoxy_gl_version() < 45)
-  {
+  if (in.problem.empty() && epoxy_gl_version() < 45) {
     in.problem = "needs OpenGL 4.5 (this context has " + std::to_string(epoxy_gl_version() / 10) +
-      "." + std::to_string(epoxy_gl_version() % 10) + ")";
+                 "." + std::to_string(epoxy_gl_version() % 10) + ")";
   }
 
   int width = 0, height = 0, x0 = 0, y0 = 0;
@@ -392,35 +340,31 @@ void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor)
   double header[kHeaderSize];
   header[kBad] = in.problem.empty() ? 0.0 : 1.0;
   header[kRebuild] =
-    in.geometry_changed || in.restart || resized || (in.mesh && !in.session) ? 1.0 : 0.0;
+      in.geometry_changed || in.restart || resized || (in.mesh && !in.session) ? 1.0 : 0.0;
   header[kSpeed] = in.speed;
-  for (int k = 0; k < 3; ++k)
-  {
+  for (int k = 0; k < 3; ++k) {
     header[kMinX + k] = -1e300;
     header[kMaxX + k] = -1e300;
   }
-  if (in.mesh)
-  {
+  if (in.mesh) {
     for (const glm::vec3& p : in.mesh->positions)
-      for (int k = 0; k < 3; ++k)
-      {
+      for (int k = 0; k < 3; ++k) {
         header[kMinX + k] = std::max(header[kMinX + k], -static_cast<double>(p[k]));
         header[kMaxX + k] = std::max(header[kMaxX + k], static_cast<double>(p[k]));
       }
   }
-  if (ranks > 1)
-  {
+  if (ranks > 1) {
     double global[kHeaderSize];
     controller->AllReduce(header, global, kHeaderSize, vtkCommunicator::MAX_OP);
     std::copy(global, global + kHeaderSize, header);
   }
-  if (header[kBad] > 0.0)
-  {
-    const std::string problem = !in.problem.empty()
-      ? in.problem
-      : std::string("another process's piece cannot be drawn with IBFVS (its warning says why)");
-    if (problem != in.warned)
-    {
+  if (header[kBad] > 0.0) {
+    const std::string problem =
+        !in.problem.empty()
+            ? in.problem
+            : std::string(
+                  "another process's piece cannot be drawn with IBFVS (its warning says why)");
+    if (problem != in.warned) {
       vtkWarningMacro(<< "IBFVS: " << problem << "; drawing the plain surface.");
       in.warned = problem;
     }
@@ -432,32 +376,27 @@ void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor)
   in.warned.clear();
   in.last_problem.clear();
 
-  if (header[kRebuild] > 0.0)
-  {
+  if (header[kRebuild] > 0.0) {
     in.session.reset();
     in.width = width;
     in.height = height;
     in.frame = 0;
     in.geometry_changed = in.restart = in.settings_changed = false;
     in.colour_key.clear();
-    if (in.mesh)
-    {
-      try
-      {
+    if (in.mesh) {
+      try {
         ibfvs::Scene s = in.scene;
         s.width = std::max(width, 1);
         s.height = std::max(height, 1);
         s.field = ibfvs::FieldSpec::parse("file");
         in.session =
-          std::make_unique<ibfvs::Session>(ibfvs::prepare_scene(s, *in.mesh, "the input"));
+            std::make_unique<ibfvs::Session>(ibfvs::prepare_scene(s, *in.mesh, "the input"));
         const double dx = header[kMaxX] + header[kMinX], dy = header[kMaxY] + header[kMinY],
                      dz = header[kMaxZ] + header[kMinZ];
         const double diagonal = std::sqrt(dx * dx + dy * dy + dz * dz);
         if (diagonal > 0.0 && std::isfinite(diagonal))
           in.session->renderer().set_probe_length(static_cast<float>(1e-3 * diagonal));
-      }
-      catch (const std::exception& e)
-      {
+      } catch (const std::exception& e) {
         // This rank still takes part in the compositing (as an empty
         // piece); the next frame's agreement turns every rank plain.
         in.problem = e.what();
@@ -467,8 +406,7 @@ void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor)
   }
 
   ibfvs::Session* session = in.session.get();
-  if (session)
-  {
+  if (session) {
     ibfvs::RenderSettings settings = session->renderer().settings();
     const ibfvs::RenderSettings before = settings;
     ibfvs::apply_texture_settings(in.scene, settings);
@@ -479,9 +417,9 @@ void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor)
     const char* colour_array = this->GetScalarVisibility() ? this->GetArrayName() : nullptr;
     vtkScalarsToColors* lut = this->GetLookupTable();
     const std::string key = std::string(colour_array ? colour_array : "") + "|" +
-      std::to_string(lut ? lut->GetMTime() : 0) + "|" + std::to_string(this->GetScalarMode());
-    if (key != in.colour_key)
-    {
+                            std::to_string(lut ? lut->GetMTime() : 0) + "|" +
+                            std::to_string(this->GetScalarMode());
+    if (key != in.colour_key) {
       in.colour_key = key;
       in.colour_table.clear();
       if (map_colours(*in.mesh, colour_array, lut, in.colour_t, in.colour_table))
@@ -491,8 +429,8 @@ void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor)
     settings.color_table = in.colour_table;
     settings.color_range = glm::vec2(0.0f, 1.0f);
     if (in.settings_changed || settings.use_color != before.use_color ||
-      settings.color_table != before.color_table || settings.surface_color != before.surface_color)
-    {
+        settings.color_table != before.color_table ||
+        settings.surface_color != before.surface_color) {
       session->renderer().update_settings(settings);
       in.settings_changed = false;
     }
@@ -503,8 +441,7 @@ void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor)
     auto* camera = vtkOpenGLCamera::SafeDownCast(ren->GetActiveCamera());
     camera->GetKeyMatrices(ren, wcvc, normal, vcdc, wcdc);
     ibfvs::ViewState view{from_vtk_transposed(wcvc), from_vtk_transposed(vcdc)};
-    if (!actor->GetIsIdentity())
-    {
+    if (!actor->GetIsIdentity()) {
       vtkMatrix4x4* mcwc = nullptr;
       vtkMatrix3x3* actor_normal = nullptr;
       static_cast<vtkOpenGLActor*>(actor)->GetKeyMatrices(mcwc, actor_normal);
@@ -512,35 +449,35 @@ void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor)
     }
     // dt: the fastest vector of the whole surface moves StepPixels pixels
     // at the focal point (every vector does, normalised in image space).
-    const double extent = camera->GetParallelProjection()
-      ? 2.0 * camera->GetParallelScale()
-      : 2.0 * camera->GetDistance() * std::tan(vtkMath::RadiansFromDegrees(camera->GetViewAngle()) / 2.0);
+    const double extent =
+        camera->GetParallelProjection()
+            ? 2.0 * camera->GetParallelScale()
+            : 2.0 * camera->GetDistance() *
+                  std::tan(vtkMath::RadiansFromDegrees(camera->GetViewAngle()) / 2.0);
     const double pixels = camera->GetUseHorizontalViewAngle() ? width : height;
     const double world_per_pixel = extent / std::max(pixels, 1.0);
     float dt = 0.0f;
     if (in.scene.step > 0.0f && header[kSpeed] > 0.0)
       dt = in.scene.image_normalize
-        ? 1.0f
-        : static_cast<float>(in.scene.step * world_per_pixel / header[kSpeed]);
+               ? 1.0f
+               : static_cast<float>(in.scene.step * world_per_pixel / header[kSpeed]);
     session->set_dt(dt);
     session->renderer().defer_statistics(ranks > 1);
     session->render(view);
   }
 
   // ---- under MPI: F_t (and F for the statistics) composited by nearest depth
-  if (ranks > 1)
-  {
-    const ibfvs::gl::SavedState saved; // the reads bind the library's framebuffers
+  if (ranks > 1) {
+    const ibfvs::gl::SavedState saved;  // the reads bind the library's framebuffers
     const int w = in.width, h = in.height;
     ibfvs::ImageF depth = session ? session->renderer().read_depth() : ibfvs::ImageF(w, h, 1, 1.0f);
     ibfvs::ImageF texture =
-      session ? session->renderer().read_texture_raw() : ibfvs::ImageF(w, h, 2, 0.0f);
+        session ? session->renderer().read_texture_raw() : ibfvs::ImageF(w, h, 2, 0.0f);
     // Every rank counts frames alike; the statistics are due on the same ones.
     const bool statistics = in.scene.contrast > 0.0f && in.frame % 4 == 0;
     ibfvs::ImageF output;
-    std::vector<ibfvs::ImageF*> images{ &texture };
-    if (statistics)
-    {
+    std::vector<ibfvs::ImageF*> images{&texture};
+    if (statistics) {
       output = session ? session->renderer().read_output_raw() : ibfvs::ImageF(w, h, 4, 0.0f);
       images.push_back(&output);
     }
@@ -550,28 +487,25 @@ void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor)
     group.min_all = [controller](std::span<std::uint64_t> values) {
       std::vector<unsigned long> send(values.begin(), values.end());
       controller->AllReduce(send.data(), reinterpret_cast<unsigned long*>(values.data()),
-        static_cast<vtkIdType>(values.size()), vtkCommunicator::MIN_OP);
+                            static_cast<vtkIdType>(values.size()), vtkCommunicator::MIN_OP);
     };
     group.sum_all = [controller](std::span<float> values) {
       std::vector<float> send(values.begin(), values.end());
       controller->AllReduce(send.data(), values.data(), static_cast<vtkIdType>(values.size()),
-        vtkCommunicator::SUM_OP);
+                            vtkCommunicator::SUM_OP);
     };
     ibfvs::composite_nearest(images, depth, group);
-    if (session)
-    {
+    if (session) {
       session->renderer().write_texture_raw(texture);
-      if (statistics)
-      {
+      if (statistics) {
         session->renderer().write_output_raw(output);
         session->renderer().run_deferred_statistics();
       }
     }
   }
 
-  if (session)
-  {
-    GLint viewport[4] = { 0, 0, 0, 0 };
+  if (session) {
+    GLint viewport[4] = {0, 0, 0, 0};
     glGetIntegerv(GL_VIEWPORT, viewport);
     session->renderer().draw_to_host(glm::ivec2(viewport[0], viewport[1]));
     // Whatever the library's calls left (pixel store, bindings it restored),

@@ -16,9 +16,8 @@
 #include "IBFVSRepresentationsModule.h"  // export macro
 #include "vtkCompositePolyDataMapper2.h"
 
-class IBFVSREPRESENTATIONS_EXPORT vtkIBFVSMapper : public vtkCompositePolyDataMapper2
-{
-public:
+class IBFVSREPRESENTATIONS_EXPORT vtkIBFVSMapper : public vtkCompositePolyDataMapper2 {
+ public:
   static vtkIBFVSMapper* New();
   vtkTypeMacro(vtkIBFVSMapper, vtkCompositePolyDataMapper2);
   void PrintSelf(ostream& os, vtkIndent indent) override;
@@ -45,11 +44,11 @@ public:
   /// Why the last Render() drew a plain surface; empty when it drew the texture.
   const char* GetProblem();
 
-protected:
+ protected:
   vtkIBFVSMapper();
   ~vtkIBFVSMapper() override;
 
-private:
+ private:
   vtkIBFVSMapper(const vtkIBFVSMapper&) = delete;
   void operator=(const vtkIBFVSMapper&) = delete;
 

@@ -8,8 +8,7 @@
 
 vtkStandardNewMacro(vtkIBFVSRepresentation);
 
-vtkIBFVSRepresentation::vtkIBFVSRepresentation()
-{
+vtkIBFVSRepresentation::vtkIBFVSRepresentation() {
   // The Surface representation's mappers give way to two IBFVS mappers (the
   // LOD one draws while the GUI interacts, with its own texture).
   this->Mapper->Delete();
@@ -27,39 +26,33 @@ vtkIBFVSRepresentation::vtkIBFVSRepresentation()
 
 vtkIBFVSRepresentation::~vtkIBFVSRepresentation() = default;
 
-void vtkIBFVSRepresentation::PrintSelf(ostream& os, vtkIndent indent)
-{
+void vtkIBFVSRepresentation::PrintSelf(ostream& os, vtkIndent indent) {
   this->Superclass::PrintSelf(os, indent);
 }
 
-int vtkIBFVSRepresentation::ProcessViewRequest(
-  vtkInformationRequestKey* request_type, vtkInformation* inInfo, vtkInformation* outInfo)
-{
-  if (!this->Superclass::ProcessViewRequest(request_type, inInfo, outInfo))
-  {
+int vtkIBFVSRepresentation::ProcessViewRequest(vtkInformationRequestKey* request_type,
+                                               vtkInformation* inInfo, vtkInformation* outInfo) {
+  if (!this->Superclass::ProcessViewRequest(request_type, inInfo, outInfo)) {
     return 0;
   }
   // The mapper composites the texture across the ranks every frame (MPI
   // collectives): every rank must render, also one whose piece is empty.
-  if (request_type == vtkPVView::REQUEST_UPDATE())
-  {
+  if (request_type == vtkPVView::REQUEST_UPDATE()) {
     outInfo->Set(vtkPVRenderView::RENDER_EMPTY_IMAGES(), 1);
   }
   return 1;
 }
 
-void vtkIBFVSRepresentation::SelectInputVectors(
-  int, int, int, int attributeMode, const char* name)
-{
+void vtkIBFVSRepresentation::SelectInputVectors(int, int, int, int attributeMode,
+                                                const char* name) {
   this->IBFVSMapper->SetVectors(attributeMode, name);
   this->IBFVSLODMapper->SetVectors(attributeMode, name);
 }
 
-#define IBFVS_FORWARD(Name, Type)                                                                  \
-  void vtkIBFVSRepresentation::Set##Name(Type value)                                               \
-  {                                                                                                \
-    this->IBFVSMapper->Set##Name(value);                                                           \
-    this->IBFVSLODMapper->Set##Name(value);                                                        \
+#define IBFVS_FORWARD(Name, Type)                      \
+  void vtkIBFVSRepresentation::Set##Name(Type value) { \
+    this->IBFVSMapper->Set##Name(value);               \
+    this->IBFVSLODMapper->Set##Name(value);            \
   }
 IBFVS_FORWARD(Alpha, double)
 IBFVS_FORWARD(Beta, double)

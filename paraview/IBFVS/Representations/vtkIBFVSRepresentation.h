@@ -16,9 +16,9 @@
 
 class vtkIBFVSMapper;
 
-class IBFVSREPRESENTATIONS_EXPORT vtkIBFVSRepresentation : public vtkGeometryRepresentationWithFaces
-{
-public:
+class IBFVSREPRESENTATIONS_EXPORT vtkIBFVSRepresentation
+    : public vtkGeometryRepresentationWithFaces {
+ public:
   static vtkIBFVSRepresentation* New();
   vtkTypeMacro(vtkIBFVSRepresentation, vtkGeometryRepresentationWithFaces);
   void PrintSelf(ostream& os, vtkIndent indent) override;
@@ -40,16 +40,16 @@ public:
   void SetSeed(int seed);
 
   int ProcessViewRequest(vtkInformationRequestKey* request_type, vtkInformation* inInfo,
-    vtkInformation* outInfo) override;
+                         vtkInformation* outInfo) override;
 
-protected:
+ protected:
   vtkIBFVSRepresentation();
   ~vtkIBFVSRepresentation() override;
 
   vtkIBFVSMapper* IBFVSMapper;
   vtkIBFVSMapper* IBFVSLODMapper;
 
-private:
+ private:
   vtkIBFVSRepresentation(const vtkIBFVSRepresentation&) = delete;
   void operator=(const vtkIBFVSRepresentation&) = delete;
 };

@@ -5,61 +5,49 @@
 
 vtkStandardNewMacro(vtkSMIBFVSRepresentationProxy);
 
-namespace
-{
+namespace {
 // vtkSMProxy::GetSubProxy is protected; a subclass may name it, and the
 // member pointer it yields reaches the sibling subproxies of our parent.
-struct SubProxyAccess : vtkSMProxy
-{
-  static vtkSMProxy* Get(vtkSMProxy* proxy, const char* name)
-  {
+struct SubProxyAccess : vtkSMProxy {
+  static vtkSMProxy* Get(vtkSMProxy* proxy, const char* name) {
     vtkSMProxy* (vtkSMProxy::*get)(const char*) = &SubProxyAccess::GetSubProxy;
     return (proxy->*get)(name);
   }
 };
-}
+}  // namespace
 
 vtkSMIBFVSRepresentationProxy::vtkSMIBFVSRepresentationProxy() = default;
 
-vtkSMIBFVSRepresentationProxy::~vtkSMIBFVSRepresentationProxy()
-{
-  if (this->ToLIC)
-  {
+vtkSMIBFVSRepresentationProxy::~vtkSMIBFVSRepresentationProxy() {
+  if (this->ToLIC) {
     this->ToLIC->Delete();
   }
-  if (this->FromLIC)
-  {
+  if (this->FromLIC) {
     this->FromLIC->Delete();
   }
 }
 
-void vtkSMIBFVSRepresentationProxy::PrintSelf(ostream& os, vtkIndent indent)
-{
+void vtkSMIBFVSRepresentationProxy::PrintSelf(ostream& os, vtkIndent indent) {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Linked to Surface LIC: " << (this->ToLIC ? "yes" : "no") << "\n";
 }
 
-void vtkSMIBFVSRepresentationProxy::CreateVTKObjects()
-{
+void vtkSMIBFVSRepresentationProxy::CreateVTKObjects() {
   this->Superclass::CreateVTKObjects();
   this->LinkSurfaceLICVectors();
 }
 
-void vtkSMIBFVSRepresentationProxy::UpdateVTKObjects()
-{
-  this->LinkSurfaceLICVectors(); // Surface LIC may have come after this proxy
+void vtkSMIBFVSRepresentationProxy::UpdateVTKObjects() {
+  this->LinkSurfaceLICVectors();  // Surface LIC may have come after this proxy
   this->Superclass::UpdateVTKObjects();
 }
 
-void vtkSMIBFVSRepresentationProxy::LinkSurfaceLICVectors()
-{
-  if (this->ToLIC || !this->GetParentProxy() || !this->GetProperty("SelectInputVectors"))
-  {
+void vtkSMIBFVSRepresentationProxy::LinkSurfaceLICVectors() {
+  if (this->ToLIC || !this->GetParentProxy() || !this->GetProperty("SelectInputVectors")) {
     return;
   }
   vtkSMProxy* lic = SubProxyAccess::Get(this->GetParentProxy(), "SurfaceLICRepresentation");
-  if (!lic || !lic->GetProperty("SelectInputVectors"))
-  {
+  if (!lic || !lic->GetProperty("SelectInputVectors")) {
     return;
   }
   this->ToLIC = vtkSMPropertyLink::New();

@@ -6,26 +6,25 @@
 #ifndef vtkSMIBFVSRepresentationProxy_h
 #define vtkSMIBFVSRepresentationProxy_h
 
-#include "IBFVSRepresentationsModule.h" // export macro
+#include "IBFVSRepresentationsModule.h"  // export macro
 #include "vtkSMRepresentationProxy.h"
 
 class vtkSMPropertyLink;
 
-class IBFVSREPRESENTATIONS_EXPORT vtkSMIBFVSRepresentationProxy : public vtkSMRepresentationProxy
-{
-public:
+class IBFVSREPRESENTATIONS_EXPORT vtkSMIBFVSRepresentationProxy : public vtkSMRepresentationProxy {
+ public:
   static vtkSMIBFVSRepresentationProxy* New();
   vtkTypeMacro(vtkSMIBFVSRepresentationProxy, vtkSMRepresentationProxy);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   void UpdateVTKObjects() override;
 
-protected:
+ protected:
   vtkSMIBFVSRepresentationProxy();
   ~vtkSMIBFVSRepresentationProxy() override;
   void CreateVTKObjects() override;
 
-private:
+ private:
   vtkSMIBFVSRepresentationProxy(const vtkSMIBFVSRepresentationProxy&) = delete;
   void operator=(const vtkSMIBFVSRepresentationProxy&) = delete;
 

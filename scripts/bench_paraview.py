@@ -1,6 +1,6 @@
 """Frame time of the IBFVS representation in pvbatch, for docs/performance.md.
 
-  xvfb-run -a pvbatch scripts/bench_paraview.py PLUGIN [THETA PHI [W H [FRAMES]]]
+  xvfb-run -a pvbatch scripts/bench_paraview.py PLUGIN|none [THETA PHI [W H [FRAMES]]]
   xvfb-run -a mpiexec -n 2 pvbatch scripts/bench_paraview.py PLUGIN ...
 
 A sphere of THETA x PHI points (2 THETA (PHI - 2) triangles; the sphere
@@ -17,7 +17,8 @@ plugin = sys.argv[1]
 theta, phi = (int(sys.argv[2]), int(sys.argv[3])) if len(sys.argv) > 3 else (2000, 1000)
 w, h = (int(sys.argv[4]), int(sys.argv[5])) if len(sys.argv) > 5 else (1024, 768)
 frames = int(sys.argv[6]) if len(sys.argv) > 6 else 30
-LoadPlugin(plugin, remote=False, ns=globals())
+if plugin != "none":  # "none": ParaView alone, the Surface representation only
+    LoadPlugin(plugin, remote=False, ns=globals())
 
 sphere = Sphere(ThetaResolution=theta, PhiResolution=phi)
 swirl = Calculator(Input=sphere, ResultArrayName="v", Function="-coordsY*iHat+coordsX*jHat+0.3*kHat")
@@ -52,4 +53,5 @@ def timed(representation):
 
 
 timed("Surface")
-timed("IBFVS")
+if plugin != "none":
+    timed("IBFVS")

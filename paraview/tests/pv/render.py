@@ -10,9 +10,11 @@
 #   frames     renders before the last screenshot; shots: frames to save at
 #   size       [w, h]; out: file name prefix; mask: also save the surface's mask
 #   properties {name: value} set on the representation
+#   camera, focal, view_angle: the view (default from (2.5, 1.5, 2) at the origin)
 import json
 import sys
 
+import paraview.simple
 from paraview.simple import *  # noqa: F401,F403 (ParaView's own idiom)
 
 cfg = json.loads(sys.argv[1])
@@ -23,6 +25,7 @@ source = OpenDataFile(cfg["data"])
 if cfg.get("pieces"):
     source = ProcessIdScalars(Input=source)
 
+paraview.simple._DisableFirstRenderCameraReset()  # the camera below is the view
 view = GetActiveViewOrCreate("RenderView")
 w, h = cfg.get("size", [320, 240])
 view.ViewSize = [w, h]
@@ -31,9 +34,9 @@ view.UseColorPaletteForBackground = 0
 view.Background = [0.2, 0.3, 0.4]
 display = Show(source, view)
 view.CameraPosition = cfg.get("camera", [2.5, 1.5, 2.0])
-view.CameraFocalPoint = [0, 0, 0]
+view.CameraFocalPoint = cfg.get("focal", [0, 0, 0])
 view.CameraViewUp = [0, 0, 1]
-view.CameraViewAngle = 30
+view.CameraViewAngle = cfg.get("view_angle", 30)
 
 if cfg.get("pieces"):
     ColorBy(display, ("POINTS", "ProcessId"))

@@ -148,6 +148,16 @@ def mask_of(out):
     return (m[..., 0] > 200) & (m[..., 1] < 60) & (m[..., 2] > 200)
 
 
+def grown(mask, pixels=1):
+    """The mask and its ring of `pixels` around it (the silhouette's blended
+    pixels, which ParaView's anti-aliasing spreads over the edge)."""
+    out = mask.copy()
+    for dy in range(-pixels, pixels + 1):
+        for dx in range(-pixels, pixels + 1):
+            out |= np.roll(np.roll(mask, dy, 0), dx, 1)
+    return out
+
+
 def local_contrast(img, mask):
     """Mean absolute difference between neighbouring pixels inside the mask:
     texture has it, a smooth shaded surface hardly any."""
@@ -167,9 +177,11 @@ def test_texture_on_the_surface_nothing_on_the_background_and_it_moves(data, tmp
     assert 0.15 < mask.mean() < 0.7
     a, b = image(out + "-30.png"), image(out + "-36.png")
     surface = image(out + "-surface.png")
-    # The background is the view's, untouched, in every frame.
+    # The background is the view's, untouched, in every frame (beyond the
+    # silhouette's one-pixel ring of blended pixels).
+    outside = ~grown(mask)
     for img in (a, b):
-        assert (np.abs(img[~mask] - BACKGROUND).max(axis=-1) <= 1).mean() > 0.995
+        assert (np.abs(img[outside] - BACKGROUND).max(axis=-1) <= 1).mean() > 0.999
         # And the surface is covered (no background showing through).
         assert (np.abs(img[mask] - BACKGROUND).max(axis=-1) <= 3).mean() < 0.01
     # Dense texture on the surface, where the Surface representation is smooth.
@@ -178,7 +190,7 @@ def test_texture_on_the_surface_nothing_on_the_background_and_it_moves(data, tmp
     # It moves: six frames later the surface differs, the background does not.
     moved = np.abs(a - b).max(axis=-1)
     assert (moved[mask] > 10).mean() > 0.3
-    assert (moved[~mask] > 1).mean() < 0.005
+    assert (moved[outside] > 1).mean() < 0.001
 
 
 def test_colour_by_a_scalar_through_paraviews_colour_map(data, tmp_path):

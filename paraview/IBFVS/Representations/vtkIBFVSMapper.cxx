@@ -12,7 +12,8 @@
 #include <string>
 #include <vector>
 
-#include <glm/gtc/type_ptr.hpp>
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
 
 #include "ibfvs/core/composite.h"
 #include "ibfvs/core/error.h"
@@ -88,6 +89,7 @@ class vtkIBFVSMapper::Internals {
   std::shared_ptr<ibfvs::TriMesh> mesh;  // null: this rank's piece is empty
   std::string problem;                   // why this rank cannot draw the texture
   float speed = 0.0f;                    // fastest vector of this piece
+  glm::vec3 lower{0.0f}, upper{0.0f};    // its bounds (the header's, every frame)
   bool geometry_changed = true;
 
   // ---- colour by ParaView's lookup table
@@ -324,6 +326,13 @@ void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor) {
     in.input_time = input_time;
     in.input_vectors = in.vectors;
     in.mesh = take_surface(input, in.vectors, in.problem, in.speed);
+    if (in.mesh && !in.mesh->positions.empty()) {
+      in.lower = in.upper = in.mesh->positions.front();
+      for (const glm::vec3& p : in.mesh->positions) {
+        in.lower = glm::min(in.lower, p);
+        in.upper = glm::max(in.upper, p);
+      }
+    }
     in.colour_key.clear();
     in.geometry_changed = true;
   }
@@ -347,11 +356,10 @@ void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor) {
     header[kMaxX + k] = -1e300;
   }
   if (in.mesh) {
-    for (const glm::vec3& p : in.mesh->positions)
-      for (int k = 0; k < 3; ++k) {
-        header[kMinX + k] = std::max(header[kMinX + k], -static_cast<double>(p[k]));
-        header[kMaxX + k] = std::max(header[kMaxX + k], static_cast<double>(p[k]));
-      }
+    for (int k = 0; k < 3; ++k) {
+      header[kMinX + k] = -static_cast<double>(in.lower[k]);
+      header[kMaxX + k] = static_cast<double>(in.upper[k]);
+    }
   }
   if (ranks > 1) {
     double global[kHeaderSize];

@@ -10,7 +10,7 @@
 #   frames     renders before the last screenshot; shots: frames to save at
 #   size       [w, h]; out: file name prefix; mask: also save the surface's mask
 #   properties {name: value} set on the representation
-#   camera, focal, view_angle: the view (default from (2.5, 1.5, 2) at the origin)
+#   camera, focal, view_angle: the view (default from (3.5, 2.1, 2.8) at the origin)
 import json
 import sys
 
@@ -33,7 +33,7 @@ view.OrientationAxesVisibility = 0
 view.UseColorPaletteForBackground = 0
 view.Background = [0.2, 0.3, 0.4]
 display = Show(source, view)
-view.CameraPosition = cfg.get("camera", [2.5, 1.5, 2.0])
+view.CameraPosition = cfg.get("camera", [3.5, 2.1, 2.8])
 view.CameraFocalPoint = cfg.get("focal", [0, 0, 0])
 view.CameraViewUp = [0, 0, 1]
 view.CameraViewAngle = cfg.get("view_angle", 30)

@@ -1,5 +1,5 @@
 """The ParaView plugin as users drive it: pvpython and pvbatch (also under
-mpiexec) under Xvfb run pv/render.py; these tests write the data, read the
+mpiexec) on an Xvfb display run pv/render.py; these tests write the data, read the
 screenshots and check the pictures. Debian's own Python with numpy runs
 them; it never imports ParaView (one VTK per process).
 
@@ -8,7 +8,9 @@ Environment: IBFVS_PARAVIEW_PLUGIN (the built IBFVS.so), set by CTest.
 import json
 import os
 import shutil
+import signal
 import subprocess
+import time
 from pathlib import Path
 
 import numpy as np
@@ -19,8 +21,8 @@ SCRIPT = Path(__file__).parent / "pv" / "render.py"
 MPIEXEC = shutil.which("mpiexec")
 
 pytestmark = pytest.mark.skipif(
-    not (PLUGIN and Path(PLUGIN).exists() and shutil.which("pvbatch") and shutil.which("xvfb-run")),
-    reason="needs the built plugin (IBFVS_PARAVIEW_PLUGIN), ParaView and xvfb-run",
+    not (PLUGIN and Path(PLUGIN).exists() and shutil.which("pvbatch") and shutil.which("Xvfb")),
+    reason="needs the built plugin (IBFVS_PARAVIEW_PLUGIN), ParaView and Xvfb",
 )
 
 
@@ -109,24 +111,71 @@ def data(tmp_path_factory):
 
 # ------------------------------------------------------------------ running
 
+DISPLAY = {"name": ""}
+
+
+@pytest.fixture(scope="module", autouse=True)
+def xvfb():
+    """One X server for all of this module's runs (Debian's ParaView needs
+    X): Xvfb picks a free display itself and says which once it is up, so
+    runs neither race other tests' servers nor start before theirs is up."""
+    read, write = os.pipe()
+    server = subprocess.Popen(["Xvfb", "-displayfd", str(write), "-screen", "0", "1280x1024x24",
+                               "-nolisten", "tcp"], pass_fds=(write,),
+                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    os.close(write)
+    number = os.read(read, 32).decode().strip()
+    os.close(read)
+    assert number, "Xvfb did not start"
+    DISPLAY["name"] = ":" + number
+    yield
+    server.terminate()
+    server.wait(timeout=30)
+
+
+def on_display(cmd, timeout=150, **kwargs):
+    """Runs a ParaView command on the module's display. ParaView 5.11's own
+    first distributed render sometimes never returns (rank 0 in IceT's
+    MPI_Comm_dup, the others waiting for the render request; seen with the
+    plugin not loaded too, docs/paraview.md): such a run is killed with all
+    its processes and run again, and says so."""
+    env = dict(os.environ, DISPLAY=DISPLAY["name"])
+    for attempt in range(3):
+        proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                                env=env, start_new_session=True, **kwargs)
+        try:
+            out, err = proc.communicate(timeout=timeout)
+            # Xvfb now and then refuses a connection ("bad X server
+            # connection", at random, on a busy machine): start again.
+            if "bad X server connection" in out + err and attempt < 2:
+                print("X refused a connection (attempt %d): %s" % (attempt + 1, " ".join(cmd[:6])))
+                time.sleep(1)
+                continue
+            return subprocess.CompletedProcess(cmd, proc.returncode, out, err)
+        except subprocess.TimeoutExpired:
+            os.killpg(proc.pid, signal.SIGKILL)  # mpiexec and every rank
+            proc.communicate()
+            print("ParaView did not finish in %d s (attempt %d): %s" % (timeout, attempt + 1,
+                                                                        " ".join(cmd[:6])))
+    pytest.fail("ParaView did not finish, or X refused it, three times: %s" % " ".join(cmd))
+
+
+def why(done):
+    """What a failed ParaView run said, without its stack traces."""
+    lines = (done.stdout + done.stderr).splitlines()
+    said = [l for l in lines if "ERR|" in l or "WARN|" in l or "Error" in l or "rror:" in l]
+    return "exit %d\n%s" % (done.returncode, "\n".join(said[-30:] or lines[-30:]))
+
 
 def run(cfg, tmp_path, ranks=1, batch=False):
     cfg = dict({"plugin": PLUGIN}, **cfg)
     cfg["out"] = str(tmp_path / cfg.get("name", "shot"))
     exe = "pvbatch" if batch or ranks > 1 else "pvpython"
-    # Displays from a number of this process's own: other tests (or users)
-    # starting xvfb-run -a at the same time take :99 and up.
-    cmd = ["xvfb-run", "-a", "-n", str(200 + os.getpid() % 500), "-s", "-screen 0 1024x768x24"]
+    cmd = []
     if ranks > 1:
         cmd += [MPIEXEC, "--allow-run-as-root", "--oversubscribe", "-n", str(ranks)]
-    cmd += [exe, str(SCRIPT), json.dumps(cfg)]
-    for attempt in range(3):
-        done = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
-        # xvfb-run -a started beside another one (tests in parallel) can hand
-        # over a display whose server is not up yet: start again.
-        if "bad X server connection" not in done.stdout + done.stderr:
-            break
-    assert done.returncode == 0, done.stdout[-3000:] + done.stderr[-3000:]
+    done = on_display(cmd + [exe, str(SCRIPT), json.dumps(cfg)])
+    assert done.returncode == 0, why(done)
     return done, cfg["out"]
 
 
@@ -279,10 +328,8 @@ def test_the_pvpython_examples_in_the_docs_run(tmp_path, doc):
         assert BUILT_PLUGIN in block
         script = tmp_path / ("example%d.py" % k)
         script.write_text(block.replace(BUILT_PLUGIN, PLUGIN))  # this build's plugin
-        done = subprocess.run(["xvfb-run", "-a", "-n", str(200 + os.getpid() % 500), "pvpython",
-                               str(script)], cwd=tmp_path,
-                              capture_output=True, text=True, timeout=300)
-        assert done.returncode == 0, done.stdout[-2000:] + done.stderr[-2000:]
+        done = on_display(["pvpython", str(script)], cwd=tmp_path)
+        assert done.returncode == 0, why(done)
         assert "IBFVS: " not in done.stdout + done.stderr  # no warning: the texture was drawn
     shots = list(tmp_path.glob("*.png"))
     assert shots

@@ -337,3 +337,12 @@ def test_the_pvpython_examples_in_the_docs_run(tmp_path, doc):
         img = image(shot)
         g = img.mean(axis=2)
         assert np.abs(np.diff(g, axis=1)).mean() > 1  # texture, not a blank view
+
+
+@pytest.mark.skipif(MPIEXEC is None, reason="needs mpiexec")
+def test_bad_vectors_under_mpi_warn_and_no_rank_fails(data, tmp_path):
+    done, out = run({"data": str(data / "sphere.pvtp"), "vectors": ["POINTS", "uv2"],
+                     "frames": 4, "shots": [4], "mask": True}, tmp_path, ranks=2)
+    text = done.stdout + done.stderr
+    assert "IBFVS: the array 'uv2' has 2 components" in text
+    assert np.abs(image(out + "-4.png") - image(out + "-surface.png")).max() <= 2

@@ -164,7 +164,9 @@ def why(done):
     """What a failed ParaView run said, without its stack traces."""
     lines = (done.stdout + done.stderr).splitlines()
     said = [l for l in lines if "ERR|" in l or "WARN|" in l or "Error" in l or "rror:" in l]
-    return "exit %d\n%s" % (done.returncode, "\n".join(said[-30:] or lines[-30:]))
+    # A crash: the frames of its stack trace above Python's own.
+    frames = [l for l in lines if " 0x" in l and "python" not in l.lower() and "Py" not in l]
+    return "exit %d\n%s" % (done.returncode, "\n".join((said + frames[:25])[-40:] or lines[-30:]))
 
 
 def run(cfg, tmp_path, ranks=1, batch=False):
@@ -346,3 +348,12 @@ def test_bad_vectors_under_mpi_warn_and_no_rank_fails(data, tmp_path):
     text = done.stdout + done.stderr
     assert "IBFVS: the array 'uv2' has 2 components" in text
     assert np.abs(image(out + "-4.png") - image(out + "-surface.png")).max() <= 2
+
+
+def test_the_benchmark_that_docs_paraview_md_shows_runs(tmp_path):
+    # Its own command line with a small sphere: one line per representation.
+    done = on_display(["pvbatch", str(ROOT / "scripts" / "bench_paraview.py"), PLUGIN,
+                       "40", "20", "160", "120", "2"], cwd=tmp_path)
+    assert done.returncode == 0, why(done)
+    lines = [l for l in done.stdout.splitlines() if l.split()[:1] in (["Surface"], ["IBFVS"])]
+    assert len(lines) == 2 and all("ms per frame" in l for l in lines), done.stdout

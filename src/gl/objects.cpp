@@ -112,8 +112,26 @@ class PixelTransfer {
   std::array<GLint, 5> values_{};
 };
 
-// Clip distances a host may have enabled (VTK's clipping planes: 6).
-constexpr GLenum kClipDistances = 6;
+// The capabilities ibfvs's passes switch, which SavedState saves and puts
+// back: a host's (ParaView's) may have any of them on. The clip distances are
+// VTK's clipping planes (6).
+constexpr std::array<GLenum, 12> kCapabilities = {
+    GL_DEPTH_TEST,     GL_CULL_FACE,           GL_BLEND,          GL_SCISSOR_TEST,
+    GL_STENCIL_TEST,   GL_POLYGON_OFFSET_FILL, GL_CLIP_DISTANCE0, GL_CLIP_DISTANCE1,
+    GL_CLIP_DISTANCE2, GL_CLIP_DISTANCE3,      GL_CLIP_DISTANCE4, GL_CLIP_DISTANCE5};
+
+void set_capability(GLenum capability, bool on) {
+  if (on)
+    glEnable(capability);
+  else
+    glDisable(capability);
+}
+
+// Off for every capability but depth testing and culling, which each pass sets.
+void disable_host_capabilities() {
+  for (const GLenum c : kCapabilities)
+    if (c != GL_DEPTH_TEST && c != GL_CULL_FACE) glDisable(c);
+}
 
 }  // namespace
 
@@ -408,26 +426,16 @@ void draw_triangles(std::size_t index_count, bool index32) {
 void prepare_own_draw() {
   // Blending off above all: a host's (ParaView's) would blend the noise
   // grid pass, which writes no alpha, into nothing.
-  glDisable(GL_BLEND);
-  glDisable(GL_SCISSOR_TEST);
-  glDisable(GL_STENCIL_TEST);
-  glDisable(GL_POLYGON_OFFSET_FILL);
-  for (GLenum c = 0; c < kClipDistances; ++c) glDisable(GL_CLIP_DISTANCE0 + c);
+  disable_host_capabilities();
   glDepthMask(GL_TRUE);
   glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 }
 
 void prepare_host_draw() {
+  prepare_own_draw();
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LEQUAL);
-  glDepthMask(GL_TRUE);
-  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-  glDisable(GL_BLEND);
   glDisable(GL_CULL_FACE);
-  glDisable(GL_SCISSOR_TEST);
-  glDisable(GL_STENCIL_TEST);
-  glDisable(GL_POLYGON_OFFSET_FILL);
-  for (GLenum c = 0; c < kClipDistances; ++c) glDisable(GL_CLIP_DISTANCE0 + c);
 }
 
 void finish() {
@@ -452,14 +460,8 @@ SavedState::SavedState() {
   glGetIntegerv(GL_FRONT_FACE, &front_face_);
   glGetBooleanv(GL_DEPTH_WRITEMASK, &depth_mask_);
   glGetBooleanv(GL_COLOR_WRITEMASK, color_mask_);
-  scissor_ = glIsEnabled(GL_SCISSOR_TEST) == GL_TRUE;
-  stencil_ = glIsEnabled(GL_STENCIL_TEST) == GL_TRUE;
-  polygon_offset_ = glIsEnabled(GL_POLYGON_OFFSET_FILL) == GL_TRUE;
-  for (GLenum c = 0; c < kClipDistances; ++c)
-    clip_distances_ |= glIsEnabled(GL_CLIP_DISTANCE0 + c) == GL_TRUE ? 1u << c : 0u;
-  depth_test_ = glIsEnabled(GL_DEPTH_TEST) == GL_TRUE;
-  cull_face_ = glIsEnabled(GL_CULL_FACE) == GL_TRUE;
-  blend_ = glIsEnabled(GL_BLEND) == GL_TRUE;
+  for (std::size_t i = 0; i < kCapabilities.size(); ++i)
+    if (glIsEnabled(kCapabilities[i]) == GL_TRUE) capabilities_ |= 1u << i;
   glGetIntegerv(GL_BLEND_SRC_RGB, &blend_func_[0]);
   glGetIntegerv(GL_BLEND_DST_RGB, &blend_func_[1]);
   glGetIntegerv(GL_BLEND_SRC_ALPHA, &blend_func_[2]);
@@ -488,33 +490,9 @@ SavedState::~SavedState() {
   glFrontFace(static_cast<GLenum>(front_face_));
   glDepthMask(depth_mask_);
   glColorMask(color_mask_[0], color_mask_[1], color_mask_[2], color_mask_[3]);
-  if (scissor_)
-    glEnable(GL_SCISSOR_TEST);
-  else
-    glDisable(GL_SCISSOR_TEST);
-  if (stencil_)
-    glEnable(GL_STENCIL_TEST);
-  else
-    glDisable(GL_STENCIL_TEST);
-  if (polygon_offset_)
-    glEnable(GL_POLYGON_OFFSET_FILL);
-  else
-    glDisable(GL_POLYGON_OFFSET_FILL);
-  for (GLenum c = 0; c < kClipDistances; ++c)
-    if (clip_distances_ & (1u << c)) glEnable(GL_CLIP_DISTANCE0 + c);
+  for (std::size_t i = 0; i < kCapabilities.size(); ++i)
+    set_capability(kCapabilities[i], (capabilities_ & (1u << i)) != 0);
   glViewport(viewport_[0], viewport_[1], viewport_[2], viewport_[3]);
-  if (depth_test_)
-    glEnable(GL_DEPTH_TEST);
-  else
-    glDisable(GL_DEPTH_TEST);
-  if (cull_face_)
-    glEnable(GL_CULL_FACE);
-  else
-    glDisable(GL_CULL_FACE);
-  if (blend_)
-    glEnable(GL_BLEND);
-  else
-    glDisable(GL_BLEND);
   glBlendFuncSeparate(static_cast<GLenum>(blend_func_[0]), static_cast<GLenum>(blend_func_[1]),
                       static_cast<GLenum>(blend_func_[2]), static_cast<GLenum>(blend_func_[3]));
   glBlendColor(blend_color_[0], blend_color_[1], blend_color_[2], blend_color_[3]);

@@ -192,9 +192,11 @@ void prepare_own_draw();
 void prepare_host_draw();
 void finish();
 
-/// Saves the bindings a host application may rely on (draw and read
-/// framebuffers, viewport, program, vertex array, active texture unit's 2D
-/// texture, depth test, face culling) and restores them when it goes out of
+/// Saves the bindings and state a host application may rely on (draw and
+/// read framebuffers, viewport, program, vertex array, the 2D textures of
+/// units 0-4 and the active one, depth function and writes, colour mask,
+/// culling, blending, scissor, stencil, polygon offset, clip distances) and
+/// restores them when it goes out of
 /// scope: drawing inside somebody else's context (ParaView's) leaves it as
 /// it was.
 class SavedState {
@@ -210,9 +212,7 @@ class SavedState {
   int active_texture_ = 0, unit_textures_[5] = {0, 0, 0, 0, 0};  // units 0-4, which ibfvs binds
   int depth_func_ = 0, cull_face_mode_ = 0, front_face_ = 0;
   unsigned char depth_mask_ = 1, color_mask_[4] = {1, 1, 1, 1};
-  bool depth_test_ = false, cull_face_ = false, blend_ = false, scissor_ = false, stencil_ = false;
-  bool polygon_offset_ = false;
-  unsigned clip_distances_ = 0;
+  unsigned capabilities_ = 0;  // bit i: kCapabilities[i] (objects.cpp) was on
   int blend_func_[4] = {1, 0, 1, 0};
   float blend_color_[4] = {0, 0, 0, 0};
 };

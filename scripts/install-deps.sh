@@ -10,6 +10,9 @@ packages=(
   libavcodec-dev libavformat-dev libavutil-dev
   libegl-dev libegl-mesa0 libgl1-mesa-dri libgbm1
   libgtest-dev googletest libbenchmark-dev
+  # The curvature tests and bench: random triangulations (convex hulls) and
+  # CGAL's jet fitting as the peer (header-only; the library never links it).
+  libcgal-dev
   ffmpeg
   # The VTK and OpenFOAM readers: the VTK inside Debian's ParaView (about
   # 1 GiB with ParaView itself), never libvtk9-dev (docs/data.md).

@@ -1,16 +1,28 @@
 #pragma once
-// Principal curvatures and directions per vertex by the cubic-order fit of
-// Goldfeather and Interrante ("A novel cubic-order algorithm for approximating
-// principal direction vectors", ACM Transactions on Graphics 23(1), 2004), as
-// the IBFVS paper does after reading a mesh (section 5).
+// Principal curvatures and directions per vertex, as the IBFVS paper needs
+// them after reading a mesh (section 5), by local polynomial fits:
 //
-// At each vertex p with normal n, the neighbours are written in a local frame
-// (u, v, n) and a surface z = A/2 x^2 + B xy + C/2 y^2 + D x^3 + E x^2 y + F x y^2 + G y^3
-// is fitted by least squares to their positions and to their normals (each
-// normal gives two slope equations). The Weingarten matrix [[A, B], [B, C]]
-// gives the curvatures (its eigenvalues) and directions (its eigenvectors).
-// A first fit with linear terms tilts the normal (the refined normal); the
-// cubic fit is then made in the refined frame.
+// - the quartic jet of F. Cazals and M. Pouget, "Estimating differential
+//   quantities using polynomial fitting of osculating jets", Computer Aided
+//   Geometric Design 22(2), 2005 (CGAL's Monge_via_jet_fitting): at each
+//   vertex p, z = sum c_ij x^i y^j (1 <= i + j <= 4, through p) is fitted by
+//   least squares to the 2-ring in the frame of the mesh normal, near
+//   neighbours weighted more (a Gaussian of half a mean neighbour distance);
+//   the exact curvature of the fitted graph at p, whatever its tilt, gives
+//   the normal, principal curvatures and directions. Errors fall as h^3 on
+//   any triangulation; noise, though, it follows.
+// - the cubic fit of J. Goldfeather and V. Interrante, "A novel cubic-order
+//   algorithm for approximating principal direction vectors", ACM
+//   Transactions on Graphics 23(1), 2004 (the one the IBFVS paper used): a
+//   cubic fitted to the 2-ring's positions and normals (two slope equations
+//   each), the normals those of a first cubic fit of positions. Biased as
+//   h^2, but three equations per neighbour average a scan's noise.
+//
+// By default each mesh gets the one that suits it (CurvatureFit::automatic):
+// on exact surfaces the two differ by the cubic's bias, many times the
+// quartic's standard error estimated from its residuals; on noisy ones by a
+// few times only. Measured against CGAL on the same meshes:
+// bench/curvature_accuracy.cpp and README.md.
 
 #include <vector>
 
@@ -20,33 +32,62 @@
 
 namespace ibfvs {
 
+/// How compute_curvature fits each vertex.
+enum class CurvatureFit {
+  /// The quartic on exact meshes (CAD, subdivision and simulation
+  /// surfaces), the cubic with normals on noisy ones (scans): where the two
+  /// differ, over a sample of vertices, by less than 6 times the quartic's
+  /// standard error (estimated from its residuals), noise dominates.
+  automatic,
+  /// A jet of degree 4 fitted to the positions of the 2-ring (Cazals and
+  /// Pouget 2005): errors fall as h^3 on any triangulation, but it follows
+  /// noise.
+  quartic,
+  /// A cubic fitted to positions and normals (Goldfeather and Interrante
+  /// 2004), with normals from a first cubic fit of positions: errors fall
+  /// as h^2 only, but noise of a scan averages out.
+  cubic_with_normals,
+};
+
 /// Options of compute_curvature.
 struct CurvatureOptions {
-  /// Fewer 1-ring neighbours than this: the 2-ring is used as well.
-  int min_neighbours = 5;
+  CurvatureFit fit = CurvatureFit::automatic;
+  /// Rings of neighbours fitted, 1 to 3; grown (up to 3) while there are
+  /// fewer than 17 vertices (the quartic's 14 coefficients and 3 more).
+  int rings = 2;
+  /// Width of the quartic's Gaussian weights, in mean neighbour distances
+  /// (0: equal weights): near neighbours count more, where the jet's
+  /// truncation error is smallest.
+  float weight_radius = 0.5f;
   /// Neighbour normals tilted more than this from the vertex normal (cosine)
   /// give no slope equations: across a crease they say nothing about the fit.
   float min_normal_cosine = 0.3f;
-  /// Refine the vertex normal with a first fit that has linear terms.
-  bool refine_normals = true;
 };
 
 /// Per-vertex curvature. Signs follow the normals: a sphere with outward
 /// normals has kmin = kmax = 1/r > 0; a saddle has kmin < 0 < kmax.
 struct Curvature {
-  std::vector<float> kmin;            ///< smaller principal curvature
-  std::vector<float> kmax;            ///< larger principal curvature
-  std::vector<glm::vec3> dmin;        ///< unit direction of kmin, tangent
-  std::vector<glm::vec3> dmax;        ///< unit direction of kmax, tangent, orthogonal to dmin
-  std::vector<glm::vec3> normal;      ///< refined unit normal (dmax x dmin)
-  std::size_t fallback_vertices = 0;  ///< vertices fitted by the quadratic fallback or left flat
+  std::vector<float> kmin;        ///< smaller principal curvature
+  std::vector<float> kmax;        ///< larger principal curvature
+  std::vector<glm::vec3> dmin;    ///< unit direction of kmin, tangent
+  std::vector<glm::vec3> dmax;    ///< unit direction of kmax, tangent, orthogonal to dmin
+  std::vector<glm::vec3> normal;  ///< refined unit normal (dmax x dmin)
+  std::size_t fallback_vertices =
+      0;                             ///< vertices fitted by a lower degree than asked, or left flat
+  std::size_t quartic_vertices = 0;  ///< vertices whose estimate is the quartic's
+  /// The fit used (quartic or cubic_with_normals) and, when it was chosen
+  /// automatically, the median ratio that chose it (see CurvatureFit).
+  CurvatureFit fit = CurvatureFit::automatic;
+  float noise_ratio = 0.0f;
 };
 
 /// Curvature of every vertex. Needs `mesh.normals` (compute_vertex_normals).
-/// Vertices with too few usable neighbours fall back to a quadratic fit of
-/// positions, or to zero curvature with arbitrary tangent directions; no
-/// output is ever NaN. Uses every core (OpenMP). Throws InputError when the
-/// mesh has no normals.
+/// Where the quartic does not fit (too few neighbours, all on a line) or
+/// tilts more than 10 degrees from the first cubic's normal (a crease, a thin
+/// part), the cubic with normals is used; where that fails, lower degrees,
+/// then zero curvature with tangent directions of the frame. Coincident and
+/// non-finite neighbours are skipped; no output is ever NaN. Uses every core
+/// (OpenMP). Throws InputError when the mesh has no normals.
 Curvature compute_curvature(const TriMesh& mesh, const CurvatureOptions& options = {});
 
 /// Copies `c` into the mesh as scalars kmin kmax dminx dminy dminz dmaxx

@@ -30,6 +30,11 @@ void add_geometry_options(CLI::App& cmd, GeometryOptions& o) {
                  "dminz, dmaxx dmaxy dmaxz (principal curvatures and directions), and any vx vy "
                  "vz and scalars of the input. Default: only print the summary");
   cmd.add_flag("--ascii", o.ascii, "Write ASCII PLY instead of binary");
+  cmd.add_option("--curvature-fit", o.fit,
+                 "auto: the quartic jet on exact meshes (CAD, subdivision, simulation), the cubic "
+                 "fit with normals on noisy ones (scans); quartic or cubic forces one")
+      ->check(CLI::IsMember({"auto", "quartic", "cubic"}))
+      ->capture_default_str();
   cmd.add_flag("--quiet,-q", o.quiet, "No summary");
 }
 
@@ -71,7 +76,11 @@ int run_geometry(const GeometryOptions& o) {
   TriMesh& mesh = loaded.mesh;
   const auto t1 = clock::now();
   compute_vertex_normals(mesh);
-  const Curvature curvature = compute_curvature(mesh);
+  CurvatureOptions curvature_options;
+  curvature_options.fit = o.fit == "quartic" ? CurvatureFit::quartic
+                          : o.fit == "cubic" ? CurvatureFit::cubic_with_normals
+                                             : CurvatureFit::automatic;
+  const Curvature curvature = compute_curvature(mesh, curvature_options);
   const auto t2 = clock::now();
   store_curvature(mesh, curvature);
   if (!o.out.empty()) {
@@ -90,9 +99,22 @@ int run_geometry(const GeometryOptions& o) {
                                   (top.boundary_loops == 1 ? "" : "s");
     if (top.nonmanifold_edges)
       shape += ", " + std::to_string(top.nonmanifold_edges) + " non-manifold edges";
+    // Which fit, and why when it was chosen (see CurvatureFit::automatic).
+    std::string fit =
+        curvature.fit == CurvatureFit::quartic ? "quartic jet" : "cubic fit with normals";
+    if (curvature_options.fit == CurvatureFit::automatic) {
+      char why[96];
+      std::snprintf(why, sizeof why, " (the mesh looks %s: %.1f)",
+                    curvature.fit == CurvatureFit::quartic ? "exact" : "noisy",
+                    static_cast<double>(curvature.noise_ratio));
+      fit += why;
+    }
+    if (curvature.fit == CurvatureFit::quartic && curvature.quartic_vertices < mesh.vertex_count())
+      fit += ", the cubic at " + std::to_string(mesh.vertex_count() - curvature.quartic_vertices) +
+             " vertices";
     std::printf(
         "%s: %zu vertices, %zu triangles%s; %s. kmin from %.4g to %.4g (1st-99th percentile "
-        "%.4g..%.4g), kmax from %.4g to %.4g (%.4g..%.4g)%s. Read and subdivision "
+        "%.4g..%.4g), kmax from %.4g to %.4g (%.4g..%.4g) by the %s%s. Read and subdivision "
         "%.3f s; normals and curvature %.3f s%s.\n",
         o.mesh.c_str(), mesh.vertex_count(), mesh.triangle_count(),
         o.subdivide ? (" after " + std::to_string(o.subdivide) + " Loop subdivisions").c_str() : "",
@@ -101,10 +123,10 @@ int run_geometry(const GeometryOptions& o) {
         percentile(curvature.kmin, 0.01), percentile(curvature.kmin, 0.99),
         *std::min_element(curvature.kmax.begin(), curvature.kmax.end()),
         *std::max_element(curvature.kmax.begin(), curvature.kmax.end()),
-        percentile(curvature.kmax, 0.01), percentile(curvature.kmax, 0.99),
+        percentile(curvature.kmax, 0.01), percentile(curvature.kmax, 0.99), fit.c_str(),
         curvature.fallback_vertices
-            ? (" (" + std::to_string(curvature.fallback_vertices) + " vertex" +
-               (curvature.fallback_vertices == 1 ? "" : "es") + " by the fallback fit)")
+            ? (", " + std::to_string(curvature.fallback_vertices) +
+               (curvature.fallback_vertices == 1 ? " vertex" : " vertices") + " by a lower degree")
                   .c_str()
             : "",
         seconds(t0, t1), seconds(t1, t2),

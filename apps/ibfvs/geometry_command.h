@@ -11,10 +11,12 @@ class App;
 namespace ibfvs::app {
 
 struct GeometryOptions {
-  std::string mesh;    ///< input mesh (required)
-  int subdivide = 0;   ///< Loop subdivision levels
-  std::string out;     ///< output PLY; empty: only the summary
-  bool ascii = false;  ///< ASCII instead of binary PLY
+  std::string mesh;   ///< input mesh (required)
+  int subdivide = 0;  ///< Loop subdivision levels
+  std::string out;    ///< output PLY; empty: only the summary
+  bool ascii = false;
+  std::string fit =
+      "auto";  ///< --curvature-fit: auto, quartic or cubic  ///< ASCII instead of binary PLY
   bool quiet = false;
 };
 

@@ -33,11 +33,15 @@ TEST_F(GeometryCommand, WritesCurvatureThatRenderReads) {
   ASSERT_EQ(m.scalars.count("kmin"), 1u);
   // Loop shrinks an icosahedron of radius 2 to a convex near-sphere of radius
   // about 1.41 (see the subdivision test): curvature about 0.71 everywhere,
-  // a little more near the twelve vertices of valence 5.
+  // more on the 60 neighbours of the twelve vertices of valence 5 (0.92: the
+  // control mesh bends more there).
+  std::size_t above = 0;
   for (std::size_t i = 0; i < m.vertex_count(); ++i) {
     EXPECT_GT(m.scalars.at("kmin")[i], 0.6f);
-    EXPECT_LT(m.scalars.at("kmax")[i], 0.85f);
+    EXPECT_LT(m.scalars.at("kmax")[i], 0.95f);
+    above += m.scalars.at("kmax")[i] > 0.85f;
   }
+  EXPECT_LE(above, 60u);
   const test::Result render = run("render --mesh out.ply --size 64x64 --frames 3 --out o.png -q");
   EXPECT_EQ(render.status, 0) << render.err;
   const test::Result ascii = run("geometry out.ply --ascii -o again.ply -q");

@@ -41,10 +41,11 @@ void report(const test::TestSurface& s, const std::vector<Method>& methods) {
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     if (c.kmin.empty()) continue;  // CGAL missing
     const test::CurvatureErrors e = test::curvature_errors(s, c);
-    std::printf("| %s | %.3f%% / %.3f%% | %.5f / %.5f | %.3f / %.3f deg | %.0f |%s\n",
-                m.name.c_str(), 100 * e.kmax_rel_median, 100 * e.kmax_rel_p95, e.kmin_abs_median,
-                e.kmin_abs_p95, e.dir_median, e.dir_p95, ms,
-                e.non_finite ? (" " + std::to_string(e.non_finite) + " NaN").c_str() : "");
+    std::printf("| %s | %.3f%% / %.3f%% | %.5f / %.5f | %.3f / %.3f deg | %.0f |", m.name.c_str(),
+                100 * e.kmax_rel_median, 100 * e.kmax_rel_p95, e.kmin_abs_median, e.kmin_abs_p95,
+                e.dir_median, e.dir_p95, ms);
+    if (e.non_finite) std::printf(" %zu NaN", e.non_finite);
+    std::printf("\n");
   }
 }
 

@@ -62,55 +62,49 @@ void tangent_frame(const glm::dvec3& n, glm::dvec3& u, glm::dvec3& v) {
   v = glm::cross(n, u);
 }
 
-// The vertices within `rings` edges of `centre`, without it and without
-// vertices at its position. `mark` (one entry per vertex, never equal to a
-// vertex index on entry) records who has been taken; it is restored on exit.
+// The vertices around a centre, ring by ring: reset(centre), then grow()
+// once per ring; ids() lists them in ring order, without the centre. Taken
+// vertices carry the stamp of the current reset, so nothing is cleared
+// between centres.
 class Neighbourhood {
  public:
-  explicit Neighbourhood(std::size_t vertices) : mark_(vertices, kFree) {}
+  explicit Neighbourhood(std::size_t vertices) : mark_(vertices, 0) {}
 
-  // Grows the neighbourhood of `centre` ring by ring: first call with
-  // ring = 1 after reset(), then 2, ... Returns the number of vertices.
   void reset(std::uint32_t centre) {
-    for (const std::uint32_t q : ids_) mark_[q] = kFree;
     ids_.clear();
     centre_ = centre;
     frontier_begin_ = 0;
-    mark_[centre] = centre;
     rings_ = 0;
+    if (++stamp_ == 0) {  // wrapped: old stamps could match again
+      std::fill(mark_.begin(), mark_.end(), 0u);
+      stamp_ = 1;
+    }
+    mark_[centre] = stamp_;
   }
   void grow(const Adjacency& adj) {
-    const std::size_t end = rings_ == 0 ? 0 : ids_.size();
-    if (rings_ == 0) {
-      push_row(adj, centre_);
-    } else {
-      for (std::size_t k = frontier_begin_; k < end; ++k) push_row(adj, ids_[k]);
-    }
+    const std::size_t end = ids_.size();
+    if (rings_ == 0) push_row(adj, centre_);
+    for (std::size_t k = frontier_begin_; k < end; ++k) push_row(adj, ids_[k]);
     frontier_begin_ = end;
     ++rings_;
   }
-  void release() {
-    for (const std::uint32_t q : ids_) mark_[q] = kFree;
-    mark_[centre_] = kFree;
-    ids_.clear();
-  }
   [[nodiscard]] const std::vector<std::uint32_t>& ids() const { return ids_; }
   [[nodiscard]] int rings() const { return rings_; }
+  /// The last grow() added nobody (a closed component is used up).
   [[nodiscard]] bool exhausted() const { return frontier_begin_ == ids_.size(); }
 
  private:
-  static constexpr std::uint32_t kFree = std::numeric_limits<std::uint32_t>::max();
   void push_row(const Adjacency& adj, std::uint32_t v) {
     for (std::uint32_t j = adj.start[v]; j < adj.start[v + 1]; ++j) {
       const std::uint32_t q = adj.ids[j];
-      if (mark_[q] == centre_) continue;
-      mark_[q] = centre_;
+      if (mark_[q] == stamp_) continue;
+      mark_[q] = stamp_;
       ids_.push_back(q);
     }
   }
   std::vector<std::uint32_t> mark_;
   std::vector<std::uint32_t> ids_;
-  std::uint32_t centre_ = 0;
+  std::uint32_t centre_ = 0, stamp_ = 0;
   std::size_t frontier_begin_ = 0;
   int rings_ = 0;
 };
@@ -315,7 +309,6 @@ void gather(const TriMesh& mesh, const Adjacency& adj, std::size_t i, int rings,
     taken = hood.ids().size();
     if (hood.rings() >= rings && nb.size() >= wanted) break;
   } while (hood.rings() < 3 && !hood.exhausted());
-  hood.release();
   if (!nb.empty()) h /= static_cast<double>(nb.size());
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <map>
 #include <numbers>
 #include <random>
 
@@ -180,17 +181,34 @@ TestSurface random_sphere(float r, int points, std::uint32_t seed) {
   }
   CGAL::Surface_mesh<K::Point_3> hull;
   CGAL::convex_hull_3(pts.begin(), pts.end(), hull);
+  // CGAL's order of vertices and faces changes from call to call (its
+  // default random generator moves on): number the vertices by their input
+  // point and sort the faces, so that the same seed gives the same mesh.
+  std::map<std::array<double, 3>, std::uint32_t> input;
+  for (std::size_t i = 0; i < pts.size(); ++i)
+    input.emplace(std::array<double, 3>{pts[i].x(), pts[i].y(), pts[i].z()},
+                  static_cast<std::uint32_t>(i));
+  std::vector<std::uint32_t> index(pts.size(), 0), hull_input(hull.number_of_vertices());
+  std::vector<std::uint8_t> used(pts.size(), 0);
   for (const auto v : hull.vertices()) {
     const auto& p = hull.point(v);
-    s.mesh.positions.emplace_back(p.x(), p.y(), p.z());
+    hull_input[v.idx()] = input.at({p.x(), p.y(), p.z()});
+    used[hull_input[v.idx()]] = 1;
   }
+  for (std::size_t i = 0; i < pts.size(); ++i)
+    if (used[i]) {
+      index[i] = static_cast<std::uint32_t>(s.mesh.positions.size());
+      s.mesh.positions.emplace_back(pts[i].x(), pts[i].y(), pts[i].z());
+    }
   for (const auto f : hull.faces()) {
     Triangle t{};
     int k = 0;
     for (const auto v : hull.vertices_around_face(hull.halfedge(f)))
-      t[k++] = static_cast<std::uint32_t>(v.idx());
+      t[k++] = index[hull_input[v.idx()]];
+    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());  // keeps orientation
     s.mesh.triangles.push_back(t);
   }
+  std::sort(s.mesh.triangles.begin(), s.mesh.triangles.end());
   allocate(s);
   std::fill(s.kmin.begin(), s.kmin.end(), 1.0f / r);
   std::fill(s.kmax.begin(), s.kmax.end(), 1.0f / r);

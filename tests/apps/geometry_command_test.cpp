@@ -22,6 +22,11 @@ TEST_F(GeometryCommand, WritesCurvatureThatRenderReads) {
   write_ply(loop_subdivide(make_icosahedron(2.0f), 3), dir_ / "ball.ply", true);
   const test::Result r = run("geometry ball.ply --subdivide 1 -o out.ply");
   ASSERT_EQ(r.status, 0) << r.err;
+  // A subdivision surface is exact: the quartic, chosen and said so.
+  EXPECT_NE(r.out.find("by the quartic jet (the mesh looks exact"), std::string::npos) << r.out;
+  const test::Result cubic = run("geometry ball.ply --curvature-fit cubic");
+  EXPECT_EQ(cubic.status, 0) << cubic.err;
+  EXPECT_NE(cubic.out.find("by the cubic fit with normals."), std::string::npos) << cubic.out;
   EXPECT_NE(r.out.find("ball.ply: 2562 vertices, 5120 triangles after 1 Loop subdivisions; closed"),
             std::string::npos)
       << r.out;
@@ -80,6 +85,7 @@ TEST_F(GeometryCommand, BadInputFailsCleanly) {
   expect_error("geometry sq.off -o out.obj", "--out: must be a .ply or .vtp file");
   expect_error("geometry sq.off -o nodir/out.ply", "--out: the folder 'nodir'");
   expect_error("geometry sq.off --subdivide 9", "--subdivide");
+  expect_error("geometry sq.off --curvature-fit best", "--curvature-fit: best not in");
   file("bad.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 9\n");
   expect_error("geometry bad.off", "bad.off: truncated or malformed");
 }

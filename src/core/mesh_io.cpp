@@ -18,6 +18,7 @@
 
 #include "ibfvs/core/error.h"
 #include "ibfvs/core/file_names.h"
+#include "mesh_precheck.h"
 #include "openmesh_errors.h"
 
 namespace ibfvs {
@@ -216,6 +217,13 @@ std::size_t merge_nonmanifold_copies(PolyMesh& pm, std::vector<std::size_t>& kep
   return copies;
 }
 
+std::string file_bytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream out;
+  out << in.rdbuf();
+  return out.str();
+}
+
 // OpenMesh's OFF reader does not skip comments; strip them (from '#' to the
 // end of the line) so that commented files from other tools read.
 std::string off_without_comments(const fs::path& path) {
@@ -268,6 +276,16 @@ TriMesh read_mesh(const fs::path& path, MeshReadReport* report_out) {
                    " vertices and " + std::to_string(declared.faces.value_or(0)) +
                    " faces, more than a file of " + std::to_string(size) + " bytes can hold");
   if (declared.ascii) reject_non_finite_text(path);
+  // The whole structure, so that OpenMesh only reads well-formed files.
+  std::string off_text;
+  if (ext == ".off") {
+    off_text = declared.ascii ? off_without_comments(path) : file_bytes(path);
+    detail::precheck_off(path, off_text);
+  } else if (ext == ".obj") {
+    detail::precheck_obj(path);
+  } else if (ext == ".ply") {
+    detail::precheck_ply(path);
+  }
 
   PolyMesh pm;
   pm.request_vertex_normals();
@@ -280,7 +298,7 @@ TriMesh read_mesh(const fs::path& path, MeshReadReport* report_out) {
     OmErrCapture capture;
     try {
       if (ext == ".off" && declared.ascii) {
-        std::istringstream text(off_without_comments(path));
+        std::istringstream text(off_text);
         ok = OpenMesh::IO::read_mesh(pm, text, ".off", opt);
       } else {
         ok = OpenMesh::IO::read_mesh(pm, path.string(), opt);

@@ -89,6 +89,16 @@ std::string format_vec3(const glm::vec3& v) {
   return format_number(v.x) + "," + format_number(v.y) + "," + format_number(v.z);
 }
 
+std::string excerpt(std::string_view text, std::size_t max) {
+  std::string out = "'";
+  for (std::size_t i = 0; i < text.size() && i < max; ++i) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    out += c >= 0x20 && c < 0x7f ? static_cast<char>(c) : '?';
+  }
+  if (text.size() > max) out += "...";
+  return out + "'";
+}
+
 bool glob_match(std::string_view pattern, std::string_view text) {
   // Iterative, with one backtrack point: linear in practice, never recursive.
   std::size_t p = 0, t = 0, star = std::string_view::npos, resume = 0;

@@ -133,7 +133,10 @@ class Guard {
     for (const std::string& w : capture_window()->warnings)
       if (w.find("rror") != std::string::npos) fail(w);
   }
-  [[noreturn]] void fail(const std::string& problem) const {
+  [[noreturn]] void fail(std::string problem) const {
+    // One line, whatever VTK or the file put into it.
+    std::replace_if(
+        problem.begin(), problem.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
     throw InputError(path_.string() + ": " + problem);
   }
   const fs::path& path() const { return path_; }
@@ -256,7 +259,7 @@ long double header_count(const std::string& word, const std::string& where, cons
     if (used != word.size() || !std::isfinite(static_cast<double>(v)) || v < 0) throw 0;
     return v;
   } catch (...) {
-    g.fail(where + ": '" + word + "' is not a count");
+    g.fail(where + ": " + excerpt(word) + " is not a count");
   }
 }
 

@@ -87,7 +87,8 @@ TEST_F(GeometryCommand, BadInputFailsCleanly) {
   expect_error("geometry sq.off --subdivide 9", "--subdivide");
   expect_error("geometry sq.off --curvature-fit best", "--curvature-fit: best not in");
   file("bad.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 9\n");
-  expect_error("geometry bad.off", "bad.off: truncated or malformed");
+  expect_error("geometry bad.off",
+               "bad.off: line 6: vertex index '9' is out of range (the file has 3 vertices)");
 }
 
 // A user's per-vertex data must still line up with the written vertices:

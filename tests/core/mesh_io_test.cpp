@@ -182,6 +182,67 @@ TEST(MeshIo, RejectsMalformedPlyObjAndBinaryJunk) {
   expect_read_error(write_file(dir / "idx.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n"), "");
 }
 
+// Inputs the fuzzers found (fuzz/, docs/reliability.md): before the
+// structure checks, OpenMesh's readers looped forever on the first two and
+// read out of bounds on the third.
+TEST(MeshIo, FuzzerFindingsFailCleanly) {
+  TempDir dir;
+  // An OFF face of no vertices (OpenMesh's ASCII OFF reader never returned).
+  expect_read_error(
+      write_file(dir / "hang.off", "OFF 0\n1 2 0\n0 1 00\n 0 777777777735\n3 0 203\n"),
+      "line 1: expected the counts");
+  expect_read_error(write_file(dir / "empty-face.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n0\n"),
+                    "line 6: a face needs a vertex count of 3 or more, not '0'");
+  // A PLY format line with junk in its version (OpenMesh printed errors forever).
+  expect_read_error(write_file(dir / "format.ply",
+                               "ply\nformat ascii HHHH1.0\nelement vertex 1\nproperty float x\n"
+                               "property float y\nproperty float z\nend_header\n0 0 0\n"),
+                    "line 2: expected 'format ascii|binary_little_endian|binary_big_endian 1.0'");
+  expect_read_error(write_file(dir / "keyword.ply",
+                               "ply\nformat ascii 1.0\nelement vertex 1\npropemat ascii 1.0\n"
+                               "end_header\n0 0 0\n"),
+                    "line 4: unknown PLY header keyword 'propemat'");
+  // An OBJ face naming a normal given after it (OpenMesh read past its array).
+  expect_read_error(
+      write_file(dir / "normal.obj", "v 1 0 0\nv 1 0 0\nv 0 1 0\nf -3//1 -2//1 -1//1\nvn 0 0 1\n"),
+      "line 4: the face names normal 1 but 0 are given before it");
+  expect_read_error(write_file(dir / "big.obj", "v 1e380 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"),
+                    "line 1: '1e380' is not a number");
+  expect_read_error(write_file(dir / "ahead.obj", "v 0 0 0\nv 1 0 0\nf 1 2 3\nv 0 1 0\n"),
+                    "line 3: the face names vertex 3 but 2 are given before it");
+}
+
+TEST(MeshIo, BinaryPlyAndOffAreWalkedToTheirEnd) {
+  TempDir dir;
+  const auto ply = [&](const char* name, std::uint8_t count, std::int32_t index, bool cut) {
+    std::string bytes =
+        "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n"
+        "property float y\nproperty float z\nelement face 1\n"
+        "property list uchar int vertex_indices\nend_header\n";
+    const float p[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    bytes.append(reinterpret_cast<const char*>(p), sizeof p);
+    bytes.push_back(static_cast<char>(count));
+    const std::int32_t ids[3] = {0, 1, index};
+    bytes.append(reinterpret_cast<const char*>(ids), cut ? 8 : sizeof ids);
+    return write_file(dir / name, bytes);
+  };
+  EXPECT_EQ(read_mesh(ply("good.ply", 3, 2, false)).triangle_count(), 1u);
+  expect_read_error(ply("index.ply", 3, 7, false), "face 0: vertex index 7 is out of range");
+  expect_read_error(ply("short.ply", 3, 2, true), "truncated: the face data ends early");
+  expect_read_error(ply("two.ply", 2, 2, false), "face 0 has fewer than 3 vertices");
+  // Binary OFF: big-endian counts, coordinates, faces.
+  const auto be = [](std::uint32_t v) {
+    const char b[4] = {static_cast<char>(v >> 24), static_cast<char>(v >> 16),
+                       static_cast<char>(v >> 8), static_cast<char>(v)};
+    return std::string(b, 4);
+  };
+  std::string off = "OFF BINARY\n" + be(3) + be(1) + be(0);
+  for (int k = 0; k < 9; ++k) off += be(0);
+  expect_read_error(write_file(dir / "bin.off", off + be(3) + be(0) + be(1) + be(9) + be(0)),
+                    "binary OFF face 0 names a vertex out of range");
+  expect_read_error(write_file(dir / "cut.off", off + be(3) + be(0)), "truncated binary OFF");
+}
+
 TEST(MeshIo, BinaryPlyWithNonFiniteCoordinateIsRejected) {
   TempDir dir;
   TriMesh sq = make_square(1.0f, 2);

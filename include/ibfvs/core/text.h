@@ -36,6 +36,11 @@ std::string format_vec3(const glm::vec3& v);
 /// The shortest text that reads back as the same float.
 std::string format_number(double v);
 
+/// A piece of an input's text for a message, in quotes: control and other
+/// unprintable bytes become '?', and past `max` characters it is cut with
+/// "..." (a file's binary junk must not break the message's one line).
+std::string excerpt(std::string_view text, std::size_t max = 40);
+
 /// Shell-style match of a whole name: `*` any run of characters, `?` one.
 bool glob_match(std::string_view pattern, std::string_view text);
 

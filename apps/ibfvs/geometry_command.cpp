@@ -22,7 +22,8 @@ void add_geometry_options(CLI::App& cmd, GeometryOptions& o) {
                  "Triangle mesh: .off .obj .ply .stl, or a dataset: .vtk .vtp .vtu .vtm .pvd, an "
                  "OpenFOAM case")
       ->required();
-  cmd.add_option("--subdivide", o.subdivide, "Loop subdivision levels (0..8)")
+  cmd.add_option("--subdivide", o.subdivide,
+                 "Loop subdivision levels (0..12, as many as memory holds)")
       ->capture_default_str();
   cmd.add_option("-o,--out", o.out,
                  "Write a PLY or VTK .vtp (for ParaView) with per-vertex nx ny nz (refined "
@@ -51,8 +52,8 @@ float percentile(std::vector<float> v, double q) {
 }  // namespace
 
 int run_geometry(const GeometryOptions& o) {
-  if (o.subdivide < 0 || o.subdivide > 8)
-    throw InputError("--subdivide: levels must be between 0 and 8");
+  if (o.subdivide < 0 || o.subdivide > 12)
+    throw InputError("--subdivide: levels must be between 0 and 12");
   if (!o.out.empty()) {
     const std::string ext = lower_extension(o.out);
     if (ext != ".ply" && ext != ".vtp")

@@ -8,6 +8,7 @@
 #include <glm/geometric.hpp>
 
 #include "ibfvs/core/error.h"
+#include "ibfvs/core/limits.h"
 #include "ibfvs/core/procedural.h"
 #include "ibfvs/core/subdivision.h"
 
@@ -146,6 +147,15 @@ LonLatGrid read_lonlat_grid(const std::filesystem::path& path, const std::string
     file.fail("time index " + std::to_string(time_index) + " is out of range for '" + variable +
               "' (" + std::to_string(g.time_steps) + " time step" + (g.time_steps == 1 ? "" : "s") +
               ", counted from 0)");
+  // A header can declare any size: refuse one that cannot fit before
+  // allocating the slice and its coordinates.
+  try {
+    check_memory(static_cast<double>(nx) * static_cast<double>(ny) * sizeof(float) +
+                     (static_cast<double>(nx) + static_cast<double>(ny)) * sizeof(double),
+                 "'" + variable + "' (" + std::to_string(ny) + " x " + std::to_string(nx) + ")");
+  } catch (const InputError& e) {
+    file.fail(e.what());
+  }
   g.lat = coordinates(nc, dims[ndims - 2], ny);
   g.lon = coordinates(nc, dims[ndims - 1], nx);
   if (!std::is_sorted(g.lon.begin(), g.lon.end()) || g.lon.front() == g.lon.back())

@@ -16,6 +16,7 @@
 #include "ibfvs/core/dataset_io.h"
 #include "ibfvs/core/error.h"
 #include "ibfvs/core/gpu_prep.h"
+#include "ibfvs/core/limits.h"
 #include "ibfvs/core/lonlat_grid.h"
 #include "ibfvs/core/mesh_io.h"
 #include "ibfvs/core/procedural.h"
@@ -230,10 +231,39 @@ std::vector<std::string> series_files(const std::string& path) {
   return files;
 }
 
+// "1.52 billion", "380 million", "92,864".
+std::string format_count(double n) {
+  char text[48];
+  if (n >= 1e9)
+    std::snprintf(text, sizeof text, "%.3g billion", n / 1e9);
+  else if (n >= 1e6)
+    std::snprintf(text, sizeof text, "%.3g million", n / 1e6);
+  else
+    std::snprintf(text, sizeof text, "%.0f", n);
+  return text;
+}
+
 // After reading: subdivision (errors name the mesh) and the GPU's vertex order.
 void finish_loaded(LoadedMesh& out, int subdivide, bool gpu_order) {
   out.file_vertices = out.mesh.vertex_count();
   if (subdivide > 0) {
+    // Refused before subdividing: each level makes four triangles of one.
+    const double triangles = subdivided_triangles(out.mesh.triangle_count(), subdivide);
+    if (mesh_bytes(triangles) > static_cast<double>(memory_limit()) && memory_limit() > 0) {
+      int fits = subdivide;
+      while (fits > 0 && mesh_bytes(subdivided_triangles(out.mesh.triangle_count(), fits)) >
+                             static_cast<double>(memory_limit()))
+        --fits;
+      try {
+        check_memory(mesh_bytes(triangles), out.name + " subdivided " + std::to_string(subdivide) +
+                                                " times (" + format_count(triangles) +
+                                                " triangles)");
+      } catch (const InputError& e) {
+        throw SettingError("subdivide", e.what() + std::string("; at most ") +
+                                            std::to_string(fits) + " level" +
+                                            (fits == 1 ? "" : "s") + " fit");
+      }
+    }
     try {
       out.mesh = loop_subdivide(out.mesh, subdivide);
     } catch (const InputError& e) {

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "ibfvs/core/error.h"
+#include "ibfvs/core/limits.h"
 
 namespace ibfvs {
 namespace {
@@ -15,8 +16,15 @@ bool in_unit(float v) {
 }  // namespace
 
 void RenderSettings::validate() const {
-  if (width < 1 || height < 1 || width > 16384 || height > 16384)
-    throw SettingError("size", "width and height must be between 1 and 16384 pixels");
+  if (width < 1 || height < 1 || width > kMaxImageSide || height > kMaxImageSide)
+    throw SettingError("size", "width and height must be between 1 and " +
+                                   std::to_string(kMaxImageSide) + " pixels");
+  try {
+    check_memory(image_bytes(width, height),
+                 std::to_string(width) + "x" + std::to_string(height) + " pixels");
+  } catch (const InputError& e) {
+    throw SettingError("size", e.what());
+  }
   if (!in_unit(alpha)) throw SettingError("alpha", "must be between 0 and 1");
   if (!in_unit(beta)) throw SettingError("beta", "must be between 0 and 1");
   if (!color_table.empty() && color_table.size() != 256)

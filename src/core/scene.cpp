@@ -11,6 +11,7 @@
 
 #include "ibfvs/core/data_paths.h"
 #include "ibfvs/core/error.h"
+#include "ibfvs/core/limits.h"
 #include "ibfvs/core/text.h"
 
 namespace ibfvs {
@@ -194,8 +195,10 @@ std::vector<SceneKey> make_keys() {
          for (const std::string& b : s.blocks) text += (text.empty() ? "" : ",") + b;
          return s.blocks.empty() ? none() : one(text);
        }},
-      {"subdivide", KeyKind::Integer, "Loop subdivision levels, 0..8",
-       [](Scene& s, std::string_view t) { s.subdivide = static_cast<int>(parse_integer(t, 0, 8)); },
+      {"subdivide", KeyKind::Integer, "Loop subdivision levels, 0..12 (as many as memory holds)",
+       [](Scene& s, std::string_view t) {
+         s.subdivide = static_cast<int>(parse_integer(t, 0, 12));
+       },
        [](const Scene& s) { return one(std::to_string(s.subdivide)); }},
       {"up", KeyKind::Vector,
        "X,Y,Z or auto: the height axis (camera azimuth about it, elevation along it, gradient "
@@ -379,17 +382,23 @@ std::vector<SceneKey> make_keys() {
        },
        [](const Scene& s) { return s.lock_camera ? one(format_vec3(*s.lock_camera)) : none(); }},
       // ---- output
-      {"size", KeyKind::Size, "image size WxH, 1..16384 pixels each",
+      {"size", KeyKind::Size,
+       "image size WxH (at most the GL implementation's largest image, and what memory holds)",
        [](Scene& s, std::string_view t) {
          const std::string text(t);
          const std::size_t x = text.find('x');
+         int width = 0, height = 0;
          try {
            if (x == std::string::npos) throw InputError("");
-           s.width = static_cast<int>(parse_integer(text.substr(0, x), 1, 16384));
-           s.height = static_cast<int>(parse_integer(text.substr(x + 1), 1, 16384));
+           width = static_cast<int>(parse_integer(text.substr(0, x), 1, kMaxImageSide));
+           height = static_cast<int>(parse_integer(text.substr(x + 1), 1, kMaxImageSide));
          } catch (const InputError&) {
-           throw InputError("expected WxH with 1..16384 pixels each, got '" + text + "'");
+           throw InputError("expected WxH with 1.." + std::to_string(kMaxImageSide) +
+                            " pixels each, got " + excerpt(text));
          }
+         check_memory(image_bytes(width, height), text + " pixels");
+         s.width = width;
+         s.height = height;
        },
        [](const Scene& s) {
          return one(std::to_string(s.width) + "x" + std::to_string(s.height));
@@ -669,8 +678,10 @@ std::string scene_toml(const Scene& scene) {
         if (k.kind == KeyKind::Size) {
           const std::size_t x = text.find('x');
           a.clear();
-          a.push_back(static_cast<std::int64_t>(parse_integer(text.substr(0, x), 1, 16384)));
-          a.push_back(static_cast<std::int64_t>(parse_integer(text.substr(x + 1), 1, 16384)));
+          a.push_back(
+              static_cast<std::int64_t>(parse_integer(text.substr(0, x), 1, kMaxImageSide)));
+          a.push_back(
+              static_cast<std::int64_t>(parse_integer(text.substr(x + 1), 1, kMaxImageSide)));
         }
         if (a.empty())
           table.insert_or_assign(key, text);

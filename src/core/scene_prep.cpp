@@ -14,6 +14,7 @@
 #include "ibfvs/core/displacement.h"
 #include "ibfvs/core/error.h"
 #include "ibfvs/core/gpu_prep.h"
+#include "ibfvs/core/limits.h"
 #include "ibfvs/core/lonlat_grid.h"
 #include "ibfvs/core/mesh_io.h"
 #include "ibfvs/core/mesh_source.h"
@@ -95,8 +96,9 @@ float fit_to_image(PreparedScene& p, int width, int height) {
 }  // namespace
 
 PreparedScene resized(const PreparedScene& prepared, int width, int height) {
-  if (width < 1 || height < 1 || width > 16384 || height > 16384)
-    throw SettingError("size", "width and height must be between 1 and 16384 pixels");
+  if (width < 1 || height < 1 || width > kMaxImageSide || height > kMaxImageSide)
+    throw SettingError("size", "width and height must be between 1 and " +
+                                   std::to_string(kMaxImageSide) + " pixels");
   PreparedScene p = prepared;
   fit_to_image(p, width, height);
   return p;

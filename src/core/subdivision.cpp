@@ -4,6 +4,7 @@
 #include <OpenMesh/Tools/Subdivider/Uniform/LoopT.hh>
 
 #include "ibfvs/core/error.h"
+#include "ibfvs/core/limits.h"
 #include "openmesh_errors.h"
 
 namespace ibfvs {
@@ -69,7 +70,14 @@ std::vector<glm::vec3> subdivided_points(const TriMesh& mesh, const std::vector<
 }  // namespace
 
 TriMesh loop_subdivide(const TriMesh& mesh, int levels) {
-  if (levels < 0 || levels > 8) throw SettingError("subdivide", "levels must be between 0 and 8");
+  if (levels < 0 || levels > 12) throw SettingError("subdivide", "levels must be between 0 and 12");
+  try {
+    check_memory(mesh_bytes(subdivided_triangles(mesh.triangle_count(), levels)),
+                 std::to_string(levels) + " levels of a mesh of " +
+                     std::to_string(mesh.triangle_count()) + " triangles");
+  } catch (const InputError& e) {
+    throw SettingError("subdivide", e.what());
+  }
   if (levels == 0) return mesh;
   TriMesh out;
   out.positions = subdivided_points(mesh, mesh.positions, levels, &out.triangles);

@@ -3,12 +3,14 @@
 #include <array>
 
 #include <algorithm>
+#include <string>
 #include <vector>
 
 #include <epoxy/gl.h>
 #include <glm/gtc/type_ptr.hpp>
 
 #include "ibfvs/core/error.h"
+#include "ibfvs/core/limits.h"
 #include "ibfvs/gl/context.h"
 
 namespace ibfvs::gl {
@@ -180,8 +182,31 @@ void VertexArray::bind() const {
   glBindVertexArray(id());
 }
 
+int max_image_size() {
+  GLint texture = 0, renderbuffer = 0, viewport[2] = {0, 0};
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &texture);
+  glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &renderbuffer);
+  glGetIntegerv(GL_MAX_VIEWPORT_DIMS, viewport);
+  return std::min({texture, renderbuffer, viewport[0], viewport[1]});
+}
+
+void check_image_size(int width, int height, const std::string& key) {
+  const int most = max_image_size();
+  if (width <= most && height <= most) return;
+  const auto* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  throw SettingError(key, std::to_string(width) + "x" + std::to_string(height) +
+                              " is larger than this GL implementation's largest image, " +
+                              std::to_string(most) + "x" + std::to_string(most) + " (" +
+                              (renderer ? renderer : "?") + "); it would need about " +
+                              format_bytes(image_bytes(width, height)) + " of memory");
+}
+
 Texture2D::Texture2D(int width, int height, Format format, bool linear)
     : width_(width), height_(height), format_(format) {
+  if (width > max_image_size() || height > max_image_size())
+    throw GraphicsError("texture of " + std::to_string(width) + "x" + std::to_string(height) +
+                        " pixels: larger than this GL implementation's largest, " +
+                        std::to_string(max_image_size()));
   GLuint id = 0;
   glCreateTextures(GL_TEXTURE_2D, 1, &id);
   static_cast<Object&>(*this) = Object(id);
@@ -220,6 +245,10 @@ void Texture2D::read_float(std::span<float> out, int channels) const {
 }
 
 Renderbuffer::Renderbuffer(int width, int height, Format format) {
+  if (width > max_image_size() || height > max_image_size())
+    throw GraphicsError("renderbuffer of " + std::to_string(width) + "x" + std::to_string(height) +
+                        " pixels: larger than this GL implementation's largest, " +
+                        std::to_string(max_image_size()));
   GLuint id = 0;
   glCreateRenderbuffers(1, &id);
   static_cast<Object&>(*this) = Object(id);

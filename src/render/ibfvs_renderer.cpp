@@ -27,6 +27,7 @@ bool grey(const glm::vec3& c) {
 
 IbfvsRenderer::IbfvsRenderer(const RenderSettings& settings) : settings_(settings) {
   settings_.validate();
+  gl::check_image_size(settings_.width, settings_.height, "size");
   color_map_ = gl::Texture2D(256, 1, gl::Format::RGBA32F, true);
   const int w = settings_.width, h = settings_.height;
   output_ = gl::Texture2D(w, h, gl::Format::RGBA8, false);
@@ -279,6 +280,7 @@ void IbfvsRenderer::set_surface_image(const ImageU8& image, const glm::vec3& cen
     return;
   }
   if (image.channels != 4) throw InputError("renderer: the surface image must be RGBA");
+  gl::check_image_size(image.width, image.height, "surface_image");
   std::vector<float> rgba(image.pixels.size());
   for (std::size_t i = 0; i < rgba.size(); ++i) rgba[i] = image.pixels[i] / 255.0f;
   surface_image_ = gl::Texture2D(image.width, image.height, gl::Format::RGBA8, true);

@@ -84,7 +84,16 @@ TEST_F(GeometryCommand, BadInputFailsCleanly) {
   file("sq.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n");
   expect_error("geometry sq.off -o out.obj", "--out: must be a .ply or .vtp file");
   expect_error("geometry sq.off -o nodir/out.ply", "--out: the folder 'nodir'");
-  expect_error("geometry sq.off --subdivide 9", "--subdivide");
+  expect_error("geometry sq.off --subdivide 13", "--subdivide");
+  // Refused before subdividing, with what it would need (IBFVS_MEMORY_LIMIT
+  // stands for a smaller machine).
+  const test::Result r = run("geometry sq.off --subdivide 12", "IBFVS_MEMORY_LIMIT=1G");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("--subdivide: sq.off subdivided 12 times (33.6 million triangles) would "
+                       "need about 3.4 GiB of memory; this machine has 1.0 GiB; at most 11 "
+                       "levels fit"),
+            std::string::npos)
+      << r.err;
   expect_error("geometry sq.off --curvature-fit best", "--curvature-fit: best not in");
   file("bad.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 9\n");
   expect_error("geometry bad.off",

@@ -568,7 +568,20 @@ TEST_F(RenderCommand, ImpossibleOptionsFailCleanly) {
   expect_error(m + "--dt -1 --out x.png", "--dt");
   expect_error(m + "--advect-view next --out x.png", "--advect-view");
   expect_error(m + "--inject mix --out x.png", "--inject");
-  expect_error(m + "--subdivide 9 --out x.png", "--subdivide");
+  expect_error(m + "--subdivide 13 --out x.png", "--subdivide");
+  expect_error("render --mesh torus --subdivide 12 --out x.png",
+               "--subdivide: torus subdivided 12 times (344 billion triangles) would need about");
+  // Images: what memory holds, then what the GL implementation can render.
+  expect_error(m + "--size 100000x100000 --out x.png",
+               "--size: 100000x100000 pixels would need about 312 GiB of memory; this machine has");
+  const test::Result big =
+      run(m + "--size 65536x65536 --frames 1 --out big.png", "IBFVS_MEMORY_LIMIT=1000000G");
+  EXPECT_EQ(big.status, 1);
+  EXPECT_NE(big.err.find("--size: 65536x65536 is larger than this GL implementation's largest "
+                         "image"),
+            std::string::npos)
+      << big.err;
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "big.png"));
   expect_error(m + "--orbit 1000 --out x.png", "--orbit");
   expect_error(m + "--out x.xyz", "--out");
   expect_error(m + "--out nodir/x.png", "nodir");

@@ -45,7 +45,8 @@ TEST(Subdivision, SmoothsTowardsTheLimitAndCarriesData) {
 TEST(Subdivision, RejectsBadLevels) {
   const TriMesh t = make_square(1.0f, 1);
   EXPECT_THROW(loop_subdivide(t, -1), InputError);
-  EXPECT_THROW(loop_subdivide(t, 9), InputError);
+  EXPECT_THROW(loop_subdivide(t, 13), InputError);
+  EXPECT_THROW(loop_subdivide(make_square(1.0f, 64), 12), InputError);  // 137 billion triangles
   EXPECT_EQ(loop_subdivide(t, 0).triangle_count(), t.triangle_count());
 }
 

@@ -112,7 +112,7 @@ struct Scene {
 
   // ---- mesh
   std::string mesh;   ///< a file or a generated surface (mesh_source.h); empty: the demo
-  int subdivide = 0;  ///< Loop subdivision levels, 0..8
+  int subdivide = 0;  ///< Loop subdivision levels, 0..12 (as many as memory holds)
   /// Blocks of a .vtm or patches of an OpenFOAM case, names or patterns
   /// (dataset_io.h); empty: all.
   std::vector<std::string> blocks;

@@ -119,6 +119,16 @@ class Texture2D : public Object<delete_texture> {
   Format format_ = Format::RGBA8;
 };
 
+/// The largest width and height of an image the current context can render
+/// to and sample: the least of GL_MAX_TEXTURE_SIZE, GL_MAX_RENDERBUFFER_SIZE
+/// and GL_MAX_VIEWPORT_DIMS.
+int max_image_size();
+
+/// Throws SettingError(key, ...) when width x height is more than
+/// max_image_size(), naming the limit, the renderer and the memory it would
+/// need, before anything is allocated.
+void check_image_size(int width, int height, const std::string& key);
+
 /// Renderbuffer (used for depth).
 class Renderbuffer : public Object<delete_renderbuffer> {
  public:

@@ -59,6 +59,8 @@ int run_geometry(const GeometryOptions& o) {
     if (ext != ".ply" && ext != ".vtp")
       throw InputError("--out: must be a .ply or .vtp file, got '" + o.out + "'");
     if (ext == ".vtp") require_dataset_io(o.out, "--out");
+    if (same_file(o.out, o.mesh))
+      throw InputError("--out: " + o.out + " is the input mesh; writing it would destroy it");
     const fs::path parent = fs::path(o.out).parent_path();
     std::error_code ec;
     if (!parent.empty() && !fs::is_directory(parent, ec))

@@ -92,7 +92,9 @@ int main(int argc, char** argv) {
   }
   try {
     if (*render)
-      return ibfvs::app::run_render(ibfvs::app::scene_from_command_line(*render_options));
+      return ibfvs::app::run_render(
+          ibfvs::app::scene_from_command_line(*render_options),
+          ibfvs::is_scene_path(render_options->input) ? render_options->input : std::string());
     if (*geometry) return ibfvs::app::run_geometry(*geometry_options);
     if (*view) return ibfvs::app::run_view(*view_options);
     if (*bench) return ibfvs::app::run_bench(*bench_options);

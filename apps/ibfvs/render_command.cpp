@@ -17,6 +17,7 @@
 #include "ibfvs/core/mesh_io.h"
 #include "ibfvs/core/scene_prep.h"
 #include "ibfvs/gl/context.h"
+#include "ibfvs/interrupt.h"
 #include "ibfvs/progress.h"
 #include "ibfvs/render/export.h"
 #include "ibfvs/render/session.h"
@@ -173,16 +174,35 @@ void check_pattern(const std::string& pattern) {
     throw InputError("--out: a frame pattern needs exactly one %d or %0Nd, got '" + pattern + "'");
 }
 
+// The files a scene reads: an output path must not be one of them.
+std::vector<std::string> scene_inputs(const Scene& o, const std::string& scene_file) {
+  std::vector<std::string> inputs{o.mesh, o.surface_image, scene_file};
+  inputs.insert(inputs.end(), o.field_steps.begin(), o.field_steps.end());
+  for (const std::optional<FieldSpec>& field : {o.field, o.default_field})
+    if (field) inputs.push_back(field->path);
+  return inputs;
+}
+
+void check_not_input(const fs::path& out, const std::vector<std::string>& inputs,
+                     const char* option) {
+  for (const std::string& input : inputs)
+    if (!input.empty() && same_file(out, input))
+      throw InputError(std::string(option) + ": " + out.string() +
+                       " is an input of this render; writing it would destroy " + input);
+}
+
 void ensure_parent(const fs::path& out, const char* option) {
   const fs::path parent = out.parent_path();
   std::error_code ec;
+  if (fs::is_directory(out, ec))
+    throw InputError(std::string(option) + ": " + out.string() + " is a folder");
   if (!parent.empty() && !fs::is_directory(parent, ec))
     throw InputError(std::string(option) + ": the folder '" + parent.string() + "' does not exist");
 }
 
 }  // namespace
 
-int run_render(const Scene& o) {
+int run_render(const Scene& o, const std::string& scene_file) {
   // ---- output paths (checked before anything is loaded)
   const bool demo = o.mesh.empty();
   const fs::path out = !o.out.empty() ? fs::path(o.out)
@@ -191,14 +211,18 @@ int run_render(const Scene& o) {
   const OutputKind kind = output_kind(out, "--out");
   if (kind == OutputKind::PngSequence) check_pattern(out.string());
   ensure_parent(out, "--out");
+  const std::vector<std::string> inputs = scene_inputs(o, scene_file);
+  if (kind != OutputKind::PngSequence) check_not_input(out, inputs, "--out");
   if (!o.export_model.empty()) {
     check_export_path(o.export_model, "--export");
     ensure_parent(o.export_model, "--export");
+    check_not_input(o.export_model, inputs, "--export");
   }
   if (!o.texture_out.empty()) {
     if (output_kind(o.texture_out, "--texture-out") != OutputKind::Png)
       throw InputError("--texture-out: must be a .png file, got '" + o.texture_out + "'");
     ensure_parent(o.texture_out, "--texture-out");
+    check_not_input(o.texture_out, inputs, "--texture-out");
   }
 
   PreparedScene prepared = prepare_scene(o);
@@ -222,15 +246,20 @@ int run_render(const Scene& o) {
     video = std::make_unique<VideoWriter>(out, size.width, size.height, o.fps);
   Progress progress(frames, !o.quiet);
   const auto start = std::chrono::steady_clock::now();
-  for (int k = 0; k < frames; ++k) {
+  const InterruptGuard interrupt;
+  int done = 0;
+  for (int k = 0; k < frames && !InterruptGuard::requested(); ++k, ++done) {
     session.advance();
     if (kind == OutputKind::Video) {
       ImageU8 frame = video->spare();
       renderer.read_output(frame);
       video->write(std::move(frame));
     }
-    if (kind == OutputKind::PngSequence)
-      write_png(renderer.read_output(), frame_path(out.string(), k));
+    if (kind == OutputKind::PngSequence) {
+      const std::string frame_file = frame_path(out.string(), k);
+      check_not_input(frame_file, inputs, "--out");
+      write_png(renderer.read_output(), frame_file);
+    }
     progress.update(k + 1);
   }
   renderer.finish();
@@ -238,6 +267,22 @@ int run_render(const Scene& o) {
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   progress.finish();
+  if (const int signal = InterruptGuard::requested()) {
+    // Stopped: finish what can be whole; the last frame's outputs (a PNG,
+    // --texture-out, --export) were never reached.
+    std::string what;
+    if (video) {
+      video->close();
+      what = "wrote " + out.string() + ", a shorter video of " + std::to_string(done) + " frames";
+    } else if (kind == OutputKind::PngSequence) {
+      what = "wrote its first " + std::to_string(done) + " frames";
+    } else {
+      what = out.string() + " was not written (it is the last frame)";
+    }
+    std::fprintf(stderr, "ibfvs: interrupted by %s after %d of %d frames: %s\n",
+                 InterruptGuard::name(signal), done, frames, what.c_str());
+    return 128 + signal;
+  }
   if (kind == OutputKind::Png) write_png(renderer.read_output(), out);
   if (video) video->close();
   if (!o.texture_out.empty()) {

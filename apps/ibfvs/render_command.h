@@ -42,6 +42,9 @@ std::string scene_keys_table(bool markdown);
 
 /// Renders; returns the exit status. Throws InputError / SettingError /
 /// GraphicsError.
-int run_render(const Scene& scene);
+/// `scene_file`: the scene file it came from, if any (an output must not
+/// overwrite it). Ctrl-C or SIGTERM stops it after the frame under way: a
+/// video is finished with the frames so far and the status is 128 + signal.
+int run_render(const Scene& scene, const std::string& scene_file = {});
 
 }  // namespace ibfvs::app

@@ -17,8 +17,12 @@ extern "C" {
 
 namespace ibfvs::app {
 
-VideoEncoder::VideoEncoder(const std::filesystem::path& path, int width, int height, double fps)
-    : path_(path), width_(width), height_(height) {
+VideoEncoder::VideoEncoder(const std::filesystem::path& path, int width, int height, double fps,
+                           std::string name)
+    : path_(path),
+      name_(name.empty() ? path.string() : std::move(name)),
+      width_(width),
+      height_(height) {
   try {
     open(fps);
   } catch (...) {
@@ -31,7 +35,7 @@ void VideoEncoder::open(double fps) {
   const std::filesystem::path& path = path_;
   const int width = width_, height = height_;
   if (width < 2 || height < 2 || width % 2 != 0 || height % 2 != 0)
-    throw InputError(path.string() + ": the encoder needs an even width and height");
+    throw InputError(name_ + ": the encoder needs an even width and height");
   av_log_set_level(AV_LOG_ERROR);  // x264's statistics are not ours to print
   // "file:" so that a name with a colon is not read as a protocol.
   const std::string url = "file:" + path.string();
@@ -41,7 +45,7 @@ void VideoEncoder::open(double fps) {
   const char* encoder_name = webm ? "libvpx-vp9" : "libx264";
   const AVCodec* encoder = avcodec_find_encoder_by_name(encoder_name);
   if (encoder == nullptr)
-    throw InputError(path.string() + ": FFmpeg has no " + encoder_name + " encoder here");
+    throw InputError(name_ + ": FFmpeg has no " + encoder_name + " encoder here");
   stream_ = avformat_new_stream(format_, nullptr);
   codec_ = avcodec_alloc_context3(encoder);
   if (stream_ == nullptr || codec_ == nullptr) fail("out of memory", AVERROR(ENOMEM));
@@ -106,13 +110,12 @@ void VideoEncoder::release() {
 void VideoEncoder::fail(const char* what, int code) const {
   char text[AV_ERROR_MAX_STRING_SIZE] = {};
   av_strerror(code, text, sizeof text);
-  throw InputError(path_.string() + ": " + what + " (" + text + ")");
+  throw InputError(name_ + ": " + what + " (" + text + ")");
 }
 
 void VideoEncoder::encode(std::span<const std::uint8_t> i420) {
   const std::size_t luma = static_cast<std::size_t>(width_) * height_;
-  if (i420.size() != luma + luma / 2)
-    throw InputError(path_.string() + ": a frame of the wrong size");
+  if (i420.size() != luma + luma / 2) throw InputError(name_ + ": a frame of the wrong size");
   int code = av_frame_make_writable(frame_);
   if (code < 0) fail("cannot write a frame", code);
   const std::uint8_t* planes[3] = {i420.data(), i420.data() + luma, i420.data() + luma * 5 / 4};

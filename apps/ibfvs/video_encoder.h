@@ -18,8 +18,10 @@ namespace ibfvs::app {
 class VideoEncoder {
  public:
   /// Opens `path` for width x height (both even) at `fps`; the container
-  /// follows the extension. Throws InputError naming the path.
-  VideoEncoder(const std::filesystem::path& path, int width, int height, double fps);
+  /// follows the extension. Throws InputError naming `name` (the path the
+  /// user asked for, when `path` is a temporary one), by default the path.
+  VideoEncoder(const std::filesystem::path& path, int width, int height, double fps,
+               std::string name = {});
   ~VideoEncoder();
   VideoEncoder(const VideoEncoder&) = delete;
   VideoEncoder& operator=(const VideoEncoder&) = delete;
@@ -37,6 +39,7 @@ class VideoEncoder {
   [[noreturn]] void fail(const char* what, int code) const;
 
   std::filesystem::path path_;
+  std::string name_;  // for messages
   int width_, height_;
   AVFormatContext* format_ = nullptr;
   AVCodecContext* codec_ = nullptr;

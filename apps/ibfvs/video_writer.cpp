@@ -59,9 +59,10 @@ void pad_to_even(const ImageU8& in, ImageU8& out) {
 }  // namespace
 
 VideoWriter::VideoWriter(const std::filesystem::path& path, int width, int height, double fps)
-    : path_(path), width_(width), height_(height) {
+    : path_(path), pending_(path), width_(width), height_(height) {
   if (lower_extension(path) != ".gif") {
-    encoder_ = std::make_unique<VideoEncoder>(path, width + width % 2, height + height % 2, fps);
+    encoder_ = std::make_unique<VideoEncoder>(pending_.temporary(), width + width % 2,
+                                              height + height % 2, fps, path.string());
   } else {
     if (!program_on_path("ffmpeg"))
       throw InputError(path.string() +
@@ -71,9 +72,11 @@ VideoWriter::VideoWriter(const std::filesystem::path& path, int width, int heigh
     std::signal(SIGPIPE, SIG_IGN);
     std::ostringstream cmd;
     cmd << "ffmpeg -nostdin -y -loglevel error -f rawvideo -pix_fmt rgba -s " << width << "x"
-        << height << " -r " << fps << " -i - -vf vflip "  // GL rows are bottom-up
-        << shell_quote("file:" + path.string());          // "a:b.gif" is a file
-    pipe_ = popen(cmd.str().c_str(), "w");
+        << height << " -r " << fps << " -i - -vf vflip "          // GL rows are bottom-up
+        << shell_quote("file:" + pending_.temporary().string());  // "a:b.gif" is a file
+    // In a session of its own: a Ctrl-C at the terminal is ours to handle
+    // (a shorter, finished file), not ffmpeg's.
+    pipe_ = popen(("exec setsid " + cmd.str()).c_str(), "w");
     if (!pipe_) throw InputError(path.string() + ": cannot start ffmpeg");
   }
   writer_ = std::thread(&VideoWriter::feed, this);
@@ -173,6 +176,7 @@ void VideoWriter::close() {
   if (!error_.empty()) throw InputError(error_);
   if (status == -1 || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
     throw InputError(path_.string() + ": ffmpeg failed to write the video");
+  pending_.commit();
 }
 
 }  // namespace ibfvs::app

@@ -16,6 +16,7 @@
 #include <thread>
 #include <vector>
 
+#include "ibfvs/core/file_names.h"
 #include "ibfvs/core/image.h"
 #include "ibfvs/video_encoder.h"
 
@@ -40,7 +41,9 @@ class VideoWriter {
   /// A frame the writer thread is done with, to read the next one into
   /// without allocating (empty when none is free yet).
   [[nodiscard]] ImageU8 spare();
-  /// Writes what is queued and finishes the file; throws InputError if that failed.
+  /// Writes what is queued, finishes the file and gives it its name (until
+  /// then it has a temporary one: a writer destroyed without close(), by an
+  /// error or an exception, leaves no file). Throws InputError if that failed.
   void close();
 
  private:
@@ -48,6 +51,7 @@ class VideoWriter {
   void feed();  // the writer thread
 
   std::filesystem::path path_;
+  PendingFile pending_;                    // written under a temporary name, renamed by close()
   std::unique_ptr<VideoEncoder> encoder_;  // all but GIF
   std::FILE* pipe_ = nullptr;              // GIF: the ffmpeg program
   int width_, height_;

@@ -10,6 +10,7 @@
 
 #include "ibfvs/core/displacement.h"
 #include "ibfvs/core/error.h"
+#include "ibfvs/core/file_names.h"
 #include "ibfvs/core/image.h"
 
 namespace ibfvs::app {
@@ -148,9 +149,12 @@ void ViewerSession::save_scene(const std::filesystem::path& file) {
   desc.width = scene().width;
   desc.height = scene().height;
   if (desc.lock_at == Scene::kLockAuto) desc.lock_at = scene().lock_at;
-  std::ofstream out(file);
+  PendingFile pending(file);  // whole or not at all
+  std::ofstream out(pending.temporary());
   out << scene_toml(desc);
+  out.close();
   if (!out) throw InputError(file.string() + ": cannot write the scene");
+  pending.commit();
   std::printf("ibfvs: saved %s (frame %d)\n", file.c_str(), frame_count());
 }
 

@@ -7,6 +7,7 @@
 #include <png.h>
 
 #include "ibfvs/core/error.h"
+#include "ibfvs/core/file_names.h"
 
 namespace ibfvs {
 namespace {
@@ -29,7 +30,8 @@ void png_quiet(png_structp, png_const_charp) {}
 
 void write_rows(const std::filesystem::path& path, int width, int height, int color_type,
                 int bit_depth, const std::vector<png_bytep>& rows) {
-  FilePtr file(std::fopen(path.c_str(), "wb"));
+  PendingFile pending(path);  // whole or not at all
+  FilePtr file(std::fopen(pending.temporary().c_str(), "wb"));
   if (!file) png_fail(path, "cannot open for writing");
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, png_throw, png_quiet);
   png_infop info = png_create_info_struct(png);
@@ -47,6 +49,10 @@ void write_rows(const std::filesystem::path& path, int width, int height, int co
     throw InputError(path.string() + ": " + e.what());
   }
   png_destroy_write_struct(&png, &info);
+  if (std::fflush(file.get()) != 0 || std::ferror(file.get()))
+    png_fail(path, "cannot write (disk full?)");
+  file.reset();
+  pending.commit();
 }
 
 }  // namespace

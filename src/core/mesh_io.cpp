@@ -455,7 +455,8 @@ void write_obj_textured(const TriMesh& mesh, const std::vector<glm::vec2>& uv, c
 }
 
 void write_ply(const TriMesh& mesh, const fs::path& path, bool binary) {
-  std::ofstream out(path, std::ios::binary);
+  PendingFile pending(path);  // whole or not at all
+  std::ofstream out(pending.temporary(), std::ios::binary);
   if (!out) throw InputError(path.string() + ": cannot open for writing");
   const bool has_n = mesh.normals.size() == mesh.positions.size();
   const bool has_v = mesh.vectors.size() == mesh.positions.size();
@@ -495,7 +496,9 @@ void write_ply(const TriMesh& mesh, const fs::path& path, bool binary) {
       out << "3 " << t[0] << " " << t[1] << " " << t[2] << "\n";
     }
   }
+  out.close();
   if (!out) throw InputError(path.string() + ": write failed");
+  pending.commit();
 }
 
 }  // namespace ibfvs

@@ -259,9 +259,11 @@ void finish_loaded(LoadedMesh& out, int subdivide, bool gpu_order) {
                                                 " times (" + format_count(triangles) +
                                                 " triangles)");
       } catch (const InputError& e) {
-        throw SettingError("subdivide", e.what() + std::string("; at most ") +
-                                            std::to_string(fits) + " level" +
-                                            (fits == 1 ? "" : "s") + " fit");
+        std::string problem = e.what();
+        problem += "; at most ";
+        problem += std::to_string(fits);
+        problem += fits == 1 ? " level fits" : " levels fit";
+        throw SettingError("subdivide", problem);
       }
     }
     try {

@@ -50,6 +50,7 @@
 #include <vtkXMLPolyDataWriter.h>
 
 #include "ibfvs/core/error.h"
+#include "ibfvs/core/file_names.h"
 #include "ibfvs/core/text.h"
 
 namespace ibfvs::vtk {
@@ -1102,8 +1103,9 @@ void write_polydata(const TriMesh& mesh, const std::vector<glm::vec2>* uv, const
       name->InsertNextValue(texture);
       poly->GetFieldData()->AddArray(name);
     }
+    PendingFile pending(path);  // whole or not at all
     vtkNew<vtkXMLPolyDataWriter> writer;
-    writer->SetFileName(path.string().c_str());
+    writer->SetFileName(pending.temporary().string().c_str());
     writer->SetInputData(poly);
     writer->SetDataModeToAppended();
     writer->SetEncodeAppendedData(0);  // raw bytes: smaller and faster than base64
@@ -1111,6 +1113,7 @@ void write_polydata(const TriMesh& mesh, const std::vector<glm::vec2>* uv, const
     const int ok = writer->Write();
     g.check();
     if (!ok) g.fail("could not be written");
+    pending.commit();
   });
 }
 

@@ -85,6 +85,8 @@ TEST_F(GeometryCommand, BadInputFailsCleanly) {
   expect_error("geometry sq.off -o out.obj", "--out: must be a .ply or .vtp file");
   expect_error("geometry sq.off -o nodir/out.ply", "--out: the folder 'nodir'");
   expect_error("geometry sq.off --subdivide 13", "--subdivide");
+  ASSERT_EQ(run("geometry sq.off -o sq.ply").status, 0);
+  expect_error("geometry sq.ply -o ./sq.ply", "--out: ./sq.ply is the input mesh");
   // Refused before subdividing, with what it would need (IBFVS_MEMORY_LIMIT
   // stands for a smaller machine).
   const test::Result r = run("geometry sq.off --subdivide 12", "IBFVS_MEMORY_LIMIT=1G");

@@ -86,7 +86,57 @@ TEST_F(RenderCommand, VideoContainers) {
   // A file the encoder cannot open: one clear line naming it, exit 1.
   std::filesystem::create_directory(dir_ / "taken.mp4");
   expect_error("render --mesh torus --size 48x32 --frames 2 --out taken.mp4",
-               "taken.mp4: cannot open for writing");
+               "--out: taken.mp4 is a folder");
+}
+
+// Outputs are whole or absent: Ctrl-C during a video finishes a shorter,
+// valid file and says so (status 130); nothing is left under a temporary name.
+TEST_F(RenderCommand, InterruptedVideoIsShorterAndWhole) {
+  for (const char* name : {"i.mp4", "i.gif"}) {
+    // SIGINT once the video has been opened (its temporary file exists) and
+    // a second has passed, as a Ctrl-C would come.
+    const std::string script =
+        std::string("cd '") + dir_.path().string() + "' && ( '" + IBFVS_EXE +
+        "' render --mesh torus --size 64x48 --frames 1000000 -q --out " + name +
+        " 2>err.txt & p=$!; for k in $(seq 600); do ls .i.* >/dev/null 2>&1 && break; sleep 0.1; "
+        "done; sleep 1; kill -INT $p; wait $p; echo $? > status.txt )";
+    ASSERT_EQ(std::system(script.c_str()), 0);
+    EXPECT_EQ(test::read_file(dir_ / "status.txt"), "130\n") << name;
+    const std::string err = test::read_file(dir_ / "err.txt");
+    EXPECT_NE(err.find("ibfvs: interrupted by Ctrl-C after "), std::string::npos) << err;
+    EXPECT_NE(err.find(std::string("of 1000000 frames: wrote ") + name + ", a shorter video of"),
+              std::string::npos)
+        << err;
+    const std::string count =
+        "ffprobe -v error -count_frames -select_streams v:0 -show_entries "
+        "stream=nb_read_frames -of csv=p=0 '" +
+        (dir_ / name).string() + "' > '" + (dir_ / "probe.txt").string() + "'";
+    ASSERT_EQ(std::system(count.c_str()), 0) << count;
+    const int frames = std::stoi(test::read_file(dir_ / "probe.txt"));
+    EXPECT_GT(frames, 0) << name;
+    EXPECT_NE(err.find("a shorter video of " + std::to_string(frames) + " frames"),
+              std::string::npos)
+        << name << ": decoded " << frames << "\n"
+        << err;
+    for (const auto& entry : std::filesystem::directory_iterator(dir_.path()))
+      EXPECT_EQ(entry.path().filename().string().find(".partial"), std::string::npos)
+          << entry.path();
+  }
+}
+
+// An output that is an input of the same run is refused before anything is
+// written.
+TEST_F(RenderCommand, OutputThatIsAnInputIsRefused) {
+  ASSERT_EQ(run("render --mesh torus --size 32x32 --frames 1 -q --out tex.png").status, 0);
+  const std::string before = test::read_file(dir_ / "tex.png");
+  expect_error(
+      "render --mesh torus --size 32x32 --frames 1 --surface-image tex.png --out ./tex.png",
+      "--out: ./tex.png is an input of this render; writing it would destroy tex.png");
+  expect_error(
+      "render --mesh torus --size 32x32 --frames 1 --surface-image tex.png --out a.png "
+      "--texture-out tex.png",
+      "--texture-out: tex.png is an input of this render");
+  EXPECT_EQ(test::read_file(dir_ / "tex.png"), before);
 }
 
 // The frames encoded are the frames rendered: the last one decoded from the

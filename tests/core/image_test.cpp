@@ -2,11 +2,40 @@
 
 #include "helpers.h"
 #include "ibfvs/core/error.h"
+#include "ibfvs/core/file_names.h"
 #include "ibfvs/core/image.h"
 #include "ibfvs/core/image_analysis.h"
 
 namespace ibfvs {
 namespace {
+
+// Outputs are whole or absent: written under a temporary name, renamed when
+// complete; an output abandoned leaves neither.
+TEST(Image, OutputsAreRenamedWhenCompleteAndRemovedWhenNot) {
+  test::TempDir dir;
+  {
+    PendingFile pending(dir / "a.png");
+    EXPECT_EQ(pending.temporary().parent_path(), dir.path());
+    EXPECT_EQ(pending.temporary().extension(), ".png");
+    test::write_file(pending.temporary(), "partial");
+  }  // abandoned
+  EXPECT_TRUE(std::filesystem::is_empty(dir.path()));
+  test::write_file(dir / "b.png", "old");
+  {
+    PendingFile pending(dir / "b.png");
+    test::write_file(pending.temporary(), "new");
+    EXPECT_EQ(test::read_file(dir / "b.png"), "old");  // untouched until commit
+    pending.commit();
+  }
+  EXPECT_EQ(test::read_file(dir / "b.png"), "new");
+  std::size_t files = 0;
+  for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir.path())) ++files;
+  EXPECT_EQ(files, 1u);
+  write_png(ImageU8(4, 4, 4), dir / "c.png");
+  EXPECT_EQ(read_png(dir / "c.png").width, 4);
+  EXPECT_TRUE(same_file(dir / "c.png", dir.path() / "." / "c.png"));
+  EXPECT_FALSE(same_file(dir / "c.png", dir / "b.png"));
+}
 
 TEST(Image, PngRoundTripKeepsRowsBottomUp) {
   test::TempDir dir;

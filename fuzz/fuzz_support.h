@@ -55,7 +55,7 @@ void expect_clean_failure(std::string_view named, Read&& read) {
     read();
   } catch (const InputError& e) {
     const std::string message = e.what();
-    if (message.find(named) == std::string::npos)
+    if (message.find(one_line(std::string(named))) == std::string::npos)
       fail("the error does not name " + excerpt(named, 200) + ": " + excerpt(message, 400));
     if (message.find('\n') != std::string::npos && message.find('\n') + 1 != message.size())
       fail("the error is not one line: " + excerpt(message, 400));

@@ -104,7 +104,7 @@ int main(int argc, char** argv) {
       return 0;
     }
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "ibfvs: error: %s\n", ibfvs::app::error_line(e).c_str());
+    std::fprintf(stderr, "ibfvs: error: %s\n", ibfvs::one_line(ibfvs::app::error_line(e)).c_str());
     return 1;
   }
   return 0;

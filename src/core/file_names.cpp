@@ -19,8 +19,12 @@ std::string lower_extension(const std::filesystem::path& path) {
 
 PendingFile::PendingFile(std::filesystem::path path) : path_(std::move(path)) {
   const std::string ext = path_.extension().string();
-  temporary_ = path_.parent_path() /
-               ("." + path_.stem().string() + ext + ".partial-" + std::to_string(getpid()) + ext);
+  std::string name = ".";
+  name += path_.filename().string();
+  name += ".partial-";
+  name += std::to_string(getpid());
+  name += ext;
+  temporary_ = path_.parent_path() / name;
 }
 
 PendingFile::~PendingFile() {

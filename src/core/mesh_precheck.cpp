@@ -159,9 +159,11 @@ void precheck_off(const fs::path& path, const std::string& text) {
       if (w.size() - i != 3 || !to_integer(w[i], nv) || !to_integer(w[i + 1], nf) ||
           !to_integer(w[i + 2], edges) || nv < 0 || nf < 0 || edges < 0)
         c.fail_line(number, "expected the counts 'VERTICES FACES EDGES'");
-      part = nv > 0 ? Part::Vertices : Part::Faces;
-      if (nf == 0 && nv == 0) part = Part::Done;
-      return part != Part::Done;
+      if (nv == 0 || nf == 0)
+        c.fail_line(number, nf == 0 ? "the header declares no faces: not a surface mesh"
+                                    : "the header declares no vertices: not a surface mesh");
+      part = Part::Vertices;
+      return true;
     }
     if (part == Part::Vertices) {
       if (w.size() < 3) c.fail_line(number, "a vertex needs 3 coordinates");

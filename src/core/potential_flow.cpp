@@ -36,7 +36,10 @@ FlowElement FlowElement::parse(std::string_view text) {
 std::string FlowElement::to_string() const {
   std::string out = format_vec3(a) + "," + format_vec3(b) + "," + format_number(rotational) + "," +
                     format_number(radial) + "," + format_number(tangential);
-  if (core != 0.0f) out += "," + format_number(core);
+  if (core != 0.0f) {
+    out += ',';
+    out += format_number(core);
+  }
   return out;
 }
 

@@ -557,16 +557,16 @@ std::vector<Setting> read_scene_settings(const std::filesystem::path& path) {
     table = toml::parse_file(path.string());
   } catch (const toml::parse_error& e) {
     throw InputError(path.string() + ":" + std::to_string(e.source().begin.line) + ": " +
-                     std::string(e.description()));
+                     one_line(std::string(e.description())));
   }
   std::vector<Setting> out;
   for (const auto& [key_node, value] : table) {
     const std::string key(key_node.str());
     const std::string where = path.string() + ":" + std::to_string(value.source().begin.line);
     const SceneKey* k = find_scene_key(key);
-    if (!k) throw InputError(where + ": unknown key '" + key + "' (see docs/scenes.md)");
+    if (!k) throw InputError(where + ": unknown key " + excerpt(key) + " (see docs/scenes.md)");
     const auto wrong = [&](const char* expected) {
-      throw InputError(where + ": '" + key + "' must be " + expected);
+      throw InputError(where + ": " + excerpt(key) + " must be " + expected);
     };
     const auto add = [&](const std::string& text) { out.push_back({key, text, where}); };
     switch (k->kind) {

@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstring>
+#include <deque>
 #include <fstream>
 #include <map>
 #include <mutex>
@@ -390,13 +391,143 @@ void precheck_xml(const Guard& g) {
   }
 }
 
+// ASCII legacy files: every section's values are there, as many as its
+// header declares, before the next keyword. VTK 9.2's legacy readers crash
+// (a null cell array) on a section cut short, which fuzzing found.
+void precheck_legacy_ascii(const Guard& g) {
+  std::ifstream in(g.path(), std::ios::binary);
+  std::string line;
+  std::vector<std::string> head;
+  for (int k = 0; k < 3 && std::getline(in, line); ++k) head.push_back(line);
+  const auto trimmed = [](std::string s) {
+    while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.pop_back();
+    return s;
+  };
+  if (head.size() < 3 || trimmed(head[2]) != "ASCII") return;
+  const bool v5 = head[0].find("Version 5") != std::string::npos;
+  const auto numeric = [](const std::string& w) {
+    char* end = nullptr;
+    std::strtod(w.c_str(), &end);
+    return end && end != w.c_str() && *end == '\0';
+  };
+  long double pending = 0, tuples = 0, field_arrays = 0;
+  long double cells_left = -1, record_left = 0;  // the cell list being read, if any
+  std::string section;
+  int section_line = 0;
+  std::deque<std::pair<std::string, long double>> next;  // keyword, then its values
+  bool metadata = false;
+  int number = 3;
+  const auto expect = [&](const std::string& key, long double values, int at) {
+    pending = values;
+    section = key;
+    section_line = at;
+  };
+  while (std::getline(in, line)) {
+    ++number;
+    std::istringstream words(line);
+    std::vector<std::string> w;
+    for (std::string t; words >> t;) w.push_back(t);
+    if (metadata) {  // METADATA ... up to a blank line
+      metadata = !w.empty();
+      continue;
+    }
+    std::size_t i = 0;
+    for (; i < w.size() && pending > 0; ++i, --pending) {
+      if (!numeric(w[i]))
+        g.fail("line " + std::to_string(number) + ": " + excerpt(w[i]) + " where the " + section +
+               " of line " + std::to_string(section_line) + " has " +
+               std::to_string(static_cast<long long>(pending)) + " values to go");
+      if (cells_left < 0) continue;  // not a cell list
+      // A cell list before version 5: records "n i1 ... in", `cells` of them,
+      // filling the declared size exactly (VTK reads past its array otherwise).
+      const long double v = std::stold(w[i]);
+      if (record_left == 0) {
+        if (cells_left == 0 || v < 0 || v + 1 > pending)
+          g.fail("line " + std::to_string(number) + ": the " + section + " of line " +
+                 std::to_string(section_line) + " does not add up to its declared size");
+        record_left = v;
+        --cells_left;
+      } else {
+        --record_left;
+      }
+    }
+    if (pending == 0 && cells_left > 0)
+      g.fail("the " + section + " of line " + std::to_string(section_line) + " declares " +
+             std::to_string(static_cast<long long>(cells_left)) + " more cells than it holds");
+    if (pending == 0) cells_left = -1;
+    if (i > 0 || w.empty()) continue;
+    std::string key = w[0];
+    std::transform(key.begin(), key.end(), key.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
+    const auto count = [&](std::size_t k) -> long double {
+      return k < w.size() && numeric(w[k]) ? std::stold(w[k]) : 0.0L;
+    };
+    if (!next.empty()) {
+      if (key != next.front().first)
+        g.fail("line " + std::to_string(number) + ": expected " + next.front().first + ", got " +
+               excerpt(w[0]));
+      expect(key, next.front().second, number);
+      next.pop_front();
+      continue;
+    }
+    if (field_arrays > 0 && w.size() == 4 && numeric(w[1]) && numeric(w[2])) {
+      --field_arrays;
+      const std::string type = w[3];
+      if (type != "string" && type != "utf8_string" && type != "variant")
+        expect("array " + excerpt(w[0]), count(1) * count(2), number);
+      continue;
+    }
+    if (key == "POINTS") {
+      expect(key, 3 * count(1), number);
+    } else if (key == "POLYGONS" || key == "LINES" || key == "VERTICES" ||
+               key == "TRIANGLE_STRIPS" || key == "CELLS") {
+      if (v5) {
+        next.emplace_back("OFFSETS", count(1));
+        next.emplace_back("CONNECTIVITY", count(2));
+      } else {
+        expect(key, count(2), number);
+        cells_left = count(1);
+        record_left = 0;
+      }
+    } else if (key == "CELL_TYPES") {
+      expect(key, count(1), number);
+    } else if (key == "POINT_DATA" || key == "CELL_DATA") {
+      tuples = count(1);
+    } else if (key == "SCALARS") {
+      next.emplace_back("LOOKUP_TABLE", tuples * (w.size() > 3 ? count(3) : 1));
+    } else if (key == "VECTORS" || key == "NORMALS") {
+      expect(key, 3 * tuples, number);
+    } else if (key == "TENSORS") {
+      expect(key, 9 * tuples, number);
+    } else if (key == "TEXTURE_COORDINATES") {
+      expect(key, count(2) * tuples, number);
+    } else if (key == "COLOR_SCALARS") {
+      expect(key, count(2) * tuples, number);
+    } else if (key == "LOOKUP_TABLE") {
+      expect(key, 4 * count(2), number);
+    } else if (key == "X_COORDINATES" || key == "Y_COORDINATES" || key == "Z_COORDINATES") {
+      expect(key, count(1), number);
+    } else if (key == "FIELD") {
+      field_arrays = count(2);
+    } else if (key == "METADATA") {
+      metadata = true;
+    }
+  }
+  if (pending > 0)
+    g.fail("truncated: the " + section + " of line " + std::to_string(section_line) + " has " +
+           std::to_string(static_cast<long long>(pending)) + " values missing");
+  if (!next.empty()) g.fail("truncated: " + next.front().first + " is missing");
+}
+
 // A single VTK file (legacy or XML, any dataset kind).
 vtkSmartPointer<vtkDataObject> read_vtk_file(const Guard& g) {
   require_file(g);
-  if (lower_extension(g.path()) == ".vtk")
+  if (lower_extension(g.path()) == ".vtk") {
     precheck_legacy(g);
-  else
+    precheck_legacy_ascii(g);
+  } else {
     precheck_xml(g);
+  }
   vtkSmartPointer<vtkDataObject> out;
   if (lower_extension(g.path()) == ".vtk") {
     vtkNew<vtkGenericDataObjectReader> reader;

@@ -525,6 +525,14 @@ TEST_F(VtkIo, BadLegacyFiles) {
     expect_bad(dir_ / "nan.vtk", "point 2 has a non-finite coordinate");
   }
   expect_bad(write_file(dir_ / "lines.vtk", legacy(pts, "LINES 1 4\n3 0 1 2\n")), "has no surface");
+  // What the fuzzers found: VTK 9.2 crashed on both (docs/reliability.md).
+  expect_bad(write_file(dir_ / "cells.vtk", legacy(pts, "POLYGONS 2 6\n3 0 1 2\n9 0\n")),
+             "the POLYGONS of line 7 does not add up to its declared size");
+  const std::string v5 = "# vtk DataFile Version 5.1\nv5\nASCII\nDATASET POLYDATA\n" + pts +
+                         "POLYGONS 2 3\nOFFSETS vtktypeint64\n0 3\nCONNECTIVITY vtktypeint64\n0 1\n"
+                         "FIELD FieldData 1\n";
+  expect_bad(write_file(dir_ / "cut.vtk", v5),
+             "line 12: 'FIELD' where the CONNECTIVITY of line 10 has 1 values to go");
   expect_bad(
       write_file(dir_ / "short_array.vtk", legacy(pts, "POLYGONS 1 4\n3 0 1 2\n",
                                                   "POINT_DATA 3\nVECTORS v float\n1 0 0 1 0 0\n")),

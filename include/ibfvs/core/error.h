@@ -8,6 +8,14 @@
 
 namespace ibfvs {
 
+/// A message on one line: line breaks, tabs and other control characters
+/// (from a file's bytes or a value quoted in it) become '?'.
+inline std::string one_line(std::string text) {
+  for (char& c : text)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+  return text;
+}
+
 /// Bad input: a file that cannot be read or parsed, a field with bad values,
 /// an impossible parameter. The message names the input and the problem.
 class InputError : public std::runtime_error {
@@ -21,7 +29,9 @@ class InputError : public std::runtime_error {
 class SettingError : public InputError {
  public:
   SettingError(std::string key, const std::string& problem)
-      : InputError(key + ": " + problem), key_(std::move(key)), problem_(problem) {}
+      : InputError(one_line(key + ": " + problem)),
+        key_(one_line(std::move(key))),
+        problem_(one_line(problem)) {}
   [[nodiscard]] const std::string& key() const { return key_; }
   [[nodiscard]] const std::string& problem() const { return problem_; }
 

@@ -265,12 +265,19 @@ long double header_count(const std::string& word, const std::string& where, cons
   }
 }
 
+// A count for a message, whatever its size (a header may say 1e299).
+std::string count_text(long double v) {
+  if (v < 1e18L) return std::to_string(static_cast<long long>(v));
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3Lg", v);
+  return text;
+}
+
 void check_values(long double values, long double capacity, const std::string& where,
                   const Guard& g) {
   if (values > capacity)
-    g.fail(where + " declares " + std::to_string(static_cast<long long>(values)) +
-           " values, more than the file can hold (" +
-           std::to_string(static_cast<long long>(capacity)) + ")");
+    g.fail(where + " declares " + count_text(values) + " values, more than the file can hold (" +
+           count_text(capacity) + ")");
 }
 
 // Legacy files: every count is at most the file's size in values (a value
@@ -282,6 +289,8 @@ void precheck_legacy(const Guard& g) {
   std::string line;
   long double tuples = 0;  // of the current POINT_DATA / CELL_DATA section
   long double field_arrays = 0;
+  int cells_line = 0;  // CELLS without CELL_TYPES: VTK 9.2 dereferences null
+  bool cell_types = false;
   for (int number = 1; std::getline(in, line); ++number) {
     std::istringstream words(line);
     std::string key;
@@ -313,12 +322,14 @@ void precheck_legacy(const Guard& g) {
                    g);
       continue;
     }
+    if (key == "CELLS" && cells_line == 0) cells_line = number;
     if (key == "POINTS") {
       check_values(3 * count(0), size, where, g);
     } else if (key == "POLYGONS" || key == "LINES" || key == "VERTICES" ||
                key == "TRIANGLE_STRIPS" || key == "CELLS") {
       check_values(count(0) + count(1), size + 2, where, g);
     } else if (key == "CELL_TYPES") {
+      cell_types = true;
       check_values(count(0), size, where, g);
     } else if (key == "POINT_DATA" || key == "CELL_DATA") {
       tuples = count(0);
@@ -342,6 +353,9 @@ void precheck_legacy(const Guard& g) {
                " points is too large to show");
     }
   }
+  if (cells_line > 0 && !cell_types)
+    g.fail("line " + std::to_string(cells_line) +
+           " (CELLS): an unstructured grid's cells need CELL_TYPES");
 }
 
 // XML files: the counts in the attributes (NumberOfPoints, NumberOfCells,
@@ -435,8 +449,8 @@ void precheck_legacy_ascii(const Guard& g) {
     for (; i < w.size() && pending > 0; ++i, --pending) {
       if (!numeric(w[i]))
         g.fail("line " + std::to_string(number) + ": " + excerpt(w[i]) + " where the " + section +
-               " of line " + std::to_string(section_line) + " has " +
-               std::to_string(static_cast<long long>(pending)) + " values to go");
+               " of line " + std::to_string(section_line) + " has " + count_text(pending) +
+               " values to go");
       if (cells_left < 0) continue;  // not a cell list
       // A cell list before version 5: records "n i1 ... in", `cells` of them,
       // filling the declared size exactly (VTK reads past its array otherwise).
@@ -453,7 +467,7 @@ void precheck_legacy_ascii(const Guard& g) {
     }
     if (pending == 0 && cells_left > 0)
       g.fail("the " + section + " of line " + std::to_string(section_line) + " declares " +
-             std::to_string(static_cast<long long>(cells_left)) + " more cells than it holds");
+             count_text(cells_left) + " more cells than it holds");
     if (pending == 0) cells_left = -1;
     if (i > 0 || w.empty()) continue;
     std::string key = w[0];
@@ -515,7 +529,7 @@ void precheck_legacy_ascii(const Guard& g) {
   }
   if (pending > 0)
     g.fail("truncated: the " + section + " of line " + std::to_string(section_line) + " has " +
-           std::to_string(static_cast<long long>(pending)) + " values missing");
+           count_text(pending) + " values missing");
   if (!next.empty()) g.fail("truncated: " + next.front().first + " is missing");
 }
 

@@ -525,7 +525,14 @@ TEST_F(VtkIo, BadLegacyFiles) {
     expect_bad(dir_ / "nan.vtk", "point 2 has a non-finite coordinate");
   }
   expect_bad(write_file(dir_ / "lines.vtk", legacy(pts, "LINES 1 4\n3 0 1 2\n")), "has no surface");
-  // What the fuzzers found: VTK 9.2 crashed on both (docs/reliability.md).
+  // What the fuzzers found: VTK 9.2 crashed on these (docs/reliability.md),
+  // and a count of 1e299 overflowed our own message.
+  expect_bad(write_file(dir_ / "types.vtk",
+                        "# vtk DataFile Version 4.2\nbad\nASCII\nDATASET UNSTRUCTURED_GRID\n" +
+                            pts + "CELLS 1 4\n3 0 1 2\n"),
+             "line 7 (CELLS): an unstructured grid's cells need CELL_TYPES");
+  expect_bad(write_file(dir_ / "1e299.vtk", legacy("POINTS 1e299 float\n0 0 0\n", "")),
+             "declares 3e+299 values, more than the file can hold");
   expect_bad(write_file(dir_ / "cells.vtk", legacy(pts, "POLYGONS 2 6\n3 0 1 2\n9 0\n")),
              "the POLYGONS of line 7 does not add up to its declared size");
   const std::string v5 = "# vtk DataFile Version 5.1\nv5\nASCII\nDATASET POLYDATA\n" + pts +

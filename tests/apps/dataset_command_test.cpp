@@ -74,7 +74,7 @@ TEST_F(DatasetCommand, PvdSeriesPlaysThroughItsSteps) {
   for (int k = 0; k < 3; ++k) {
     const std::string v = std::to_string(k) + " 1 0  ";
     const std::string step = square.substr(0, vectors) + v + v + v + v + square.substr(after);
-    char name[16], entry[80];
+    char name[32], entry[96];
     std::snprintf(name, sizeof name, "s%d.vtk", k);
     std::snprintf(entry, sizeof entry, "<DataSet timestep=\"%d\" file=\"%s\"/>\n", k, name);
     file(name, step);

@@ -340,6 +340,12 @@ void precheck_ply(const fs::path& path) {
         c.fail_line(number, "expected 'format ascii|binary_little_endian|binary_big_endian 1.0'");
       format = w[1];
     } else if (key == "comment" || key == "obj_info") {
+      // OpenMesh reads the header word by word, so a keyword in a comment
+      // counts as one there (the fuzzers found an 'element' in an obj_info).
+      for (std::size_t k = 1; k < w.size(); ++k)
+        if (w[k] == "element" || w[k] == "property" || w[k] == "format" || w[k] == "end_header")
+          c.fail_line(number,
+                      "a " + std::string(key) + " holding the keyword '" + std::string(w[k]) + "'");
     } else if (key == "element") {
       PlyElement e;
       if (w.size() != 3 || !to_integer(w[2], e.count) || e.count < 0)
@@ -370,6 +376,12 @@ void precheck_ply(const fs::path& path) {
     }
   }
   if (format.empty()) c.fail("the PLY header has no format line");
+  // Every element's items take at least a byte each (the fuzzers found
+  // OpenMesh reserving gigabytes for an element of no properties).
+  for (const PlyElement& e : elements)
+    if (static_cast<unsigned long long>(e.count) > data.size())
+      c.fail("the header declares " + std::to_string(e.count) + " " + e.name +
+             " items, more than a file of " + std::to_string(data.size()) + " bytes can hold");
   long long vertices = -1;
   for (const PlyElement& e : elements)
     if (e.name == "vertex") vertices = e.count;

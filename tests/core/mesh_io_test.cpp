@@ -202,6 +202,19 @@ TEST(MeshIo, FuzzerFindingsFailCleanly) {
                                "ply\nformat ascii 1.0\nelement vertex 1\npropemat ascii 1.0\n"
                                "end_header\n0 0 0\n"),
                     "line 4: unknown PLY header keyword 'propemat'");
+  // A keyword inside an obj_info line (OpenMesh's word-by-word header reader
+  // took it for an element and reserved gigabytes), and an element whose
+  // count no file of this size could hold.
+  expect_read_error(write_file(dir / "info.ply",
+                               "ply\nformat ascii 1.0\nelement vertex 1\nobj_info x element face "
+                               "4\nproperty float x\nproperty float y\nproperty float z\n"
+                               "end_header\n0 0 0\n"),
+                    "line 4: a obj_info holding the keyword 'element'");
+  expect_read_error(write_file(dir / "count.ply",
+                               "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n"
+                               "property float y\nproperty float z\nelement junk 99999999\n"
+                               "end_header\n0 0 0\n"),
+                    "the header declares 99999999 junk items, more than a file of");
   // An OBJ face naming a normal given after it (OpenMesh read past its array).
   expect_read_error(
       write_file(dir / "normal.obj", "v 1 0 0\nv 1 0 0\nv 0 1 0\nf -3//1 -2//1 -1//1\nvn 0 0 1\n"),

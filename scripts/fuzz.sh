@@ -25,6 +25,7 @@ run_one() {
   mkdir -p "$out/corpus" "$out/artifacts"
   local dict=fuzz/dictionaries/${name}_fuzzer.dict args=()
   [[ -f $dict ]] && args+=(-dict="$dict")
+  [[ -f fuzz/options/${name}_fuzzer.txt ]] && mapfile -t -O "${#args[@]}" args < "fuzz/options/${name}_fuzzer.txt"
   "$bin/${name}_fuzzer" -fork=1 -ignore_crashes=1 -ignore_ooms=1 -ignore_timeouts=1 \
     -max_total_time="$seconds" -timeout=20 -rss_limit_mb=2560 -max_len=65536 \
     -artifact_prefix="$out/artifacts/" "${args[@]}" "$out/corpus" "fuzz/corpus/${name}_fuzzer" \

@@ -13,6 +13,9 @@ packages=(
   # The curvature tests and bench: random triangulations (convex hulls) and
   # CGAL's jet fitting as the peer (header-only; the library never links it).
   libcgal-dev
+  # Reliability (scripts/ci-checks.sh): clang with libFuzzer and its
+  # sanitizer runtimes for the fuzzers, clang-format for the style check.
+  clang libclang-rt-14-dev clang-format
   ffmpeg
   # The VTK and OpenFOAM readers: the VTK inside Debian's ParaView (about
   # 1 GiB with ParaView itself), never libvtk9-dev (docs/data.md).

@@ -38,6 +38,13 @@ class Checker {
   fs::path path_;
 };
 
+std::string file_text(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return buffer.str();
+}
+
 std::vector<std::string_view> words(std::string_view line) {
   std::vector<std::string_view> out;
   std::size_t i = 0;
@@ -200,10 +207,7 @@ void precheck_off(const fs::path& path, const std::string& text) {
 
 void precheck_obj(const fs::path& path) {
   const Checker c(path);
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  const std::string text = buffer.str();
+  const std::string text = file_text(path);
   long long counts[3] = {0, 0, 0};  // v, vt, vn given so far
   static constexpr const char* kNames[3] = {"vertex", "texture coordinate", "normal"};
   for_each_line(text, [&](std::size_t number, std::vector<std::string_view> w) {
@@ -316,10 +320,7 @@ long long read_integer(const char* p, int size, bool big, bool is_signed) {
 
 void precheck_ply(const fs::path& path) {
   const Checker c(path);
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  const std::string data = buffer.str();
+  const std::string data = file_text(path);
   std::vector<PlyElement> elements;
   std::string format;
   std::size_t at = 0, number = 0;

@@ -135,6 +135,10 @@ void VideoEncoder::drain() {
     const int code = avcodec_receive_packet(codec_, packet_);
     if (code == AVERROR(EAGAIN) || code == AVERROR_EOF) return;
     if (code < 0) fail("encoding failed", code);
+    // Every frame lasts one frame interval. x264 leaves the duration unset,
+    // and MP4's edit list then ends at the last frame's start, so players
+    // (and ffprobe) drop that frame.
+    if (packet_->duration == 0) packet_->duration = 1;
     av_packet_rescale_ts(packet_, codec_->time_base, stream_->time_base);
     packet_->stream_index = stream_->index;
     const int written = av_interleaved_write_frame(format_, packet_);  // takes the packet

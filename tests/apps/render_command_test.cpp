@@ -83,6 +83,22 @@ TEST_F(RenderCommand, VideoContainers) {
     ASSERT_EQ(std::system(count.c_str()), 0) << count;
     EXPECT_EQ(test::read_file(dir_ / "probe.txt"), "48,5\n") << name;
   }
+  // Every frame is in the file whatever the count: x264 leaves packet
+  // durations unset, and MP4/MOV edit lists then ended at the last frame's
+  // start, which players dropped (250 and 394 frames decoded as 249 and 393).
+  for (const char* name : {"n.mp4", "n.mov"}) {
+    for (const int n : {250, 394}) {
+      const Result r = run("render --mesh torus --size 16x16 --frames " + std::to_string(n) +
+                           " -q --out " + name);
+      ASSERT_EQ(r.status, 0) << name << "\n" << r.err;
+      const std::string count =
+          "ffprobe -v error -count_frames -select_streams v:0 -show_entries "
+          "stream=nb_read_frames -of csv=p=0 '" +
+          (dir_ / name).string() + "' > '" + (dir_ / "probe.txt").string() + "'";
+      ASSERT_EQ(std::system(count.c_str()), 0) << count;
+      EXPECT_EQ(test::read_file(dir_ / "probe.txt"), std::to_string(n) + "\n") << name;
+    }
+  }
   // A file the encoder cannot open: one clear line naming it, exit 1.
   std::filesystem::create_directory(dir_ / "taken.mp4");
   expect_error("render --mesh torus --size 48x32 --frames 2 --out taken.mp4",

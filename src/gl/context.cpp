@@ -40,6 +40,16 @@ bool has_extension(const char* list, const char* name) {
 
 }  // namespace
 
+void keep_drivers_loaded() {
+  dl_iterate_phdr(
+      [](dl_phdr_info* info, std::size_t, void*) {
+        if (info->dlpi_name && std::strstr(info->dlpi_name, "_dri.so"))
+          dlopen(info->dlpi_name, RTLD_NOW | RTLD_NOLOAD | RTLD_NODELETE);
+        return 0;
+      },
+      nullptr);
+}
+
 bool ContextOptions::default_debug() {
   if (const char* env = std::getenv("IBFVS_GL_DEBUG")) return std::strcmp(env, "0") != 0;
 #ifdef IBFVS_GL_DEBUG_DEFAULT
@@ -94,19 +104,6 @@ struct HeadlessContext::Impl {
     }
   }
 
-  // Keeps the GL drivers that EGL loaded (Mesa's *_dri.so) loaded until the
-  // process ends, so that LeakSanitizer can name them in what they leak
-  // (tests/lsan.supp) instead of an unloaded, unknown module.
-  static void pin_drivers() {
-    dl_iterate_phdr(
-        [](dl_phdr_info* info, std::size_t, void*) {
-          if (info->dlpi_name && std::strstr(info->dlpi_name, "_dri.so"))
-            dlopen(info->dlpi_name, RTLD_NOW | RTLD_NOLOAD | RTLD_NODELETE);
-          return 0;
-        },
-        nullptr);
-  }
-
   // Tries one display; on success leaves display/context set and current.
   bool try_display(EGLDisplay dpy, const std::string& name, std::ostringstream& log) {
     EGLint major = 0, minor = 0;
@@ -114,7 +111,7 @@ struct HeadlessContext::Impl {
       log << name << ": eglInitialize failed; ";
       return false;
     }
-    pin_drivers();
+    keep_drivers_loaded();
     if (!eglBindAPI(EGL_OPENGL_API)) {
       log << name << ": no desktop OpenGL API; ";
       release_display(dpy, false);

@@ -9,6 +9,7 @@
 #include <GLFW/glfw3.h>
 
 #include "ibfvs/core/error.h"
+#include "ibfvs/gl/context.h"
 
 namespace ibfvs::gl {
 namespace {
@@ -41,6 +42,7 @@ WindowContext::WindowContext(int width, int height, const std::string& title, bo
     throw GraphicsError("cannot open a window with an OpenGL 4.5 core context: " + why);
   }
   glfwMakeContextCurrent(window_);
+  keep_drivers_loaded();
   glfwSwapInterval(vsync ? 1 : 0);
 }
 

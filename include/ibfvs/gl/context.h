@@ -62,4 +62,10 @@ void tune_process_for_rendering();
 /// Errors recorded by the KHR_debug callback of the current thread's context.
 std::vector<std::string> take_recorded_gl_errors();
 
+/// Keeps the GL drivers loaded so far (Mesa's *_dri.so) loaded until the
+/// process ends, so that LeakSanitizer can name them in what they leak
+/// (tests/lsan.supp) instead of an unloaded, unknown module. Both context
+/// kinds call it once their context exists.
+void keep_drivers_loaded();
+
 }  // namespace ibfvs::gl

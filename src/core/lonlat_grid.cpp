@@ -11,6 +11,7 @@
 #include "ibfvs/core/limits.h"
 #include "ibfvs/core/procedural.h"
 #include "ibfvs/core/subdivision.h"
+#include "netcdf_precheck.h"
 
 namespace ibfvs {
 namespace {
@@ -23,6 +24,7 @@ class NcFile {
   explicit NcFile(const std::filesystem::path& path) : path_(path) {
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) fail("no such file");
+    detail::precheck_netcdf(path);
     const int status = nc_open(path.c_str(), NC_NOWRITE, &id_);
     if (status != NC_NOERR)
       fail(std::string("not a readable netCDF file (") + nc_strerror(status) + ")");
@@ -34,7 +36,7 @@ class NcFile {
   NcFile& operator=(const NcFile&) = delete;
   [[nodiscard]] int id() const { return id_; }
   [[noreturn]] void fail(const std::string& problem) const {
-    throw InputError(path_.string() + ": " + problem);
+    throw InputError(one_line(path_.string() + ": " + problem));  // names are the file's bytes
   }
   void check(int status, const std::string& what) const {
     if (status != NC_NOERR) fail(what + ": " + nc_strerror(status));
@@ -45,15 +47,21 @@ class NcFile {
   int id_ = -1;
 };
 
-std::string variable_list(int nc) {
+std::vector<std::string> variable_names(int nc) {
   int n = 0;
   nc_inq_nvars(nc, &n);
-  std::string out;
+  std::vector<std::string> out;
   for (int v = 0; v < n; ++v) {
     char name[NC_MAX_NAME + 1] = {};
     nc_inq_varname(nc, v, name);
-    out += (out.empty() ? "" : ", ") + std::string(name);
+    out.emplace_back(name);
   }
+  return out;
+}
+
+std::string variable_list(int nc) {
+  std::string out;
+  for (const std::string& name : variable_names(nc)) out += (out.empty() ? "" : ", ") + name;
   return out;
 }
 
@@ -120,6 +128,11 @@ float LonLatGrid::sample(double lon_deg, double lat_deg) const {
   const double v = (1 - ty) * ((1 - tx) * at(j0, i0) + tx * at(j0, i1)) +
                    ty * ((1 - tx) * at(j0 + 1, i0) + tx * at(j0 + 1, i1));
   return static_cast<float>(v);  // NaN propagates from any missing neighbour
+}
+
+std::vector<std::string> netcdf_variables(const std::filesystem::path& path) {
+  const NcFile file(path);
+  return variable_names(file.id());
 }
 
 LonLatGrid read_lonlat_grid(const std::filesystem::path& path, const std::string& variable,

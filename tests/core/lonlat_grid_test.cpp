@@ -124,6 +124,108 @@ TEST(LonLatGrid, BadFilesAndNamesAreClearErrors) {
   expect([&] { FieldSpec::parse("wind:"); }, "empty file or variable name in 'wind:'");
 }
 
+// A classic netCDF header written byte by byte (big-endian words).
+struct Header {
+  std::string bytes;
+  explicit Header(char version) : bytes(std::string("CDF") + version) {}
+  Header& word(std::uint32_t v) {
+    for (int shift = 24; shift >= 0; shift -= 8) bytes += static_cast<char>((v >> shift) & 0xFF);
+    return *this;
+  }
+  Header& name(const std::string& n) {
+    word(static_cast<std::uint32_t>(n.size()));
+    bytes += n + std::string((4 - n.size() % 4) % 4, '\0');
+    return *this;
+  }
+};
+
+// Fuzzing found netCDF-C allocating what a header declares (tens of GiB for
+// a few hundred bytes) and spinning for minutes; and a file cut short reads
+// as zeros. The header is walked first: each such file is refused at once,
+// naming the problem; whole files of every classic version pass.
+TEST(LonLatGrid, MalformedAndCutShortFilesAreRefusedBeforeReading) {
+  test::TempDir dir;
+  const auto expect = [&](const std::filesystem::path& file, const std::string& needle) {
+    try {
+      read_lonlat_grid(file, "U");
+      FAIL() << "no error for " << needle;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(file.filename().string() + ": " + needle),
+                std::string::npos)
+          << e.what();
+    }
+  };
+  // Whole files of the three classic versions read; one byte less is cut short.
+  write_winds(dir / "w.nc", 2);
+  const std::string whole = test::read_file(dir / "w.nc");
+  for (const int mode : {0, NC_64BIT_OFFSET, NC_64BIT_DATA}) {
+    int nc = 0, d = 0, v = 0;
+    const auto path = dir / ("v" + std::to_string(mode) + ".nc");
+    ASSERT_EQ(nc_create(path.c_str(), NC_CLOBBER | mode, &nc), NC_NOERR);
+    nc_def_dim(nc, "X", 7, &d);
+    nc_def_var(nc, "X", NC_DOUBLE, 1, &d, &v);
+    nc_enddef(nc);
+    const std::vector<double> x{0, 1, 2, 3, 4, 5, 6};
+    nc_put_var_double(nc, v, x.data());
+    nc_close(nc);
+    const std::string bytes = test::read_file(path);
+    try {
+      read_lonlat_grid(path, "X");
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("has 1 dimensions"), std::string::npos) << e.what();
+    }
+    test::write_file(path, bytes.substr(0, bytes.size() - 1));
+    try {
+      read_lonlat_grid(path, "X");
+      FAIL() << "a cut file read";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("the file is cut short: variable 'X' needs " +
+                                           std::to_string(bytes.size()) + " bytes, the file has " +
+                                           std::to_string(bytes.size() - 1)),
+                std::string::npos)
+          << e.what();
+    }
+  }
+  EXPECT_EQ(read_lonlat_grid(dir / "w.nc", "U", 1).time_steps, 2u);
+  test::write_file(dir / "cut.nc", whole.substr(0, whole.size() - 100));
+  expect(dir / "cut.nc", "the file is cut short: variable 'V' needs " +
+                             std::to_string(whole.size()) + " bytes, the file has " +
+                             std::to_string(whole.size() - 100));
+  // Headers declaring what no file of their size could hold.
+  expect(
+      test::write_file(dir / "dims.nc", Header('\1').word(0).word(0x0A).word(0x7FFFFFFF).bytes),
+      "not a valid netCDF file: it declares 2147483647 dimensions, more than the file could hold");
+  expect(test::write_file(dir / "att.nc", Header('\2')
+                                              .word(0)
+                                              .word(0)
+                                              .word(0)
+                                              .word(0x0C)
+                                              .word(1)
+                                              .name("title")
+                                              .word(2)
+                                              .word(0x7FFFFFF0)
+                                              .bytes),
+         "not a valid netCDF file: attribute 'title' runs past the end of the file");
+  Header rank('\1');
+  rank.word(0).word(0x0A).word(1).name("x").word(4).word(0).word(0).word(0x0B).word(1).name("U");
+  expect(test::write_file(dir / "rank.nc", rank.word(2000).bytes + std::string(64, '\0')),
+         "not a valid netCDF file: variable 'U' has 2000 dimensions (at most 1024)");
+  Header id('\1');
+  id.word(0).word(0x0A).word(1).name("x").word(4).word(0).word(0).word(0x0B).word(1).name("U");
+  expect(test::write_file(dir / "id.nc", id.word(1).word(5).bytes + std::string(64, '\0')),
+         "not a valid netCDF file: variable 'U' names dimension 5 of 1");
+  // Names are the file's bytes: the message stays one line.
+  expect(test::write_file(
+             dir / "name.nc",
+             Header('\1').word(0).word(0).word(0).word(0x0C).word(1).name("a\nb").word(99).bytes +
+                 std::string(64, '\0')),
+         "not a valid netCDF file: attribute 'a?b' has an unknown type");
+  expect(test::write_file(dir / "version.nc", Header('\3').word(0).bytes),
+         "not a valid netCDF file: classic format version 3 (1, 2 and 5 exist)");
+  expect(test::write_file(dir / "short.nc", Header('\1').word(0).word(0x0A).bytes),
+         "not a valid netCDF file: it ends in dimensions");
+}
+
 TEST(LonLatGrid, GlobeIsAUnitGeodesicSphere) {
   const TriMesh g = make_globe(3);
   EXPECT_EQ(g.triangle_count(), 20u * 64);

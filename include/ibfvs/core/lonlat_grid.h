@@ -28,6 +28,10 @@ struct LonLatGrid {
   [[nodiscard]] float sample(double lon_deg, double lat_deg) const;
 };
 
+/// The names of the variables in a netCDF file, in file order. Throws
+/// InputError naming the file if it cannot be opened or is malformed.
+std::vector<std::string> netcdf_variables(const std::filesystem::path& path);
+
 /// Reads `variable` at `time_index` (for variables with a leading time
 /// dimension) from a netCDF file. The last two dimensions are latitude and
 /// longitude; their coordinate variables give the degrees. Missing values

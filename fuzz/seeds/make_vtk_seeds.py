@@ -47,12 +47,16 @@ for kind, data, legacy, xml in (("vtk", poly, vtkPolyDataWriter, None),
     os.makedirs(folder, exist_ok=True)
     stem = "polydata" if data is poly else "grid"
     if legacy:
+        # Version 5.1 (offsets and connectivity) and 4.2 (cell records).
         for binary in (False, True):
-            w = legacy()
-            w.SetInputData(data)
-            w.SetFileName(os.path.join(folder, f"{stem}-{'binary' if binary else 'ascii'}.vtk"))
-            w.SetFileTypeToBinary() if binary else w.SetFileTypeToASCII()
-            w.Write()
+            for version, suffix in ((51, ""), (42, "-v4")):
+                w = legacy()
+                w.SetInputData(data)
+                w.SetFileVersion(version)
+                encoding = "binary" if binary else "ascii"
+                w.SetFileName(os.path.join(folder, f"{stem}-{encoding}{suffix}.vtk"))
+                w.SetFileTypeToBinary() if binary else w.SetFileTypeToASCII()
+                w.Write()
     else:
         for mode in ("ascii", "binary", "appended", "compressed"):
             w = xml()

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <deque>
 #include <fstream>
@@ -19,6 +20,8 @@
 #include <vtkAppendFilter.h>
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
+#include <vtkCellType.h>
+#include <vtkCellTypes.h>
 #include <vtkCompositeDataSet.h>
 #include <vtkDataArray.h>
 #include <vtkDataSetSurfaceFilter.h>
@@ -43,6 +46,7 @@
 #include <vtkStaticCellLocator.h>
 #include <vtkStringArray.h>
 #include <vtkTriangleFilter.h>
+#include <vtkUnsignedCharArray.h>
 #include <vtkUnstructuredGrid.h>
 #include <vtkVersion.h>
 #include <vtkXMLDataElement.h>
@@ -280,6 +284,50 @@ void check_values(long double values, long double capacity, const std::string& w
            count_text(capacity) + ")");
 }
 
+// The keyword VTK's legacy readers take a word for: they compare its
+// beginning, in any case, with each keyword ("FIELDS" is FIELD, "POINTSx"
+// POINTS). Another word comes back in capitals.
+std::string legacy_keyword(const std::string& word) {
+  static const std::vector<std::string> kKeywords = {"TEXTURE_COORDINATES",
+                                                     "TRIANGLE_STRIPS",
+                                                     "COLOR_SCALARS",
+                                                     "X_COORDINATES",
+                                                     "Y_COORDINATES",
+                                                     "Z_COORDINATES",
+                                                     "LOOKUP_TABLE",
+                                                     "CONNECTIVITY",
+                                                     "ASPECT_RATIO",
+                                                     "PEDIGREE_IDS",
+                                                     "POINT_DATA",
+                                                     "CELL_TYPES",
+                                                     "DIMENSIONS",
+                                                     "GLOBAL_IDS",
+                                                     "EDGE_FLAGS",
+                                                     "CELL_DATA",
+                                                     "TENSORS6",
+                                                     "VERTICES",
+                                                     "POLYGONS",
+                                                     "METADATA",
+                                                     "SCALARS",
+                                                     "VECTORS",
+                                                     "NORMALS",
+                                                     "TENSORS",
+                                                     "OFFSETS",
+                                                     "DATASET",
+                                                     "SPACING",
+                                                     "POINTS",
+                                                     "ORIGIN",
+                                                     "FIELD",
+                                                     "CELLS",
+                                                     "LINES"};
+  std::string upper = word;
+  std::transform(upper.begin(), upper.end(), upper.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
+  for (const std::string& k : kKeywords)
+    if (upper.compare(0, k.size(), k) == 0) return k;
+  return upper;
+}
+
 // Legacy files: every count is at most the file's size in values (a value
 // takes at least a byte in binary, two characters in ASCII).
 void precheck_legacy(const Guard& g) {
@@ -295,9 +343,8 @@ void precheck_legacy(const Guard& g) {
     std::istringstream words(line);
     std::string key;
     words >> key;
-    std::transform(key.begin(), key.end(), key.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
-    const std::string where = "line " + std::to_string(number) + " (" + key + ")";
+    key = legacy_keyword(key);
+    const std::string where = "line " + std::to_string(number) + " (" + one_line(key) + ")";
     std::vector<std::string> rest;
     for (std::string w; words >> w && rest.size() < 4;) rest.push_back(w);
     const auto count = [&](std::size_t i) {
@@ -358,6 +405,182 @@ void precheck_legacy(const Guard& g) {
            " (CELLS): an unstructured grid's cells need CELL_TYPES");
 }
 
+// Base64 (as VTK's XML files encode binary data): the bytes of `text`
+// from its start, up to `bytes` of them; whitespace is skipped.
+std::string decode_base64(std::string_view text, std::size_t bytes) {
+  static const std::string kAlphabet =
+      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  unsigned bits = 0;
+  int count = 0;
+  for (const char c : text) {
+    if (out.size() >= bytes || c == '=' || c == '<') break;
+    const std::size_t v = kAlphabet.find(c);
+    if (v == std::string::npos) continue;
+    bits = (bits << 6) | static_cast<unsigned>(v);
+    count += 6;
+    if (count >= 8) {
+      count -= 8;
+      out += static_cast<char>((bits >> count) & 0xFF);
+    }
+  }
+  return out;
+}
+
+std::optional<std::string> xml_attribute(std::string_view tag, std::string_view name) {
+  const std::string key = " " + std::string(name) + "=\"";
+  const std::size_t at = tag.find(key);
+  if (at == std::string_view::npos) return std::nullopt;
+  const std::size_t begin = at + key.size(), end = tag.find('"', begin);
+  if (end == std::string_view::npos) return std::nullopt;
+  return std::string(tag.substr(begin, end - begin));
+}
+
+// XML files' binary data (inline base64, appended raw or base64): the header
+// VTK reads before each array (its byte count; for compressed data its block
+// count and sizes), and the last cell offset, by which VTK 9.2 sizes the
+// connectivity. VTK allocates what these say before reading: fuzzing found
+// 12 GB asked for by a 6 KB file (a block count) and an abort (an offset
+// of 2^61). Compressed offsets are left to VTK.
+void precheck_xml_data(const Guard& g, const std::string& head, long double capacity) {
+  const std::size_t file_at = head.find("<VTKFile");
+  if (file_at == std::string::npos) return;
+  const std::string_view file_tag =
+      std::string_view(head).substr(file_at, head.find('>', file_at) - file_at);
+  const std::size_t word = xml_attribute(file_tag, "header_type") == "UInt64" ? 8 : 4;
+  const bool big_endian = xml_attribute(file_tag, "byte_order") == "BigEndian";
+  const bool compressed = !xml_attribute(file_tag, "compressor").value_or("").empty();
+  std::error_code ec;
+  const std::uint64_t size = fs::file_size(g.path(), ec);
+  std::ifstream in(g.path(), std::ios::binary);
+  // The appended data start after the "_" that follows <AppendedData ...>;
+  // `head` ends where that element's line begins.
+  std::uint64_t appended = 0;
+  bool appended_base64 = false;
+  {
+    std::string tail(4096, '\0');
+    in.seekg(static_cast<std::streamoff>(head.size()));
+    in.read(tail.data(), static_cast<std::streamsize>(tail.size()));
+    tail.resize(static_cast<std::size_t>(in.gcount()));
+    in.clear();
+    const std::size_t at = tail.find("<AppendedData");
+    const std::size_t close = at == std::string::npos ? at : tail.find('>', at);
+    const std::size_t underscore = close == std::string::npos ? close : tail.find('_', close);
+    if (underscore != std::string::npos) {
+      appended = head.size() + underscore + 1;
+      appended_base64 =
+          xml_attribute(std::string_view(tail).substr(at, close - at), "encoding") != "raw";
+    }
+  }
+  // `bytes` bytes of an array's binary data from `offset` in its encoding
+  // (base64 text encodes the header and the data separately).
+  const auto read_appended = [&](std::uint64_t pos, std::uint64_t offset, std::size_t bytes) {
+    std::string out;
+    if (!appended_base64) {
+      if (pos + offset + bytes > size) return out;
+      out.resize(bytes);
+      in.seekg(static_cast<std::streamoff>(pos + offset));
+      in.read(out.data(), static_cast<std::streamsize>(bytes));
+      if (!in) out.clear();
+      in.clear();
+      return out;
+    }
+    std::string text(4 * (bytes / 3 + 2), '\0');
+    in.seekg(static_cast<std::streamoff>(pos + offset / 3 * 4));
+    in.read(text.data(), static_cast<std::streamsize>(text.size()));
+    text.resize(static_cast<std::size_t>(in.gcount()));
+    in.clear();
+    out = decode_base64(text, offset % 3 + bytes);
+    return out.size() == offset % 3 + bytes ? out.substr(offset % 3) : std::string();
+  };
+  const auto number = [&](const std::string& bytes, std::size_t at, std::size_t n) {
+    std::uint64_t v = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+      const auto b = static_cast<unsigned char>(bytes[big_endian ? at + k : at + n - 1 - k]);
+      v = (v << 8) | b;
+    }
+    return v;
+  };
+  static const std::map<std::string, std::size_t, std::less<>> kTypeBytes = {
+      {"Int8", 1},   {"UInt8", 1}, {"Int16", 2},  {"UInt16", 2},  {"Int32", 4},
+      {"UInt32", 4}, {"Int64", 8}, {"UInt64", 8}, {"Float32", 4}, {"Float64", 8}};
+  for (std::size_t at = head.find("<DataArray"); at != std::string::npos;
+       at = head.find("<DataArray", at + 1)) {
+    const std::size_t close = head.find('>', at);
+    if (close == std::string::npos) break;
+    const std::string_view tag = std::string_view(head).substr(at, close - at);
+    const std::string format = xml_attribute(tag, "format").value_or("ascii");
+    const std::string name = excerpt(xml_attribute(tag, "Name").value_or(""));
+    if (format == "ascii") continue;
+    // Where the array's header is, and how many bytes could follow it.
+    const bool inline_data = format == "binary";
+    std::uint64_t pos = 0, available = 0;
+    std::string_view text;
+    if (inline_data) {
+      text = std::string_view(head).substr(close + 1);
+      text = text.substr(0, text.find('<'));
+      available = text.size() / 4 * 3;
+    } else {
+      const auto offset = xml_attribute(tag, "offset");
+      if (!offset || appended == 0) continue;  // VTK reports it
+      const long double o = header_count(*offset, "DataArray " + name + " offset", g);
+      if (o > static_cast<long double>(size - appended))
+        g.fail("DataArray " + name + ": its offset " + *offset + " is past the end of the file");
+      pos = appended + static_cast<std::uint64_t>(o);
+      available = appended_base64 ? (size - pos) / 4 * 3 : size - pos;
+    }
+    const std::size_t header_words = compressed ? 3 : 1;
+    const auto read = [&](std::uint64_t offset, std::size_t bytes) {
+      return inline_data ? decode_base64(text, offset + bytes)
+                               .substr(std::min<std::size_t>(
+                                   offset, decode_base64(text, offset + bytes).size()))
+                         : read_appended(pos, offset, bytes);
+    };
+    const std::string header = read(0, header_words * word);
+    if (header.size() < header_words * word)
+      g.fail("DataArray " + name + ": its binary data are cut short");
+    if (compressed) {
+      const long double blocks = static_cast<long double>(number(header, 0, word));
+      const long double block = static_cast<long double>(number(header, word, word));
+      const long double last = static_cast<long double>(number(header, 2 * word, word));
+      if ((3 + blocks) * word > available)
+        g.fail("DataArray " + name + ": its compressed data declare " + count_text(blocks) +
+               " blocks, more than the file holds");
+      // VTK reads past its block table when these disagree (an empty table
+      // with a partial last block, a last block larger than a block).
+      if ((blocks == 0 && last != 0) || last > block || (blocks > 0 && block == 0))
+        g.fail("DataArray " + name + ": its compressed data's header is inconsistent (" +
+               count_text(blocks) + " blocks of " + count_text(block) + " bytes, the last " +
+               count_text(last) + ")");
+      const long double total = blocks > 0 ? (blocks - 1) * block + (last > 0 ? last : block) : 0;
+      check_values(total, capacity, "DataArray " + name + " (uncompressed bytes)", g);
+      continue;
+    }
+    const std::uint64_t bytes = number(header, 0, word);
+    if (bytes > available)
+      g.fail("DataArray " + name + ": its data declare " +
+             count_text(static_cast<long double>(bytes)) + " bytes, more than the file holds");
+    // The last cell offset: the connectivity's length, which VTK allocates.
+    const auto type = kTypeBytes.find(xml_attribute(tag, "type").value_or(""));
+    if (xml_attribute(tag, "Name") != "offsets" || type == kTypeBytes.end() || bytes == 0 ||
+        bytes % type->second != 0)
+      continue;
+    // Uncompressed, the data follow the header in one stream (raw or base64).
+    const std::uint64_t data_at = word;
+    const std::string value = read(data_at + bytes - type->second, type->second);
+    if (value.size() != type->second) g.fail("DataArray " + name + ": its data are cut short");
+    std::uint64_t last = number(value, 0, type->second);
+    const bool is_signed = xml_attribute(tag, "type").value_or("").rfind("Int", 0) == 0;
+    if (is_signed && type->second < 8 && (last >> (8 * type->second - 1)) != 0) last = UINT64_MAX;
+    if (last > size)
+      g.fail("DataArray " + name + ": its last offset, " +
+             (last == UINT64_MAX || (is_signed && (last >> 63) != 0)
+                  ? std::string("a negative number")
+                  : std::to_string(last)) +
+             ", is more connectivity than the file holds");
+  }
+}
+
 // XML files: the counts in the attributes (NumberOfPoints, NumberOfCells,
 // NumberOfTuples..., extents) at most what the file could hold compressed
 // (zlib's best ratio is about 1000:1).
@@ -389,6 +612,7 @@ void precheck_xml(const Guard& g) {
     }
     check_values(header_count(value, name, g), capacity, name, g);
   }
+  precheck_xml_data(g, head, capacity);
   for (const char* attribute : {"WholeExtent=\"", " Extent=\""}) {
     for (std::size_t at = head.find(attribute); at != std::string::npos;
          at = head.find(attribute, at + 1)) {
@@ -405,6 +629,31 @@ void precheck_xml(const Guard& g) {
   }
 }
 
+// The value types of legacy files that points may have (VTK reads them in
+// any case).
+const std::set<std::string, std::less<>> kNumericTypes = {
+    "unsigned_char", "char",  "signed_char",   "unsigned_short", "short",
+    "unsigned_int",  "int",   "unsigned_long", "long",           "vtktypeint64",
+    "vtktypeuint64", "float", "double",        "vtkidtype"};
+
+std::string lower(std::string text) {
+  std::transform(text.begin(), text.end(), text.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return text;
+}
+
+// Whether a legacy file stores cells as OFFSETS and CONNECTIVITY (version 5
+// and later), by VTK's rule: "# vtk DataFile Version M.N" with both numbers
+// read, or else version 0 (cell records).
+bool stores_offsets(const std::string& first_line) {
+  constexpr std::string_view kPrefix = "# vtk DataFile Version";
+  int major = 0, minor = 0;
+  if (first_line.compare(0, kPrefix.size(), kPrefix) != 0 ||
+      std::sscanf(first_line.c_str() + kPrefix.size(), "%d.%d", &major, &minor) != 2)
+    return false;
+  return major >= 5;
+}
+
 // ASCII legacy files: every section's values are there, as many as its
 // header declares, before the next keyword. VTK 9.2's legacy readers crash
 // (a null cell array) on a section cut short, which fuzzing found.
@@ -417,8 +666,9 @@ void precheck_legacy_ascii(const Guard& g) {
     while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.pop_back();
     return s;
   };
-  if (head.size() < 3 || trimmed(head[2]) != "ASCII") return;
-  const bool v5 = head[0].find("Version 5") != std::string::npos;
+  // VTK's rule: the third line's first word begins with "ascii", in any case.
+  if (head.size() < 3 || lower(trimmed(head[2])).rfind("ascii", 0) != 0) return;
+  const bool v5 = stores_offsets(head[0]);
   const auto numeric = [](const std::string& w) {
     char* end = nullptr;
     std::strtod(w.c_str(), &end);
@@ -470,9 +720,7 @@ void precheck_legacy_ascii(const Guard& g) {
              count_text(cells_left) + " more cells than it holds");
     if (pending == 0) cells_left = -1;
     if (i > 0 || w.empty()) continue;
-    std::string key = w[0];
-    std::transform(key.begin(), key.end(), key.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
+    const std::string key = legacy_keyword(w[0]);
     const auto count = [&](std::size_t k) -> long double {
       return k < w.size() && numeric(w[k]) ? std::stold(w[k]) : 0.0L;
     };
@@ -492,6 +740,9 @@ void precheck_legacy_ascii(const Guard& g) {
       continue;
     }
     if (key == "POINTS") {
+      if (w.size() < 3 || !kNumericTypes.count(lower(w[2])))
+        g.fail("line " + std::to_string(number) + " (POINTS): points of type " +
+               excerpt(w.size() < 3 ? "" : w[2]) + " (float, double or an integer type)");
       expect(key, 3 * count(1), number);
     } else if (key == "POLYGONS" || key == "LINES" || key == "VERTICES" ||
                key == "TRIANGLE_STRIPS" || key == "CELLS") {
@@ -522,6 +773,10 @@ void precheck_legacy_ascii(const Guard& g) {
     } else if (key == "X_COORDINATES" || key == "Y_COORDINATES" || key == "Z_COORDINATES") {
       expect(key, count(1), number);
     } else if (key == "FIELD") {
+      // FIELD NAME ARRAYS: VTK 9.2 crashes on a FIELD it cannot read.
+      if (w.size() < 3 || !numeric(w[2]))
+        g.fail("line " + std::to_string(number) + " (FIELD): " +
+               (w.size() < 3 ? std::string("no array count") : excerpt(w[2]) + " is not a count"));
       field_arrays = count(2);
     } else if (key == "METADATA") {
       metadata = true;
@@ -533,12 +788,147 @@ void precheck_legacy_ascii(const Guard& g) {
   if (!next.empty()) g.fail("truncated: " + next.front().first + " is missing");
 }
 
+// BINARY legacy files: the mesh sections walked word by word as VTK reads
+// them (keywords matched by their beginning, in any case; a binary block
+// after the rest of its header line), each block skipped by its size. VTK
+// 9.2 crashes where a pre-5 cell list's records ("n i1 ... in", big-endian
+// ints) do not fill its declared size, on points of a type that is no
+// number, and on an unstructured grid with CELL_TYPES but no CELLS, all
+// found by fuzzing; a word that is no section of a polydata or unstructured
+// grid means a block before it was cut short or overran. The data
+// attributes are left to precheck_legacy's counts and to VTK.
+void precheck_legacy_binary(const Guard& g) {
+  std::ifstream in(g.path(), std::ios::binary);
+  std::error_code ec;
+  const auto size = static_cast<long double>(fs::file_size(g.path(), ec));
+  std::string first, title;
+  if (!std::getline(in, first) || !std::getline(in, title)) return;
+  int number = 3;  // the line being read, for messages
+  const auto word = [&] {
+    while (std::isspace(in.peek())) {
+      if (in.get() == '\n') ++number;
+    }
+    std::string w;
+    while (w.size() < 255 && in.peek() != std::char_traits<char>::eof() && !std::isspace(in.peek()))
+      w += static_cast<char>(in.get());
+    return w;
+  };
+  const auto is = [](const std::string& w, std::string_view keyword) {
+    return lower(w).compare(0, keyword.size(), keyword) == 0;
+  };
+  if (!is(word(), "binary") || !is(word(), "dataset")) return;
+  const std::string dataset = lower(word());
+  const bool poly = is(dataset, "polydata"), grid = is(dataset, "unstructured_grid");
+  if (!poly && !grid) return;  // other datasets: left to VTK
+  const std::string kind = poly ? "POLYDATA" : "UNSTRUCTURED_GRID";
+  const bool v5 = stores_offsets(first);
+  static const std::map<std::string, int, std::less<>> kBytes = {
+      {"unsigned_char", 1}, {"char", 1},         {"signed_char", 1},   {"unsigned_short", 2},
+      {"short", 2},         {"unsigned_int", 4}, {"int", 4},           {"unsigned_long", 8},
+      {"long", 8},          {"vtktypeint64", 8}, {"vtktypeuint64", 8}, {"float", 4},
+      {"double", 8},        {"vtkidtype", 4}};
+  const auto count = [&](const std::string& what) {
+    return header_count(word(), "line " + std::to_string(number) + " (" + what + ")", g);
+  };
+  // The rest of the header line; the binary block follows it.
+  const auto end_line = [&] {
+    std::string rest;
+    std::getline(in, rest);
+    ++number;
+  };
+  // Skips `values` values of `type`; false for a type this walk does not size.
+  const auto skip = [&](long double values, const std::string& type, const std::string& what) {
+    const auto it = kBytes.find(lower(type));
+    if (it == kBytes.end()) return false;
+    const int line = number;
+    end_line();
+    const long double bytes = values * it->second;
+    const auto at = static_cast<long double>(in.tellg());
+    if (in.tellg() < 0 || bytes > size - at)
+      g.fail("truncated: the " + what + " of line " + std::to_string(line) + " needs " +
+             count_text(bytes) + " bytes, " + count_text(in.tellg() < 0 ? 0 : size - at) +
+             " are left");
+    in.seekg(static_cast<std::streamoff>(bytes), std::ios::cur);
+    return true;
+  };
+  bool cell_lists = false, types = false;
+  for (std::string w = word(); !w.empty(); w = word()) {
+    const std::string where = "line " + std::to_string(number) + " (" + one_line(w) + ")";
+    if (is(w, "point_data") || is(w, "cell_data")) break;
+    if (is(w, "metadata")) {  // up to a blank line
+      std::string line;
+      while (std::getline(in, line) && !line.empty()) ++number;
+    } else if (is(w, "field")) {
+      word();  // its name
+      const long double arrays = count("FIELD");
+      for (long double a = 0; a < arrays; ++a) {
+        word();  // the array's name
+        const long double components = count("FIELD array");
+        const long double tuples = count("FIELD array");
+        if (!skip(components * tuples, word(), "array")) return;
+      }
+    } else if (is(w, "points")) {
+      const long double points = count("POINTS");
+      const std::string type = word();
+      // VTK 9.2 reads points of another type as none, and then crashes.
+      if (kNumericTypes.count(lower(type)) == 0)
+        g.fail(where + ": points of type " + excerpt(type) + " (float, double or an integer type)");
+      skip(3 * points, type, "POINTS");
+    } else if (grid && is(w, "cell_types")) {
+      types = true;
+      skip(count("CELL_TYPES"), "int", "CELL_TYPES");
+    } else if ((poly && (is(w, "vertices") || is(w, "lines") || is(w, "polygons") ||
+                         is(w, "triangle_strips"))) ||
+               (grid && is(w, "cells"))) {
+      cell_lists = true;
+      const long double cells = count(w), values = count(w);
+      if (v5) {
+        // OFFSETS TYPE, its block; CONNECTIVITY TYPE, its block.
+        if (!is(word(), "offsets") || !skip(cells, word(), "OFFSETS")) return;
+        if (!is(word(), "connectivity") || !skip(values, word(), "CONNECTIVITY")) return;
+        continue;
+      }
+      end_line();
+      const auto at = static_cast<long double>(in.tellg());
+      if (in.tellg() < 0 || 4 * values > size - at)
+        g.fail("truncated: the " + where + " needs " + count_text(4 * values) + " bytes, " +
+               count_text(in.tellg() < 0 ? 0 : size - at) + " are left");
+      std::vector<unsigned char> bytes(static_cast<std::size_t>(4 * values));
+      in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+      const auto value = [&](std::size_t i) {
+        const unsigned char* b = bytes.data() + 4 * i;
+        return static_cast<std::int32_t>(static_cast<std::uint32_t>(b[0]) << 24 |
+                                         static_cast<std::uint32_t>(b[1]) << 16 |
+                                         static_cast<std::uint32_t>(b[2]) << 8 | b[3]);
+      };
+      const auto n = static_cast<std::size_t>(values);
+      std::size_t i = 0;
+      for (long double c = 0; c < cells; ++c) {
+        const std::int32_t points = i < n ? value(i) : -1;
+        if (points < 0 || static_cast<std::size_t>(points) >= n - i)
+          g.fail(where + ": cell " + count_text(c) + " does not fit the list's declared size");
+        i += 1 + static_cast<std::size_t>(points);
+      }
+      if (i != n) g.fail(where + ": the cells do not add up to the list's declared size");
+    } else {
+      // What VTK would take for a keyword: a block before was cut short or
+      // overran.
+      g.fail("line " + std::to_string(number) + ": " + excerpt(w) + " is not a section of " + kind +
+             " (is the section before it cut short?)");
+    }
+  }
+  if (grid && cell_lists != types)
+    g.fail(std::string("an unstructured grid with ") +
+           (types ? "CELL_TYPES but no CELLS" : "CELLS but no CELL_TYPES"));
+}
+
 // A single VTK file (legacy or XML, any dataset kind).
 vtkSmartPointer<vtkDataObject> read_vtk_file(const Guard& g) {
   require_file(g);
   if (lower_extension(g.path()) == ".vtk") {
     precheck_legacy(g);
     precheck_legacy_ascii(g);
+    precheck_legacy_binary(g);
   } else {
     precheck_xml(g);
   }
@@ -667,6 +1057,82 @@ void check_cells(vtkCellArray* cells, vtkIdType points, const char* what, const 
   }
 }
 
+// Every cell of an unstructured grid has as many points as its type has
+// (VTK's surface filter reads a cell's points by its type: a triangle of two
+// points crashed it, which fuzzing found), and a type VTK knows.
+void check_cell_types(vtkUnstructuredGrid* ug, const std::string& where, const Guard& g) {
+  vtkCellArray* cells = ug->GetCells();
+  vtkUnsignedCharArray* types = ug->GetCellTypesArray();
+  if (!cells || cells->GetNumberOfCells() == 0) return;
+  if (!types || types->GetNumberOfTuples() != cells->GetNumberOfCells())
+    g.fail(where + ": " + std::to_string(cells->GetNumberOfCells()) + " cells but " +
+           std::to_string(types ? types->GetNumberOfTuples() : 0) + " cell types");
+  // Points of the fixed-size types; at least that many (negative) for the others.
+  static const std::map<int, int> kPoints = {{VTK_EMPTY_CELL, 0},
+                                             {VTK_VERTEX, 1},
+                                             {VTK_POLY_VERTEX, -1},
+                                             {VTK_LINE, 2},
+                                             {VTK_POLY_LINE, -2},
+                                             {VTK_TRIANGLE, 3},
+                                             {VTK_TRIANGLE_STRIP, -3},
+                                             {VTK_POLYGON, -3},
+                                             {VTK_PIXEL, 4},
+                                             {VTK_QUAD, 4},
+                                             {VTK_TETRA, 4},
+                                             {VTK_VOXEL, 8},
+                                             {VTK_HEXAHEDRON, 8},
+                                             {VTK_WEDGE, 6},
+                                             {VTK_PYRAMID, 5},
+                                             {VTK_PENTAGONAL_PRISM, 10},
+                                             {VTK_HEXAGONAL_PRISM, 12},
+                                             {VTK_QUADRATIC_EDGE, 3},
+                                             {VTK_QUADRATIC_TRIANGLE, 6},
+                                             {VTK_QUADRATIC_QUAD, 8},
+                                             {VTK_QUADRATIC_POLYGON, -6},
+                                             {VTK_QUADRATIC_TETRA, 10},
+                                             {VTK_QUADRATIC_HEXAHEDRON, 20},
+                                             {VTK_QUADRATIC_WEDGE, 15},
+                                             {VTK_QUADRATIC_PYRAMID, 13},
+                                             {VTK_BIQUADRATIC_QUAD, 9},
+                                             {VTK_TRIQUADRATIC_HEXAHEDRON, 27},
+                                             {VTK_TRIQUADRATIC_PYRAMID, 19},
+                                             {VTK_QUADRATIC_LINEAR_QUAD, 6},
+                                             {VTK_QUADRATIC_LINEAR_WEDGE, 12},
+                                             {VTK_BIQUADRATIC_QUADRATIC_WEDGE, 18},
+                                             {VTK_BIQUADRATIC_QUADRATIC_HEXAHEDRON, 24},
+                                             {VTK_BIQUADRATIC_TRIANGLE, 7},
+                                             {VTK_CUBIC_LINE, 4},
+                                             {VTK_CONVEX_POINT_SET, -1},
+                                             {VTK_POLYHEDRON, -4},
+                                             {VTK_LAGRANGE_CURVE, -2},
+                                             {VTK_LAGRANGE_TRIANGLE, -3},
+                                             {VTK_LAGRANGE_QUADRILATERAL, -4},
+                                             {VTK_LAGRANGE_TETRAHEDRON, -4},
+                                             {VTK_LAGRANGE_HEXAHEDRON, -8},
+                                             {VTK_LAGRANGE_WEDGE, -6},
+                                             {VTK_LAGRANGE_PYRAMID, -5},
+                                             {VTK_BEZIER_CURVE, -2},
+                                             {VTK_BEZIER_TRIANGLE, -3},
+                                             {VTK_BEZIER_QUADRILATERAL, -4},
+                                             {VTK_BEZIER_TETRAHEDRON, -4},
+                                             {VTK_BEZIER_HEXAHEDRON, -8},
+                                             {VTK_BEZIER_WEDGE, -6},
+                                             {VTK_BEZIER_PYRAMID, -5}};
+  for (vtkIdType c = 0; c < cells->GetNumberOfCells(); ++c) {
+    const int type = types->GetValue(c);
+    const auto it = kPoints.find(type);
+    if (it == kPoints.end())
+      g.fail(where + ": cell " + std::to_string(c) + " has an unknown cell type, " +
+             std::to_string(type));
+    const vtkIdType size = cells->GetCellSize(c);
+    if (it->second >= 0 ? size != it->second : size < -it->second)
+      g.fail(where + ": cell " + std::to_string(c) + " (" +
+             vtkCellTypes::GetClassNameFromTypeId(type) + ") has " + std::to_string(size) +
+             " points; it needs " + (it->second < 0 ? "at least " : "") +
+             std::to_string(std::abs(it->second)));
+  }
+}
+
 void check_dataset(vtkDataSet* ds, const Block& b, const Guard& g) {
   const vtkIdType n = ds->GetNumberOfPoints();
   const std::string where = b.path.empty() ? std::string("the data") : "block " + b.path;
@@ -686,6 +1152,7 @@ void check_dataset(vtkDataSet* ds, const Block& b, const Guard& g) {
     check_cells(pd->GetStrips(), n, where.c_str(), g);
   } else if (auto* ug = vtkUnstructuredGrid::SafeDownCast(ds)) {
     check_cells(ug->GetCells(), n, where.c_str(), g);
+    check_cell_types(ug, where, g);
     if (vtkIdTypeArray* faces = ug->GetFaces())
       if (faces->GetNumberOfTuples() > 0) {
         // Polyhedra: [nfaces, (npts, ids...)...] per cell; ids in range.

@@ -540,6 +540,68 @@ TEST_F(VtkIo, BadLegacyFiles) {
                          "FIELD FieldData 1\n";
   expect_bad(write_file(dir_ / "cut.vtk", v5),
              "line 12: 'FIELD' where the CONNECTIVITY of line 10 has 1 values to go");
+  // A binary cell list before version 5 whose records do not fill its size:
+  // VTK 9.2's ImportLegacyFormat read past its array (SEGV).
+  const auto be = [](std::initializer_list<std::uint32_t> values) {
+    std::string out;
+    for (const std::uint32_t v : values)
+      for (int shift = 24; shift >= 0; shift -= 8) out += static_cast<char>((v >> shift) & 0xFF);
+    return out;
+  };
+  const std::string binary_head =
+      "# vtk DataFile Version 4.2\nb\nBINARY\nDATASET POLYDATA\n"
+      "POINTS 3 int\n" +
+      be({0, 0, 0, 1, 0, 0, 0, 1, 0}) + "\n";
+  expect_bad(write_file(dir_ / "binary_cells.vtk",
+                        binary_head + "POLYGONS 1 4\n" + be({70000, 0, 1, 2}) + "\n"),
+             "line 7 (POLYGONS): cell 0 does not fit the list's declared size");
+  expect_bad(write_file(dir_ / "binary_short.vtk",
+                        binary_head + "POLYGONS 2 6\n" + be({3, 0, 1, 2, 0, 5}) + "\n"),
+             "line 7 (POLYGONS): the cells do not add up to the list's declared size");
+  expect_bad(write_file(dir_ / "binary_cut.vtk", binary_head + "POLYGONS 1 4\n" + be({3, 0})),
+             "truncated: the line 7 (POLYGONS) needs 16 bytes, 8 are left");
+  expect_bad(write_file(dir_ / "binary_points.vtk",
+                        "# vtk DataFile Version 4.2\nb\nBINARY\nDATASET POLYDATA\n"
+                        "POINTS 3 double\n" +
+                            be({0, 0, 0})),
+             "truncated: the POINTS of line 5 needs 72 bytes, 12 are left");
+  // "Version 5" without a minor number is version 0 to VTK: cell records,
+  // here the text of an OFFSETS line.
+  std::string no_minor =
+      binary_head + "POLYGONS 2 3\nOFFSETS vtktypeint64\n" + be({0, 0, 0, 3}) + "\n";
+  no_minor.replace(0, no_minor.find('\n') + 1, "# vtk DataFile Version 5\n");
+  expect_bad(write_file(dir_ / "no_minor.vtk", no_minor),
+             "line 7 (POLYGONS): cell 0 does not fit the list's declared size");
+  // A block cut short: VTK takes its neighbour's bytes and reads on from
+  // the middle of a section (VTK 9.2 crashed on some of these).
+  std::string overrun = binary_head + "POLYGONS 1 4\n" + be({3, 0, 1, 2}) + "\n";
+  overrun.replace(overrun.find("POINTS 3"), 8, "POINTS 4");
+  expect_bad(write_file(dir_ / "overrun.vtk", overrun),
+             "line 6: '4' is not a section of POLYDATA (is the section before it cut short?)");
+  std::string types_only = binary_head + "CELL_TYPES 1\n" + be({5}) + "\n";
+  types_only.replace(types_only.find("POLYDATA"), 8, "UNSTRUCTURED_GRID");
+  expect_bad(write_file(dir_ / "types_only.vtk", types_only),
+             "an unstructured grid with CELL_TYPES but no CELLS");
+  // Points of a type that is no number type: VTK 9.2 read none (SEGV).
+  expect_bad(write_file(dir_ / "ptype.vtk", legacy("POINTS 3 FIELD\n0 0 0 1 0 0 0 1 0\n", "")),
+             "(POINTS): points of type 'FIELD'");
+  std::string binary_type = binary_head;
+  binary_type.replace(binary_type.find("POINTS 3 int"), 12, "POINTS 3 FIELD");
+  expect_bad(write_file(dir_ / "binary_ptype.vtk", binary_type),
+             "line 5 (POINTS): points of type 'FIELD'");
+  // VTK takes a word for the keyword it begins with, in any case: "FIELDS
+  // 12 float" is a FIELD without an array count (VTK 9.2: SEGV), and
+  // "ASCII?" is ASCII.
+  expect_bad(write_file(dir_ / "fields.vtk",
+                        "# vtk DataFile Version 4.2\nx\nASCII?\nDATASET POLYDATA\nFIELDS 12 float\n"
+                        "0 0 0\n"),
+             "line 5 (FIELD): 'float' is not a count");
+  // and the same list, whole, reads.
+  EXPECT_EQ(read_dataset({write_file(dir_ / "binary_ok.vtk",
+                                     binary_head + "POLYGONS 1 4\n" + be({3, 0, 1, 2}) + "\n"),
+                          {}})
+                .mesh.triangle_count(),
+            1u);
   expect_bad(
       write_file(dir_ / "short_array.vtk", legacy(pts, "POLYGONS 1 4\n3 0 1 2\n",
                                                   "POINT_DATA 3\nVECTORS v float\n1 0 0 1 0 0\n")),
@@ -572,6 +634,66 @@ TEST_F(VtkIo, BadXmlFiles) {
   std::string negative = text;
   negative.replace(np, 18, "NumberOfPoints=\"-4\"");
   expect_bad(write_file(dir_ / "negative.vtp", negative), "");
+  // Binary data whose headers declare what the file cannot hold: VTK 9.2
+  // allocated 12 GB for a 6 KB file (a compressed block count) and aborted
+  // (a last cell offset of 2^62), which fuzzing found.
+  const auto appended = [&](const std::string& name, bool compressed) {
+    vtkNew<vtkXMLPolyDataWriter> w;
+    w->SetInputData(square());
+    w->SetFileName((dir_ / name).c_str());
+    w->SetDataModeToAppended();
+    w->EncodeAppendedDataOff();
+    w->SetHeaderTypeToUInt32();
+    w->SetByteOrderToLittleEndian();
+    if (compressed)
+      w->SetCompressorTypeToZLib();
+    else
+      w->SetCompressorTypeToNone();
+    EXPECT_EQ(w->Write(), 1);
+    return test::read_file(dir_ / name);
+  };
+  // The appended bytes of the array `array` (after the "_" marker).
+  const auto data_of = [](const std::string& file, const std::string& array) {
+    // (the polygons' arrays: the empty vertex, line and strip lists come first)
+    const std::size_t tag =
+        file.find("Name=\"" + array + "\"", array == "offsets" ? file.find("<Polys>") : 0);
+    const std::size_t at = file.find("offset=\"", tag) + 8;
+    return file.find('_', file.find("<AppendedData")) + 1 + std::stoul(file.substr(at));
+  };
+  std::string blocks = appended("blocks.vtp", true);
+  blocks.replace(data_of(blocks, "v"), 4, std::string("\xff\xff\xff\x7f", 4));
+  expect_bad(write_file(dir_ / "blocks.vtp", blocks),
+             "DataArray 'v': its compressed data declare 2147483647 blocks, more than the "
+             "file holds");
+  // A block table that disagrees with itself: VTK read past it (SEGV).
+  std::string table = appended("table.vtp", true);
+  table.replace(data_of(table, "v") + 8, 4, std::string("\0\0\0\x7f", 4));
+  expect_bad(write_file(dir_ / "table.vtp", table),
+             "DataArray 'v': its compressed data's header is inconsistent (1 blocks of 32768 "
+             "bytes, the last 2130706432)");
+  // A cell with fewer points than its type has: VTK's surface filter read
+  // past the cell (SEGV).
+  {
+    auto grid = hex_block();
+    const vtkIdType three[3] = {0, 1, 2};
+    grid->InsertNextCell(VTK_WEDGE, 3, three);
+    vtkNew<vtkXMLUnstructuredGridWriter> w;
+    w->SetInputData(grid);
+    w->SetFileName((dir_ / "wedge.vtu").c_str());
+    ASSERT_EQ(w->Write(), 1);
+    expect_bad(dir_ / "wedge.vtu", "has 3 points; it needs 6");
+  }
+  std::string offsets = appended("offsets.vtp", false);
+  ASSERT_NE(offsets.find("type=\"Int64\" Name=\"offsets\""), std::string::npos);
+  // One polygon: its 4-byte size header, then the one Int64 offset.
+  offsets.replace(data_of(offsets, "offsets") + 4, 8, std::string("\0\0\0\0\0\0\0\x40", 8));
+  expect_bad(write_file(dir_ / "offsets.vtp", offsets),
+             "DataArray 'offsets': its last offset, 4611686018427387904, is more connectivity "
+             "than the file holds");
+  std::string bytes = appended("bytes.vtp", false);
+  bytes.replace(data_of(bytes, "Points"), 4, std::string("\0\0\0\x10", 4));
+  expect_bad(write_file(dir_ / "bytes.vtp", bytes),
+             "DataArray 'Points': its data declare 268435456 bytes, more than the file holds");
   // A multiblock whose piece is missing; a .pvd naming a missing file.
   const fs::path vtm = write_multiblock(dir_);
   fs::remove_all(dir_ / "plane");

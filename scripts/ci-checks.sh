@@ -27,13 +27,8 @@ fuzz() {
 sanitized() {
   cmake --preset asan-ubsan >/dev/null
   cmake --build build/asan -j2
-  # All but two tests that add time, not checks, under the sanitizers: the
-  # README's command lines (the Release suite runs them; their code paths
-  # are the command tests') and the picture-quality measurements.
   LSAN_OPTIONS="suppressions=$PWD/tests/lsan.supp:print_suppressions=0" \
-    ctest --test-dir build/asan -j2 --output-on-failure \
-    -E '^(Readme\.EveryCommandLineItShowsRuns|QualityGLTest\.MeasuresOnTheBumpySphereCowAndKnot)$'
-
+    ctest --test-dir build/asan -j2 --output-on-failure
 }
 stage "clang-format" format
 stage "fuzzers, 30 s each" fuzz

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <deque>
 #include <fstream>
+#include <iomanip>
 #include <map>
 #include <mutex>
 #include <new>
@@ -629,12 +630,13 @@ void precheck_xml(const Guard& g) {
   }
 }
 
-// The value types of legacy files that points may have (VTK reads them in
-// any case).
-const std::set<std::string, std::less<>> kNumericTypes = {
-    "unsigned_char", "char",  "signed_char",   "unsigned_short", "short",
-    "unsigned_int",  "int",   "unsigned_long", "long",           "vtktypeint64",
-    "vtktypeuint64", "float", "double",        "vtkidtype"};
+// The number types of legacy files (VTK reads them in any case) and their
+// sizes in BINARY files; points must have one of them.
+const std::map<std::string, int, std::less<>> kTypeBytes = {
+    {"unsigned_char", 1}, {"char", 1},         {"signed_char", 1},   {"unsigned_short", 2},
+    {"short", 2},         {"unsigned_int", 4}, {"int", 4},           {"unsigned_long", 8},
+    {"long", 8},          {"vtktypeint64", 8}, {"vtktypeuint64", 8}, {"float", 4},
+    {"double", 8},        {"vtkidtype", 4}};
 
 std::string lower(std::string text) {
   std::transform(text.begin(), text.end(), text.begin(),
@@ -740,7 +742,7 @@ void precheck_legacy_ascii(const Guard& g) {
       continue;
     }
     if (key == "POINTS") {
-      if (w.size() < 3 || !kNumericTypes.count(lower(w[2])))
+      if (w.size() < 3 || !kTypeBytes.count(lower(w[2])))
         g.fail("line " + std::to_string(number) + " (POINTS): points of type " +
                excerpt(w.size() < 3 ? "" : w[2]) + " (float, double or an integer type)");
       expect(key, 3 * count(1), number);
@@ -795,8 +797,9 @@ void precheck_legacy_ascii(const Guard& g) {
 // ints) do not fill its declared size, on points of a type that is no
 // number, and on an unstructured grid with CELL_TYPES but no CELLS, all
 // found by fuzzing; a word that is no section of a polydata or unstructured
-// grid means a block before it was cut short or overran. The data
-// attributes are left to precheck_legacy's counts and to VTK.
+// grid means a block before it was cut short or overran. METADATA is taken
+// where VTK takes it: right after an array's data. The data attributes are
+// left to precheck_legacy's counts and to VTK.
 void precheck_legacy_binary(const Guard& g) {
   std::ifstream in(g.path(), std::ios::binary);
   std::error_code ec;
@@ -822,11 +825,6 @@ void precheck_legacy_binary(const Guard& g) {
   if (!poly && !grid) return;  // other datasets: left to VTK
   const std::string kind = poly ? "POLYDATA" : "UNSTRUCTURED_GRID";
   const bool v5 = stores_offsets(first);
-  static const std::map<std::string, int, std::less<>> kBytes = {
-      {"unsigned_char", 1}, {"char", 1},         {"signed_char", 1},   {"unsigned_short", 2},
-      {"short", 2},         {"unsigned_int", 4}, {"int", 4},           {"unsigned_long", 8},
-      {"long", 8},          {"vtktypeint64", 8}, {"vtktypeuint64", 8}, {"float", 4},
-      {"double", 8},        {"vtkidtype", 4}};
   const auto count = [&](const std::string& what) {
     return header_count(word(), "line " + std::to_string(number) + " (" + what + ")", g);
   };
@@ -836,10 +834,47 @@ void precheck_legacy_binary(const Guard& g) {
     std::getline(in, rest);
     ++number;
   };
-  // Skips `values` values of `type`; false for a type this walk does not size.
+  // After an array's data VTK skips spaces and line ends, and reads a
+  // METADATA section if the next line begins with that word, up to a blank
+  // line; fuzzing found VTK 9.2 crashing (a null cell array) after a
+  // section that began so but was no such section. VTK writes "METADATA"
+  // alone on its line, then lines of text.
+  const auto array_end = [&] {
+    for (int c = in.peek(); c == ' ' || c == '\n'; c = in.peek())
+      if (in.get() == '\n') ++number;
+    const auto at = in.tellg();
+    std::string head(8, '\0');
+    if (!in.read(head.data(), 8)) {
+      in.clear();
+      in.seekg(at);
+      return;
+    }
+    in.seekg(at);
+    if (lower(head) != "metadata") return;
+    const auto text = [](std::string line) {
+      while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+      return line;
+    };
+    std::string line;
+    std::getline(in, line);
+    if (lower(text(line)) != "metadata")
+      g.fail("line " + std::to_string(number) + ": " + excerpt(line) +
+             " is not a METADATA line (METADATA alone)");
+    ++number;
+    while (std::getline(in, line)) {
+      ++number;
+      line = text(line);
+      if (line.empty()) break;
+      for (const char c : line)
+        if ((static_cast<unsigned char>(c) < 0x20 && c != '\t') || c == 0x7f)
+          g.fail("line " + std::to_string(number) + ": METADATA with a control character");
+    }
+  };
+  // Skips `values` values of `type`, then any METADATA after them; false
+  // for a type this walk does not size.
   const auto skip = [&](long double values, const std::string& type, const std::string& what) {
-    const auto it = kBytes.find(lower(type));
-    if (it == kBytes.end()) return false;
+    const auto it = kTypeBytes.find(lower(type));
+    if (it == kTypeBytes.end()) return false;
     const int line = number;
     end_line();
     const long double bytes = values * it->second;
@@ -849,16 +884,14 @@ void precheck_legacy_binary(const Guard& g) {
              count_text(bytes) + " bytes, " + count_text(in.tellg() < 0 ? 0 : size - at) +
              " are left");
     in.seekg(static_cast<std::streamoff>(bytes), std::ios::cur);
+    array_end();
     return true;
   };
   bool cell_lists = false, types = false;
   for (std::string w = word(); !w.empty(); w = word()) {
     const std::string where = "line " + std::to_string(number) + " (" + one_line(w) + ")";
     if (is(w, "point_data") || is(w, "cell_data")) break;
-    if (is(w, "metadata")) {  // up to a blank line
-      std::string line;
-      while (std::getline(in, line) && !line.empty()) ++number;
-    } else if (is(w, "field")) {
+    if (is(w, "field")) {
       word();  // its name
       const long double arrays = count("FIELD");
       for (long double a = 0; a < arrays; ++a) {
@@ -871,7 +904,7 @@ void precheck_legacy_binary(const Guard& g) {
       const long double points = count("POINTS");
       const std::string type = word();
       // VTK 9.2 reads points of another type as none, and then crashes.
-      if (kNumericTypes.count(lower(type)) == 0)
+      if (kTypeBytes.count(lower(type)) == 0)
         g.fail(where + ": points of type " + excerpt(type) + " (float, double or an integer type)");
       skip(3 * points, type, "POINTS");
     } else if (grid && is(w, "cell_types")) {
@@ -922,6 +955,82 @@ void precheck_legacy_binary(const Guard& g) {
            (types ? "CELL_TYPES but no CELLS" : "CELLS but no CELL_TYPES"));
 }
 
+// Legacy structured grids: VTK 9.2's vtkStructuredGridReader, looking for
+// the dimensions before it reads, takes every word of the file in turn,
+// binary data included, and reads a FIELD section wherever a word begins
+// with "field" (any case); where that section cannot be read, it
+// dereferences null. Fuzzing found it on "FieldD" inside binary points. So
+// each such word must begin a FIELD section that VTK reads whole: a name, a
+// count of arrays, and each array's name, components, tuples, number type
+// and values (in BINARY, after the rest of that line).
+void precheck_structured_grid(const Guard& g) {
+  std::ifstream in(g.path(), std::ios::binary);
+  std::error_code ec;
+  const auto size = static_cast<long double>(fs::file_size(g.path(), ec));
+  std::string first, title, type_line;
+  if (!std::getline(in, first) || !std::getline(in, title) || !std::getline(in, type_line)) return;
+  const auto word = [&in] {
+    std::string w;
+    in >> std::setw(255) >> w;  // as VTK's ReadString
+    return w;
+  };
+  const auto starts = [](const std::string& w, std::string_view keyword) {
+    return lower(w).compare(0, keyword.size(), keyword) == 0;
+  };
+  if (!starts(word(), "dataset") || !starts(word(), "structured_grid")) return;
+  const bool binary = starts(type_line, "binary");
+  const auto fail = [&](const std::string& what) {
+    // The line where the scan is, for the message.
+    const auto at = in.tellg() < 0 ? std::streamoff(size) : std::streamoff(in.tellg());
+    std::ifstream again(g.path(), std::ios::binary);
+    long line = 1;
+    for (std::streamoff i = 0; i < at && again; ++i)
+      if (again.get() == '\n') ++line;
+    g.fail("line " + std::to_string(line) + ": " + what +
+           " (VTK 9.2's structured grid reader would crash on it)");
+  };
+  const auto number = [](const std::string& w) {
+    return !w.empty() && w.find_first_not_of("0123456789+-.eE") == std::string::npos &&
+           w.find_first_of("0123456789") != std::string::npos;
+  };
+  const auto count = [&](const std::string& w, const std::string& what) {
+    if (w.empty() || w.find_first_not_of("0123456789") != std::string::npos || w.size() > 12)
+      fail("a FIELD section whose " + what + " is " + excerpt(w) + ", not a count");
+    return std::stold(w);
+  };
+  for (std::string w = word(); !w.empty(); w = word()) {
+    if (!starts(w, "field")) continue;
+    word();  // the section's name
+    const long double arrays = count(word(), "count of arrays");
+    for (long double a = 0; a < arrays; ++a) {
+      const std::string name = word();
+      if (name == "NULL_ARRAY") continue;
+      const long double values = count(word(), "array " + excerpt(name) + "'s components") *
+                                 count(word(), "array " + excerpt(name) + "'s tuples");
+      const std::string type = word();
+      const auto it = kTypeBytes.find(lower(type));
+      if (it == kTypeBytes.end())
+        fail("a FIELD array " + excerpt(name) + " of type " + excerpt(type) +
+             ", which is no number type");
+      if (binary) {
+        std::string rest;
+        std::getline(in, rest);
+        const long double bytes = values * it->second;
+        const auto at = in.tellg();
+        if (at < 0 || bytes > size - static_cast<long double>(at))
+          fail("a FIELD array " + excerpt(name) + " cut short (" + count_text(bytes) +
+               " bytes declared)");
+        in.seekg(static_cast<std::streamoff>(bytes), std::ios::cur);
+      } else {
+        if (values > size / 2) fail("a FIELD array " + excerpt(name) + " cut short");
+        for (long double v = 0; v < values; ++v)
+          if (!number(word()))
+            fail("a FIELD array " + excerpt(name) + " cut short or with a value that is no number");
+      }
+    }
+  }
+}
+
 // A single VTK file (legacy or XML, any dataset kind).
 vtkSmartPointer<vtkDataObject> read_vtk_file(const Guard& g) {
   require_file(g);
@@ -929,6 +1038,7 @@ vtkSmartPointer<vtkDataObject> read_vtk_file(const Guard& g) {
     precheck_legacy(g);
     precheck_legacy_ascii(g);
     precheck_legacy_binary(g);
+    precheck_structured_grid(g);
   } else {
     precheck_xml(g);
   }

@@ -20,6 +20,8 @@
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataWriter.h>
+#include <vtkStructuredGrid.h>
+#include <vtkStructuredGridWriter.h>
 #include <vtkUnstructuredGrid.h>
 #include <vtkUnstructuredGridWriter.h>
 #include <vtkXMLMultiBlockDataWriter.h>
@@ -602,6 +604,46 @@ TEST_F(VtkIo, BadLegacyFiles) {
                           {}})
                 .mesh.triangle_count(),
             1u);
+  // After an array VTK reads a METADATA section, up to a blank line; a line
+  // that only began with that word made VTK 9.2 crash (fuzzing).
+  EXPECT_EQ(read_dataset({write_file(dir_ / "metadata_ok.vtk",
+                                     binary_head + "METADATA\nINFORMATION 0\n\nPOLYGONS 1 4\n" +
+                                         be({3, 0, 1, 2}) + "\n"),
+                          {}})
+                .mesh.triangle_count(),
+            1u);
+  expect_bad(
+      write_file(dir_ / "metadata_bad.vtk", binary_head + "metadata!" + std::string("\0\x05", 2) +
+                                                "\n\nPOLYGONS 1 4\n" + be({3, 0, 1, 2}) + "\n"),
+      "is not a METADATA line (METADATA alone)");
+  // A structured grid: before reading, VTK 9.2 takes every word of the file
+  // for a keyword, binary data included, and crashed on "FieldD" inside the
+  // points (fuzzing). One that VTK wrote, field data included, reads.
+  {
+    vtkNew<vtkStructuredGrid> grid;
+    grid->SetDimensions(2, 2, 1);
+    vtkNew<vtkPoints> points;
+    for (const auto& p : {glm::vec3(0, 0, 0), {1, 0, 0}, {0, 1, 0}, {1, 1, 0}})
+      points->InsertNextPoint(p.x, p.y, p.z);
+    grid->SetPoints(points);
+    vtkNew<vtkFloatArray> field;
+    field->SetName("f");
+    field->InsertNextValue(1);
+    field->InsertNextValue(2);
+    grid->GetFieldData()->AddArray(field);
+    vtkNew<vtkStructuredGridWriter> w;
+    w->SetInputData(grid);
+    w->SetFileName((dir_ / "grid.vtk").c_str());
+    w->SetFileTypeToBinary();
+    ASSERT_EQ(w->Write(), 1);
+    EXPECT_EQ(read_dataset({dir_ / "grid.vtk", {}}).mesh.triangle_count(), 2u);
+  }
+  expect_bad(write_file(dir_ / "grid_bad.vtk",
+                        "# vtk DataFile Version 5.1\ng\nBINARY\nDATASET STRUCTURED_GRID\n"
+                        "DIMENSIONS 2 2 1\nPOINTS 4 float\n" +
+                            std::string(41, '\0') + " FieldD\n"),
+             "a FIELD section whose count of arrays is '', not a count (VTK 9.2's structured "
+             "grid reader would crash on it)");
   expect_bad(
       write_file(dir_ / "short_array.vtk", legacy(pts, "POLYGONS 1 4\n3 0 1 2\n",
                                                   "POINT_DATA 3\nVECTORS v float\n1 0 0 1 0 0\n")),

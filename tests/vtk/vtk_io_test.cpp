@@ -668,6 +668,20 @@ TEST_F(VtkIo, BadXmlFiles) {
   const std::size_t values = range.find('>', conn) + 1;
   range.replace(values, range.find('<', values) - values, "\n0 1 2 77\n");
   expect_bad(write_file(dir_ / "range.vtp", range), "refers to point 77");
+  // Two cell arrays of one name (here one in other quotes, spaces and an
+  // entity): VTK 9.2's XML readers crashed on the second (fuzzing).
+  std::string twice = text;
+  const std::size_t cell_data = twice.find("<CellData");
+  ASSERT_NE(cell_data, std::string::npos);
+  const std::size_t first_array = twice.find("<DataArray", cell_data);
+  const std::size_t name_at = twice.find("Name=\"", first_array) + 6;
+  const std::string array_name = twice.substr(name_at, twice.find('"', name_at) - name_at);
+  ASSERT_FALSE(array_name.empty());
+  twice.insert(first_array, "<DataArray type='Float32' Name = '&#" +
+                                std::to_string(static_cast<int>(array_name[0])) + ";" +
+                                array_name.substr(1) + "' format='ascii'>1</DataArray>\n");
+  expect_bad(write_file(dir_ / "twice.vtp", twice),
+             "the CellData of a piece has two arrays named '" + array_name + "'");
   std::string huge = text;
   const std::size_t np = huge.find("NumberOfPoints=\"4\"");
   ASSERT_NE(np, std::string::npos);

@@ -428,15 +428,6 @@ std::string decode_base64(std::string_view text, std::size_t bytes) {
   return out;
 }
 
-std::optional<std::string> xml_attribute(std::string_view tag, std::string_view name) {
-  const std::string key = " " + std::string(name) + "=\"";
-  const std::size_t at = tag.find(key);
-  if (at == std::string_view::npos) return std::nullopt;
-  const std::size_t begin = at + key.size(), end = tag.find('"', begin);
-  if (end == std::string_view::npos) return std::nullopt;
-  return std::string(tag.substr(begin, end - begin));
-}
-
 // The attributes of an XML start tag (from its '<' to its '>') as an XML
 // parser reads them: whitespace around '=', either quote, the five named
 // entities and numeric ones decoded (as bytes below 256; enough to compare).
@@ -482,6 +473,14 @@ std::map<std::string, std::string> xml_attributes(std::string_view tag) {
     i = end + 1;
   }
   return out;
+}
+
+// One attribute of an XML start tag, read as xml_attributes reads them.
+std::optional<std::string> xml_attribute(std::string_view tag, std::string_view name) {
+  const auto attributes = xml_attributes(tag);
+  const auto it = attributes.find(std::string(name));
+  if (it == attributes.end()) return std::nullopt;
+  return it->second;
 }
 
 // One piece's CellData or PointData with two arrays of one name: VTK 9.2's
@@ -706,7 +705,7 @@ void precheck_xml(const Guard& g) {
 
 // The number types of legacy files (VTK reads them in any case) and their
 // sizes in BINARY files; points must have one of them.
-const std::map<std::string, int, std::less<>> kTypeBytes = {
+const std::map<std::string, int, std::less<>> kLegacyTypeBytes = {
     {"unsigned_char", 1}, {"char", 1},         {"signed_char", 1},   {"unsigned_short", 2},
     {"short", 2},         {"unsigned_int", 4}, {"int", 4},           {"unsigned_long", 8},
     {"long", 8},          {"vtktypeint64", 8}, {"vtktypeuint64", 8}, {"float", 4},
@@ -716,6 +715,12 @@ std::string lower(std::string text) {
   std::transform(text.begin(), text.end(), text.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return text;
+}
+
+// Whether VTK's legacy readers take `word` for `keyword` (lower case): they
+// compare its beginning, in any case.
+bool is_keyword(const std::string& word, std::string_view keyword) {
+  return lower(word).compare(0, keyword.size(), keyword) == 0;
 }
 
 // Whether a legacy file stores cells as OFFSETS and CONNECTIVITY (version 5
@@ -816,7 +821,7 @@ void precheck_legacy_ascii(const Guard& g) {
       continue;
     }
     if (key == "POINTS") {
-      if (w.size() < 3 || !kTypeBytes.count(lower(w[2])))
+      if (w.size() < 3 || !kLegacyTypeBytes.count(lower(w[2])))
         g.fail("line " + std::to_string(number) + " (POINTS): points of type " +
                excerpt(w.size() < 3 ? "" : w[2]) + " (float, double or an integer type)");
       expect(key, 3 * count(1), number);
@@ -890,12 +895,10 @@ void precheck_legacy_binary(const Guard& g) {
       w += static_cast<char>(in.get());
     return w;
   };
-  const auto is = [](const std::string& w, std::string_view keyword) {
-    return lower(w).compare(0, keyword.size(), keyword) == 0;
-  };
-  if (!is(word(), "binary") || !is(word(), "dataset")) return;
+  if (!is_keyword(word(), "binary") || !is_keyword(word(), "dataset")) return;
   const std::string dataset = lower(word());
-  const bool poly = is(dataset, "polydata"), grid = is(dataset, "unstructured_grid");
+  const bool poly = is_keyword(dataset, "polydata"),
+             grid = is_keyword(dataset, "unstructured_grid");
   if (!poly && !grid) return;  // other datasets: left to VTK
   const std::string kind = poly ? "POLYDATA" : "UNSTRUCTURED_GRID";
   const bool v5 = stores_offsets(first);
@@ -947,8 +950,8 @@ void precheck_legacy_binary(const Guard& g) {
   // Skips `values` values of `type`, then any METADATA after them; false
   // for a type this walk does not size.
   const auto skip = [&](long double values, const std::string& type, const std::string& what) {
-    const auto it = kTypeBytes.find(lower(type));
-    if (it == kTypeBytes.end()) return false;
+    const auto it = kLegacyTypeBytes.find(lower(type));
+    if (it == kLegacyTypeBytes.end()) return false;
     const int line = number;
     end_line();
     const long double bytes = values * it->second;
@@ -964,8 +967,8 @@ void precheck_legacy_binary(const Guard& g) {
   bool cell_lists = false, types = false;
   for (std::string w = word(); !w.empty(); w = word()) {
     const std::string where = "line " + std::to_string(number) + " (" + one_line(w) + ")";
-    if (is(w, "point_data") || is(w, "cell_data")) break;
-    if (is(w, "field")) {
+    if (is_keyword(w, "point_data") || is_keyword(w, "cell_data")) break;
+    if (is_keyword(w, "field")) {
       word();  // its name
       const long double arrays = count("FIELD");
       for (long double a = 0; a < arrays; ++a) {
@@ -974,25 +977,25 @@ void precheck_legacy_binary(const Guard& g) {
         const long double tuples = count("FIELD array");
         if (!skip(components * tuples, word(), "array")) return;
       }
-    } else if (is(w, "points")) {
+    } else if (is_keyword(w, "points")) {
       const long double points = count("POINTS");
       const std::string type = word();
       // VTK 9.2 reads points of another type as none, and then crashes.
-      if (kTypeBytes.count(lower(type)) == 0)
+      if (kLegacyTypeBytes.count(lower(type)) == 0)
         g.fail(where + ": points of type " + excerpt(type) + " (float, double or an integer type)");
       skip(3 * points, type, "POINTS");
-    } else if (grid && is(w, "cell_types")) {
+    } else if (grid && is_keyword(w, "cell_types")) {
       types = true;
       skip(count("CELL_TYPES"), "int", "CELL_TYPES");
-    } else if ((poly && (is(w, "vertices") || is(w, "lines") || is(w, "polygons") ||
-                         is(w, "triangle_strips"))) ||
-               (grid && is(w, "cells"))) {
+    } else if ((poly && (is_keyword(w, "vertices") || is_keyword(w, "lines") ||
+                         is_keyword(w, "polygons") || is_keyword(w, "triangle_strips"))) ||
+               (grid && is_keyword(w, "cells"))) {
       cell_lists = true;
       const long double cells = count(w), values = count(w);
       if (v5) {
         // OFFSETS TYPE, its block; CONNECTIVITY TYPE, its block.
-        if (!is(word(), "offsets") || !skip(cells, word(), "OFFSETS")) return;
-        if (!is(word(), "connectivity") || !skip(values, word(), "CONNECTIVITY")) return;
+        if (!is_keyword(word(), "offsets") || !skip(cells, word(), "OFFSETS")) return;
+        if (!is_keyword(word(), "connectivity") || !skip(values, word(), "CONNECTIVITY")) return;
         continue;
       }
       end_line();
@@ -1048,11 +1051,8 @@ void precheck_structured_grid(const Guard& g) {
     in >> std::setw(255) >> w;  // as VTK's ReadString
     return w;
   };
-  const auto starts = [](const std::string& w, std::string_view keyword) {
-    return lower(w).compare(0, keyword.size(), keyword) == 0;
-  };
-  if (!starts(word(), "dataset") || !starts(word(), "structured_grid")) return;
-  const bool binary = starts(type_line, "binary");
+  if (!is_keyword(word(), "dataset") || !is_keyword(word(), "structured_grid")) return;
+  const bool binary = is_keyword(type_line, "binary");
   const auto fail = [&](const std::string& what) {
     // The line where the scan is, for the message.
     const auto at = in.tellg() < 0 ? std::streamoff(size) : std::streamoff(in.tellg());
@@ -1073,7 +1073,7 @@ void precheck_structured_grid(const Guard& g) {
     return std::stold(w);
   };
   for (std::string w = word(); !w.empty(); w = word()) {
-    if (!starts(w, "field")) continue;
+    if (!is_keyword(w, "field")) continue;
     word();  // the section's name
     const long double arrays = count(word(), "count of arrays");
     for (long double a = 0; a < arrays; ++a) {
@@ -1082,8 +1082,8 @@ void precheck_structured_grid(const Guard& g) {
       const long double values = count(word(), "array " + excerpt(name) + "'s components") *
                                  count(word(), "array " + excerpt(name) + "'s tuples");
       const std::string type = word();
-      const auto it = kTypeBytes.find(lower(type));
-      if (it == kTypeBytes.end())
+      const auto it = kLegacyTypeBytes.find(lower(type));
+      if (it == kLegacyTypeBytes.end())
         fail("a FIELD array " + excerpt(name) + " of type " + excerpt(type) +
              ", which is no number type");
       if (binary) {

@@ -4,6 +4,7 @@
 #include <cctype>
 #include <mutex>
 #include <optional>
+#include <set>
 
 #include "ibfvs/core/error.h"
 
@@ -54,9 +55,13 @@ bool is_dataset_path(const fs::path& path) {
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  if (ext == ".vtk" || ext == ".vtp" || ext == ".vtu" || ext == ".vtm" || ext == ".pvd" ||
-      ext == ".foam")
-    return true;
+  // VTK's legacy and XML files (serial and parallel, every dataset kind,
+  // multiblock and partitioned collections), ParaView's series (.pvd,
+  // .series) and OpenFOAM cases.
+  static const std::set<std::string> kExtensions = {
+      ".vtk",  ".vtp",  ".vtu",  ".vts",  ".vtr",  ".vti",  ".vtm", ".vtmb",   ".vtpd",
+      ".vtpc", ".pvtp", ".pvtu", ".pvts", ".pvtr", ".pvti", ".pvd", ".series", ".foam"};
+  if (kExtensions.count(ext)) return true;
   std::error_code ec;
   return fs::is_directory(path, ec) && fs::is_regular_file(path / "system" / "controlDict", ec);
 }

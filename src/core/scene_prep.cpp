@@ -201,6 +201,26 @@ PreparedScene prepare(const Scene& s, std::optional<LoadedMesh> given) {
                                      s.time->to_string());
     if (series_first == series_last && series_first > 0)
       take_arrays(mesh, loaded.read_step(series_first), loaded.vertex_order);
+    // A solver's fields that start later than the mesh (OpenFOAM writes
+    // wallShearStress from the first iteration on, not at time 0): with no
+    // time asked for, the series starts at the first step that has the array.
+    const auto has = [](const TriMesh& m, const std::string& name) {
+      return m.vector_arrays.count(name) > 0 || m.scalars.count(name) > 0;
+    };
+    if (!s.time && field_spec && field_spec->kind == FieldKind::File &&
+        !field_spec->array.empty() && !has(mesh, field_spec->array)) {
+      for (std::size_t k = 1; k < count; ++k) {
+        const TriMesh step = loaded.read_step(k);
+        if (!has(step, field_spec->array)) continue;
+        take_arrays(mesh, step, loaded.vertex_order);
+        p.warnings.push_back(
+            mesh_label + ": " +
+            (k == 1 ? "step 0 has" : "steps 0.." + std::to_string(k - 1) + " have") + " no '" +
+            field_spec->array + "'; starting at step " + std::to_string(k));
+        series_first = k;
+        break;
+      }
+    }
   }
   const bool field_is_file =
       (field_spec && field_spec->kind == FieldKind::File) ||

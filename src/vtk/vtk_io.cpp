@@ -8,6 +8,7 @@
 #include <deque>
 #include <fstream>
 #include <iomanip>
+#include <iterator>
 #include <map>
 #include <mutex>
 #include <new>
@@ -39,10 +40,13 @@
 #include <vtkObjectFactory.h>
 #include <vtkOpenFOAMReader.h>
 #include <vtkOutputWindow.h>
+#include <vtkPartitionedDataSet.h>
+#include <vtkPartitionedDataSetCollection.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkProbeFilter.h>
+#include <vtkSMPTools.h>
 #include <vtkSmartPointer.h>
 #include <vtkStaticCellLocator.h>
 #include <vtkStringArray.h>
@@ -54,9 +58,12 @@
 #include <vtkXMLDataParser.h>
 #include <vtkXMLGenericDataObjectReader.h>
 #include <vtkXMLPolyDataWriter.h>
+#include <vtk_nlohmannjson.h>
+#include VTK_NLOHMANN_JSON(json.hpp)
 
 #include "ibfvs/core/error.h"
 #include "ibfvs/core/file_names.h"
+#include "ibfvs/core/isolation.h"
 #include "ibfvs/core/text.h"
 
 namespace ibfvs::vtk {
@@ -70,9 +77,15 @@ namespace {
 // one lock with this window installed, so that each read can turn the first
 // error into the one line the user sees.
 
-std::recursive_mutex& vtk_mutex() {
-  static std::recursive_mutex m;
+// The lock itself behind a pointer: a reading child (read_in_child) starts
+// with a fresh one, since the parent's holder does not exist there.
+std::recursive_mutex*& vtk_mutex_slot() {
+  static auto* m = new std::recursive_mutex;
   return m;
+}
+
+std::recursive_mutex& vtk_mutex() {
+  return *vtk_mutex_slot();
 }
 
 // "ERROR: In /path/vtkXMLReader.cxx, line 12\nvtkXMLPolyDataReader (0x55): text\n\n" -> "text".
@@ -97,7 +110,10 @@ class CaptureWindow : public vtkOutputWindow {
  public:
   static CaptureWindow* New();
   vtkTypeMacro(CaptureWindow, vtkOutputWindow) void DisplayText(const char*) override {}
-  void DisplayErrorText(const char* text) override { errors.push_back(clean_message(text)); }
+  void DisplayErrorText(const char* text) override {
+    errors.push_back(clean_message(text));
+    last_words(errors.back());  // said if VTK aborts next (run_isolated)
+  }
   void DisplayWarningText(const char* text) override { warnings.push_back(clean_message(text)); }
   void DisplayGenericWarningText(const char* text) override {
     warnings.push_back(clean_message(text));
@@ -252,870 +268,9 @@ vtkSmartPointer<vtkDataObject> read_openfoam_step(vtkOpenFOAMReader* reader,
   return out;
 }
 
-// ------------------------------------------------------------ counts before reading
-// VTK's readers allocate what a header declares before reading the data, and
-// abort the process when that fails (POINTS 400000000000). So the counts are
-// checked first against what the file could hold.
-
-// A count as a header gives it; fails on a negative or unreadable one.
-long double header_count(const std::string& word, const std::string& where, const Guard& g) {
-  if (!word.empty() && word[0] == '-') g.fail(where + ": negative count " + word);
-  try {
-    std::size_t used = 0;
-    const long double v = std::stold(word, &used);
-    if (used != word.size() || !std::isfinite(static_cast<double>(v)) || v < 0) throw 0;
-    return v;
-  } catch (...) {
-    g.fail(where + ": " + excerpt(word) + " is not a count");
-  }
-}
-
-// A count for a message, whatever its size (a header may say 1e299).
-std::string count_text(long double v) {
-  if (v < 1e18L) return std::to_string(static_cast<long long>(v));
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3Lg", v);
-  return text;
-}
-
-void check_values(long double values, long double capacity, const std::string& where,
-                  const Guard& g) {
-  if (values > capacity)
-    g.fail(where + " declares " + count_text(values) + " values, more than the file can hold (" +
-           count_text(capacity) + ")");
-}
-
-// The keyword VTK's legacy readers take a word for: they compare its
-// beginning, in any case, with each keyword ("FIELDS" is FIELD, "POINTSx"
-// POINTS). Another word comes back in capitals.
-std::string legacy_keyword(const std::string& word) {
-  static const std::vector<std::string> kKeywords = {"TEXTURE_COORDINATES",
-                                                     "TRIANGLE_STRIPS",
-                                                     "COLOR_SCALARS",
-                                                     "X_COORDINATES",
-                                                     "Y_COORDINATES",
-                                                     "Z_COORDINATES",
-                                                     "LOOKUP_TABLE",
-                                                     "CONNECTIVITY",
-                                                     "ASPECT_RATIO",
-                                                     "PEDIGREE_IDS",
-                                                     "POINT_DATA",
-                                                     "CELL_TYPES",
-                                                     "DIMENSIONS",
-                                                     "GLOBAL_IDS",
-                                                     "EDGE_FLAGS",
-                                                     "CELL_DATA",
-                                                     "TENSORS6",
-                                                     "VERTICES",
-                                                     "POLYGONS",
-                                                     "METADATA",
-                                                     "SCALARS",
-                                                     "VECTORS",
-                                                     "NORMALS",
-                                                     "TENSORS",
-                                                     "OFFSETS",
-                                                     "DATASET",
-                                                     "SPACING",
-                                                     "POINTS",
-                                                     "ORIGIN",
-                                                     "FIELD",
-                                                     "CELLS",
-                                                     "LINES"};
-  std::string upper = word;
-  std::transform(upper.begin(), upper.end(), upper.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
-  for (const std::string& k : kKeywords)
-    if (upper.compare(0, k.size(), k) == 0) return k;
-  return upper;
-}
-
-// Legacy files: every count is at most the file's size in values (a value
-// takes at least a byte in binary, two characters in ASCII).
-void precheck_legacy(const Guard& g) {
-  std::error_code ec;
-  const auto size = static_cast<long double>(fs::file_size(g.path(), ec));
-  std::ifstream in(g.path(), std::ios::binary);
-  std::string line;
-  long double tuples = 0;  // of the current POINT_DATA / CELL_DATA section
-  long double field_arrays = 0;
-  int cells_line = 0;  // CELLS without CELL_TYPES: VTK 9.2 dereferences null
-  bool cell_types = false;
-  for (int number = 1; std::getline(in, line); ++number) {
-    std::istringstream words(line);
-    std::string key;
-    words >> key;
-    key = legacy_keyword(key);
-    const std::string where = "line " + std::to_string(number) + " (" + one_line(key) + ")";
-    std::vector<std::string> rest;
-    for (std::string w; words >> w && rest.size() < 4;) rest.push_back(w);
-    const auto count = [&](std::size_t i) {
-      if (i >= rest.size()) g.fail(where + ": a count is missing");
-      return header_count(rest[i], where, g);
-    };
-    // A FIELD's array: NAME COMPONENTS TUPLES TYPE. Only a line of exactly
-    // that form counts (binary data or "nan" values may start with a letter).
-    const auto digits = [](const std::string& w) {
-      return !w.empty() && w.size() < 19 &&
-             std::all_of(w.begin(), w.end(), [](unsigned char c) { return std::isdigit(c); });
-    };
-    static const std::set<std::string, std::less<>> kTypes = {
-        "bit",          "unsigned_char", "char",        "signed_char",   "unsigned_short",
-        "short",        "unsigned_int",  "int",         "unsigned_long", "long",
-        "vtktypeint64", "vtktypeuint64", "float",       "double",        "vtkIdType",
-        "vtkidtype",    "string",        "utf8_string", "variant"};
-    if (field_arrays > 0 && rest.size() == 3 && digits(rest[0]) && digits(rest[1]) &&
-        kTypes.count(rest[2])) {
-      --field_arrays;
-      check_values(header_count(rest[0], where, g) * header_count(rest[1], where, g), size, where,
-                   g);
-      continue;
-    }
-    if (key == "CELLS" && cells_line == 0) cells_line = number;
-    if (key == "POINTS") {
-      check_values(3 * count(0), size, where, g);
-    } else if (key == "POLYGONS" || key == "LINES" || key == "VERTICES" ||
-               key == "TRIANGLE_STRIPS" || key == "CELLS") {
-      check_values(count(0) + count(1), size + 2, where, g);
-    } else if (key == "CELL_TYPES") {
-      cell_types = true;
-      check_values(count(0), size, where, g);
-    } else if (key == "POINT_DATA" || key == "CELL_DATA") {
-      tuples = count(0);
-      check_values(tuples, size, where, g);
-    } else if (key == "SCALARS") {
-      check_values(tuples * (rest.size() > 2 ? count(2) : 1), size, where, g);
-    } else if (key == "VECTORS" || key == "NORMALS") {
-      check_values(3 * tuples, size, where, g);
-    } else if (key == "TENSORS") {
-      check_values(9 * tuples, size, where, g);
-    } else if (key == "TEXTURE_COORDINATES" || key == "COLOR_SCALARS") {
-      check_values(tuples * count(1), size, where, g);
-    } else if (key == "FIELD") {
-      field_arrays = count(1);
-      check_values(field_arrays, size, where, g);
-    } else if (key == "DIMENSIONS") {
-      // Structured data: the points are implied; their surface must fit.
-      const long double nx = count(0), ny = count(1), nz = count(2);
-      if (nx * ny * nz > 2147483647.0L || 2 * (nx * ny + ny * nz + nx * nz) > 268435456.0L)
-        g.fail(where + ": a grid of " + rest[0] + " x " + rest[1] + " x " + rest[2] +
-               " points is too large to show");
-    }
-  }
-  if (cells_line > 0 && !cell_types)
-    g.fail("line " + std::to_string(cells_line) +
-           " (CELLS): an unstructured grid's cells need CELL_TYPES");
-}
-
-// Base64 (as VTK's XML files encode binary data): the bytes of `text`
-// from its start, up to `bytes` of them; whitespace is skipped.
-std::string decode_base64(std::string_view text, std::size_t bytes) {
-  static const std::string kAlphabet =
-      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  unsigned bits = 0;
-  int count = 0;
-  for (const char c : text) {
-    if (out.size() >= bytes || c == '=' || c == '<') break;
-    const std::size_t v = kAlphabet.find(c);
-    if (v == std::string::npos) continue;
-    bits = (bits << 6) | static_cast<unsigned>(v);
-    count += 6;
-    if (count >= 8) {
-      count -= 8;
-      out += static_cast<char>((bits >> count) & 0xFF);
-    }
-  }
-  return out;
-}
-
-// The attributes of an XML start tag (from its '<' to its '>') as an XML
-// parser reads them: whitespace around '=', either quote, the five named
-// entities and numeric ones decoded (as bytes below 256; enough to compare).
-std::map<std::string, std::string> xml_attributes(std::string_view tag) {
-  std::map<std::string, std::string> out;
-  const auto space = [](char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; };
-  std::size_t i = tag.find_first_of(" \t\n\r");
-  while (i < tag.size()) {
-    while (i < tag.size() && space(tag[i])) ++i;
-    const std::size_t name_begin = i;
-    while (i < tag.size() && !space(tag[i]) && tag[i] != '=' && tag[i] != '>' && tag[i] != '/') ++i;
-    const std::string name(tag.substr(name_begin, i - name_begin));
-    while (i < tag.size() && space(tag[i])) ++i;
-    if (name.empty() || i >= tag.size() || tag[i] != '=') break;
-    ++i;
-    while (i < tag.size() && space(tag[i])) ++i;
-    if (i >= tag.size() || (tag[i] != '"' && tag[i] != '\'')) break;
-    const std::size_t end = tag.find(tag[i], i + 1);
-    if (end == std::string_view::npos) break;
-    std::string value;
-    for (std::size_t k = i + 1; k < end; ++k) {
-      const std::size_t semi = tag.find(';', k);
-      if (tag[k] != '&' || semi == std::string_view::npos || semi > end) {
-        value += tag[k];
-        continue;
-      }
-      const std::string_view entity = tag.substr(k + 1, semi - k - 1);
-      static const std::map<std::string_view, char> kNamed = {
-          {"amp", '&'}, {"lt", '<'}, {"gt", '>'}, {"quot", '"'}, {"apos", '\''}};
-      if (const auto it = kNamed.find(entity); it != kNamed.end()) {
-        value += it->second;
-      } else if (entity.size() > 1 && entity[0] == '#') {
-        const bool hex = entity[1] == 'x';
-        value += static_cast<char>(
-            std::strtol(std::string(entity.substr(hex ? 2 : 1)).c_str(), nullptr, hex ? 16 : 10));
-      } else {
-        value += '&';
-        continue;
-      }
-      k = semi;
-    }
-    out[name] = value;
-    i = end + 1;
-  }
-  return out;
-}
-
-// One attribute of an XML start tag, read as xml_attributes reads them.
-std::optional<std::string> xml_attribute(std::string_view tag, std::string_view name) {
-  const auto attributes = xml_attributes(tag);
-  const auto it = attributes.find(std::string(name));
-  if (it == attributes.end()) return std::nullopt;
-  return it->second;
-}
-
-// One piece's CellData or PointData with two arrays of one name: VTK 9.2's
-// XML readers crash on a second cell array of a name (fuzzing found it), and
-// a name given to --field must pick one array.
-void check_xml_array_names(const Guard& g, const std::string& head) {
-  for (const std::string section : {"CellData", "PointData"}) {
-    for (std::size_t at = head.find("<" + section); at != std::string::npos;
-         at = head.find("<" + section, at + 1)) {
-      const std::size_t tag_end = head.find('>', at);
-      if (tag_end == std::string::npos) break;
-      if (head[tag_end - 1] == '/') continue;  // <CellData/>
-      const std::size_t end = std::min(head.find("</" + section, tag_end), head.size());
-      std::set<std::string> names;
-      for (std::size_t a = head.find("<DataArray", tag_end); a < end;
-           a = head.find("<DataArray", a + 1)) {
-        const std::size_t close = head.find('>', a);
-        if (close == std::string::npos) break;
-        const auto attributes = xml_attributes(std::string_view(head).substr(a, close - a + 1));
-        const auto name = attributes.find("Name");
-        const std::string text = name == attributes.end() ? "" : name->second;
-        if (!names.insert(text).second)
-          g.fail("the " + section + " of a piece has two arrays named " + excerpt(text));
-      }
-    }
-  }
-}
-
-// XML files' binary data (inline base64, appended raw or base64): the header
-// VTK reads before each array (its byte count; for compressed data its block
-// count and sizes), and the last cell offset, by which VTK 9.2 sizes the
-// connectivity. VTK allocates what these say before reading: fuzzing found
-// 12 GB asked for by a 6 KB file (a block count) and an abort (an offset
-// of 2^61). Compressed offsets are left to VTK.
-void precheck_xml_data(const Guard& g, const std::string& head, long double capacity) {
-  const std::size_t file_at = head.find("<VTKFile");
-  if (file_at == std::string::npos) return;
-  const std::string_view file_tag =
-      std::string_view(head).substr(file_at, head.find('>', file_at) - file_at);
-  const std::size_t word = xml_attribute(file_tag, "header_type") == "UInt64" ? 8 : 4;
-  const bool big_endian = xml_attribute(file_tag, "byte_order") == "BigEndian";
-  const bool compressed = !xml_attribute(file_tag, "compressor").value_or("").empty();
-  std::error_code ec;
-  const std::uint64_t size = fs::file_size(g.path(), ec);
-  std::ifstream in(g.path(), std::ios::binary);
-  // The appended data start after the "_" that follows <AppendedData ...>;
-  // `head` ends where that element's line begins.
-  std::uint64_t appended = 0;
-  bool appended_base64 = false;
-  {
-    std::string tail(4096, '\0');
-    in.seekg(static_cast<std::streamoff>(head.size()));
-    in.read(tail.data(), static_cast<std::streamsize>(tail.size()));
-    tail.resize(static_cast<std::size_t>(in.gcount()));
-    in.clear();
-    const std::size_t at = tail.find("<AppendedData");
-    const std::size_t close = at == std::string::npos ? at : tail.find('>', at);
-    const std::size_t underscore = close == std::string::npos ? close : tail.find('_', close);
-    if (underscore != std::string::npos) {
-      appended = head.size() + underscore + 1;
-      appended_base64 =
-          xml_attribute(std::string_view(tail).substr(at, close - at), "encoding") != "raw";
-    }
-  }
-  // `bytes` bytes of an array's binary data from `offset` in its encoding
-  // (base64 text encodes the header and the data separately).
-  const auto read_appended = [&](std::uint64_t pos, std::uint64_t offset, std::size_t bytes) {
-    std::string out;
-    if (!appended_base64) {
-      if (pos + offset + bytes > size) return out;
-      out.resize(bytes);
-      in.seekg(static_cast<std::streamoff>(pos + offset));
-      in.read(out.data(), static_cast<std::streamsize>(bytes));
-      if (!in) out.clear();
-      in.clear();
-      return out;
-    }
-    std::string text(4 * (bytes / 3 + 2), '\0');
-    in.seekg(static_cast<std::streamoff>(pos + offset / 3 * 4));
-    in.read(text.data(), static_cast<std::streamsize>(text.size()));
-    text.resize(static_cast<std::size_t>(in.gcount()));
-    in.clear();
-    out = decode_base64(text, offset % 3 + bytes);
-    return out.size() == offset % 3 + bytes ? out.substr(offset % 3) : std::string();
-  };
-  const auto number = [&](const std::string& bytes, std::size_t at, std::size_t n) {
-    std::uint64_t v = 0;
-    for (std::size_t k = 0; k < n; ++k) {
-      const auto b = static_cast<unsigned char>(bytes[big_endian ? at + k : at + n - 1 - k]);
-      v = (v << 8) | b;
-    }
-    return v;
-  };
-  static const std::map<std::string, std::size_t, std::less<>> kTypeBytes = {
-      {"Int8", 1},   {"UInt8", 1}, {"Int16", 2},  {"UInt16", 2},  {"Int32", 4},
-      {"UInt32", 4}, {"Int64", 8}, {"UInt64", 8}, {"Float32", 4}, {"Float64", 8}};
-  for (std::size_t at = head.find("<DataArray"); at != std::string::npos;
-       at = head.find("<DataArray", at + 1)) {
-    const std::size_t close = head.find('>', at);
-    if (close == std::string::npos) break;
-    const std::string_view tag = std::string_view(head).substr(at, close - at);
-    const std::string format = xml_attribute(tag, "format").value_or("ascii");
-    const std::string name = excerpt(xml_attribute(tag, "Name").value_or(""));
-    if (format == "ascii") continue;
-    // Where the array's header is, and how many bytes could follow it.
-    const bool inline_data = format == "binary";
-    std::uint64_t pos = 0, available = 0;
-    std::string_view text;
-    if (inline_data) {
-      text = std::string_view(head).substr(close + 1);
-      text = text.substr(0, text.find('<'));
-      available = text.size() / 4 * 3;
-    } else {
-      const auto offset = xml_attribute(tag, "offset");
-      if (!offset || appended == 0) continue;  // VTK reports it
-      const long double o = header_count(*offset, "DataArray " + name + " offset", g);
-      if (o > static_cast<long double>(size - appended))
-        g.fail("DataArray " + name + ": its offset " + *offset + " is past the end of the file");
-      pos = appended + static_cast<std::uint64_t>(o);
-      available = appended_base64 ? (size - pos) / 4 * 3 : size - pos;
-    }
-    const std::size_t header_words = compressed ? 3 : 1;
-    const auto read = [&](std::uint64_t offset, std::size_t bytes) {
-      return inline_data ? decode_base64(text, offset + bytes)
-                               .substr(std::min<std::size_t>(
-                                   offset, decode_base64(text, offset + bytes).size()))
-                         : read_appended(pos, offset, bytes);
-    };
-    const std::string header = read(0, header_words * word);
-    if (header.size() < header_words * word)
-      g.fail("DataArray " + name + ": its binary data are cut short");
-    if (compressed) {
-      const long double blocks = static_cast<long double>(number(header, 0, word));
-      const long double block = static_cast<long double>(number(header, word, word));
-      const long double last = static_cast<long double>(number(header, 2 * word, word));
-      if ((3 + blocks) * word > available)
-        g.fail("DataArray " + name + ": its compressed data declare " + count_text(blocks) +
-               " blocks, more than the file holds");
-      // VTK reads past its block table when these disagree (an empty table
-      // with a partial last block, a last block larger than a block).
-      if ((blocks == 0 && last != 0) || last > block || (blocks > 0 && block == 0))
-        g.fail("DataArray " + name + ": its compressed data's header is inconsistent (" +
-               count_text(blocks) + " blocks of " + count_text(block) + " bytes, the last " +
-               count_text(last) + ")");
-      const long double total = blocks > 0 ? (blocks - 1) * block + (last > 0 ? last : block) : 0;
-      check_values(total, capacity, "DataArray " + name + " (uncompressed bytes)", g);
-      continue;
-    }
-    const std::uint64_t bytes = number(header, 0, word);
-    if (bytes > available)
-      g.fail("DataArray " + name + ": its data declare " +
-             count_text(static_cast<long double>(bytes)) + " bytes, more than the file holds");
-    // The last cell offset: the connectivity's length, which VTK allocates.
-    const auto type = kTypeBytes.find(xml_attribute(tag, "type").value_or(""));
-    if (xml_attribute(tag, "Name") != "offsets" || type == kTypeBytes.end() || bytes == 0 ||
-        bytes % type->second != 0)
-      continue;
-    // Uncompressed, the data follow the header in one stream (raw or base64).
-    const std::uint64_t data_at = word;
-    const std::string value = read(data_at + bytes - type->second, type->second);
-    if (value.size() != type->second) g.fail("DataArray " + name + ": its data are cut short");
-    std::uint64_t last = number(value, 0, type->second);
-    const bool is_signed = xml_attribute(tag, "type").value_or("").rfind("Int", 0) == 0;
-    if (is_signed && type->second < 8 && (last >> (8 * type->second - 1)) != 0) last = UINT64_MAX;
-    if (last > size)
-      g.fail("DataArray " + name + ": its last offset, " +
-             (last == UINT64_MAX || (is_signed && (last >> 63) != 0)
-                  ? std::string("a negative number")
-                  : std::to_string(last)) +
-             ", is more connectivity than the file holds");
-  }
-}
-
-// XML files: the counts in the attributes (NumberOfPoints, NumberOfCells,
-// NumberOfTuples..., extents) at most what the file could hold compressed
-// (zlib's best ratio is about 1000:1).
-void precheck_xml(const Guard& g) {
-  std::error_code ec;
-  const auto size = static_cast<long double>(fs::file_size(g.path(), ec));
-  const long double capacity = 1100.0L * size + 1e6L;
-  std::ifstream in(g.path(), std::ios::binary);
-  std::string head;
-  // The XML part: the whole file, up to appended binary data.
-  for (std::string line; std::getline(in, line);) {
-    if (line.find("<AppendedData") != std::string::npos) break;
-    head += line;
-    head += '\n';
-    if (head.size() > (std::size_t{64} << 20)) break;
-  }
-  for (std::size_t at = head.find("Number"); at != std::string::npos;
-       at = head.find("Number", at + 1)) {
-    const std::size_t eq = head.find("=\"", at);
-    if (eq == std::string::npos || eq - at > 32) continue;
-    const std::string name = head.substr(at, eq - at);
-    if (name.find_first_of(" <>/") != std::string::npos) continue;
-    const std::size_t end = head.find('"', eq + 2);
-    if (end == std::string::npos) break;
-    const std::string value = head.substr(eq + 2, end - eq - 2);
-    if (name == "NumberOfComponents") {
-      check_values(header_count(value, name, g), 1e6L, name, g);
-      continue;
-    }
-    check_values(header_count(value, name, g), capacity, name, g);
-  }
-  precheck_xml_data(g, head, capacity);
-  check_xml_array_names(g, head);
-  for (const char* attribute : {"WholeExtent=\"", " Extent=\""}) {
-    for (std::size_t at = head.find(attribute); at != std::string::npos;
-         at = head.find(attribute, at + 1)) {
-      const std::size_t begin = at + std::strlen(attribute);
-      std::istringstream words(head.substr(begin, head.find('"', begin) - begin));
-      long double points = 1;
-      for (int axis = 0; axis < 3; ++axis) {
-        long long lo = 0, hi = 0;
-        if (!(words >> lo >> hi) || hi < lo) g.fail("a malformed extent");
-        points *= static_cast<long double>(hi - lo + 1);
-      }
-      check_values(points, capacity, "an extent", g);
-    }
-  }
-}
-
-// The number types of legacy files (VTK reads them in any case) and their
-// sizes in BINARY files; points must have one of them.
-const std::map<std::string, int, std::less<>> kLegacyTypeBytes = {
-    {"unsigned_char", 1}, {"char", 1},         {"signed_char", 1},   {"unsigned_short", 2},
-    {"short", 2},         {"unsigned_int", 4}, {"int", 4},           {"unsigned_long", 8},
-    {"long", 8},          {"vtktypeint64", 8}, {"vtktypeuint64", 8}, {"float", 4},
-    {"double", 8},        {"vtkidtype", 4}};
-
-std::string lower(std::string text) {
-  std::transform(text.begin(), text.end(), text.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return text;
-}
-
-// Whether VTK's legacy readers take `word` for `keyword` (lower case): they
-// compare its beginning, in any case.
-bool is_keyword(const std::string& word, std::string_view keyword) {
-  return lower(word).compare(0, keyword.size(), keyword) == 0;
-}
-
-// Whether a legacy file stores cells as OFFSETS and CONNECTIVITY (version 5
-// and later), by VTK's rule: "# vtk DataFile Version M.N" with both numbers
-// read, or else version 0 (cell records).
-bool stores_offsets(const std::string& first_line) {
-  constexpr std::string_view kPrefix = "# vtk DataFile Version";
-  int major = 0, minor = 0;
-  if (first_line.compare(0, kPrefix.size(), kPrefix) != 0 ||
-      std::sscanf(first_line.c_str() + kPrefix.size(), "%d.%d", &major, &minor) != 2)
-    return false;
-  return major >= 5;
-}
-
-// ASCII legacy files: every section's values are there, as many as its
-// header declares, before the next keyword. VTK 9.2's legacy readers crash
-// (a null cell array) on a section cut short, which fuzzing found.
-void precheck_legacy_ascii(const Guard& g) {
-  std::ifstream in(g.path(), std::ios::binary);
-  std::string line;
-  std::vector<std::string> head;
-  for (int k = 0; k < 3 && std::getline(in, line); ++k) head.push_back(line);
-  const auto trimmed = [](std::string s) {
-    while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.pop_back();
-    return s;
-  };
-  // VTK's rule: the third line's first word begins with "ascii", in any case.
-  if (head.size() < 3 || lower(trimmed(head[2])).rfind("ascii", 0) != 0) return;
-  const bool v5 = stores_offsets(head[0]);
-  const auto numeric = [](const std::string& w) {
-    char* end = nullptr;
-    std::strtod(w.c_str(), &end);
-    return end && end != w.c_str() && *end == '\0';
-  };
-  long double pending = 0, tuples = 0, field_arrays = 0;
-  long double cells_left = -1, record_left = 0;  // the cell list being read, if any
-  std::string section;
-  int section_line = 0;
-  std::deque<std::pair<std::string, long double>> next;  // keyword, then its values
-  bool metadata = false;
-  int number = 3;
-  const auto expect = [&](const std::string& key, long double values, int at) {
-    pending = values;
-    section = key;
-    section_line = at;
-  };
-  while (std::getline(in, line)) {
-    ++number;
-    std::istringstream words(line);
-    std::vector<std::string> w;
-    for (std::string t; words >> t;) w.push_back(t);
-    if (metadata) {  // METADATA ... up to a blank line
-      metadata = !w.empty();
-      continue;
-    }
-    std::size_t i = 0;
-    for (; i < w.size() && pending > 0; ++i, --pending) {
-      if (!numeric(w[i]))
-        g.fail("line " + std::to_string(number) + ": " + excerpt(w[i]) + " where the " + section +
-               " of line " + std::to_string(section_line) + " has " + count_text(pending) +
-               " values to go");
-      if (cells_left < 0) continue;  // not a cell list
-      // A cell list before version 5: records "n i1 ... in", `cells` of them,
-      // filling the declared size exactly (VTK reads past its array otherwise).
-      const long double v = std::stold(w[i]);
-      if (record_left == 0) {
-        if (cells_left == 0 || v < 0 || v + 1 > pending)
-          g.fail("line " + std::to_string(number) + ": the " + section + " of line " +
-                 std::to_string(section_line) + " does not add up to its declared size");
-        record_left = v;
-        --cells_left;
-      } else {
-        --record_left;
-      }
-    }
-    if (pending == 0 && cells_left > 0)
-      g.fail("the " + section + " of line " + std::to_string(section_line) + " declares " +
-             count_text(cells_left) + " more cells than it holds");
-    if (pending == 0) cells_left = -1;
-    if (i > 0 || w.empty()) continue;
-    const std::string key = legacy_keyword(w[0]);
-    const auto count = [&](std::size_t k) -> long double {
-      return k < w.size() && numeric(w[k]) ? std::stold(w[k]) : 0.0L;
-    };
-    if (!next.empty()) {
-      if (key != next.front().first)
-        g.fail("line " + std::to_string(number) + ": expected " + next.front().first + ", got " +
-               excerpt(w[0]));
-      expect(key, next.front().second, number);
-      next.pop_front();
-      continue;
-    }
-    if (field_arrays > 0 && w.size() == 4 && numeric(w[1]) && numeric(w[2])) {
-      --field_arrays;
-      const std::string type = w[3];
-      if (type != "string" && type != "utf8_string" && type != "variant")
-        expect("array " + excerpt(w[0]), count(1) * count(2), number);
-      continue;
-    }
-    if (key == "POINTS") {
-      if (w.size() < 3 || !kLegacyTypeBytes.count(lower(w[2])))
-        g.fail("line " + std::to_string(number) + " (POINTS): points of type " +
-               excerpt(w.size() < 3 ? "" : w[2]) + " (float, double or an integer type)");
-      expect(key, 3 * count(1), number);
-    } else if (key == "POLYGONS" || key == "LINES" || key == "VERTICES" ||
-               key == "TRIANGLE_STRIPS" || key == "CELLS") {
-      if (v5) {
-        next.emplace_back("OFFSETS", count(1));
-        next.emplace_back("CONNECTIVITY", count(2));
-      } else {
-        expect(key, count(2), number);
-        cells_left = count(1);
-        record_left = 0;
-      }
-    } else if (key == "CELL_TYPES") {
-      expect(key, count(1), number);
-    } else if (key == "POINT_DATA" || key == "CELL_DATA") {
-      tuples = count(1);
-    } else if (key == "SCALARS") {
-      next.emplace_back("LOOKUP_TABLE", tuples * (w.size() > 3 ? count(3) : 1));
-    } else if (key == "VECTORS" || key == "NORMALS") {
-      expect(key, 3 * tuples, number);
-    } else if (key == "TENSORS") {
-      expect(key, 9 * tuples, number);
-    } else if (key == "TEXTURE_COORDINATES") {
-      expect(key, count(2) * tuples, number);
-    } else if (key == "COLOR_SCALARS") {
-      expect(key, count(2) * tuples, number);
-    } else if (key == "LOOKUP_TABLE") {
-      expect(key, 4 * count(2), number);
-    } else if (key == "X_COORDINATES" || key == "Y_COORDINATES" || key == "Z_COORDINATES") {
-      expect(key, count(1), number);
-    } else if (key == "FIELD") {
-      // FIELD NAME ARRAYS: VTK 9.2 crashes on a FIELD it cannot read.
-      if (w.size() < 3 || !numeric(w[2]))
-        g.fail("line " + std::to_string(number) + " (FIELD): " +
-               (w.size() < 3 ? std::string("no array count") : excerpt(w[2]) + " is not a count"));
-      field_arrays = count(2);
-    } else if (key == "METADATA") {
-      metadata = true;
-    }
-  }
-  if (pending > 0)
-    g.fail("truncated: the " + section + " of line " + std::to_string(section_line) + " has " +
-           count_text(pending) + " values missing");
-  if (!next.empty()) g.fail("truncated: " + next.front().first + " is missing");
-}
-
-// BINARY legacy files: the mesh sections walked word by word as VTK reads
-// them (keywords matched by their beginning, in any case; a binary block
-// after the rest of its header line), each block skipped by its size. VTK
-// 9.2 crashes where a pre-5 cell list's records ("n i1 ... in", big-endian
-// ints) do not fill its declared size, on points of a type that is no
-// number, and on an unstructured grid with CELL_TYPES but no CELLS, all
-// found by fuzzing; a word that is no section of a polydata or unstructured
-// grid means a block before it was cut short or overran. METADATA is taken
-// where VTK takes it: right after an array's data. The data attributes are
-// left to precheck_legacy's counts and to VTK.
-void precheck_legacy_binary(const Guard& g) {
-  std::ifstream in(g.path(), std::ios::binary);
-  std::error_code ec;
-  const auto size = static_cast<long double>(fs::file_size(g.path(), ec));
-  std::string first, title;
-  if (!std::getline(in, first) || !std::getline(in, title)) return;
-  int number = 3;  // the line being read, for messages
-  const auto word = [&] {
-    while (std::isspace(in.peek())) {
-      if (in.get() == '\n') ++number;
-    }
-    std::string w;
-    while (w.size() < 255 && in.peek() != std::char_traits<char>::eof() && !std::isspace(in.peek()))
-      w += static_cast<char>(in.get());
-    return w;
-  };
-  if (!is_keyword(word(), "binary") || !is_keyword(word(), "dataset")) return;
-  const std::string dataset = lower(word());
-  const bool poly = is_keyword(dataset, "polydata"),
-             grid = is_keyword(dataset, "unstructured_grid");
-  if (!poly && !grid) return;  // other datasets: left to VTK
-  const std::string kind = poly ? "POLYDATA" : "UNSTRUCTURED_GRID";
-  const bool v5 = stores_offsets(first);
-  const auto count = [&](const std::string& what) {
-    return header_count(word(), "line " + std::to_string(number) + " (" + what + ")", g);
-  };
-  // The rest of the header line; the binary block follows it.
-  const auto end_line = [&] {
-    std::string rest;
-    std::getline(in, rest);
-    ++number;
-  };
-  // After an array's data VTK skips spaces and line ends, and reads a
-  // METADATA section if the next line begins with that word, up to a blank
-  // line; fuzzing found VTK 9.2 crashing (a null cell array) after a
-  // section that began so but was no such section. VTK writes "METADATA"
-  // alone on its line, then lines of text.
-  const auto array_end = [&] {
-    for (int c = in.peek(); c == ' ' || c == '\n'; c = in.peek())
-      if (in.get() == '\n') ++number;
-    const auto at = in.tellg();
-    std::string head(8, '\0');
-    if (!in.read(head.data(), 8)) {
-      in.clear();
-      in.seekg(at);
-      return;
-    }
-    in.seekg(at);
-    if (lower(head) != "metadata") return;
-    const auto text = [](std::string line) {
-      while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
-      return line;
-    };
-    std::string line;
-    std::getline(in, line);
-    if (lower(text(line)) != "metadata")
-      g.fail("line " + std::to_string(number) + ": " + excerpt(line) +
-             " is not a METADATA line (METADATA alone)");
-    ++number;
-    while (std::getline(in, line)) {
-      ++number;
-      line = text(line);
-      if (line.empty()) break;
-      for (const char c : line)
-        if ((static_cast<unsigned char>(c) < 0x20 && c != '\t') || c == 0x7f)
-          g.fail("line " + std::to_string(number) + ": METADATA with a control character");
-    }
-  };
-  // Skips `values` values of `type`, then any METADATA after them; false
-  // for a type this walk does not size.
-  const auto skip = [&](long double values, const std::string& type, const std::string& what) {
-    const auto it = kLegacyTypeBytes.find(lower(type));
-    if (it == kLegacyTypeBytes.end()) return false;
-    const int line = number;
-    end_line();
-    const long double bytes = values * it->second;
-    const auto at = static_cast<long double>(in.tellg());
-    if (in.tellg() < 0 || bytes > size - at)
-      g.fail("truncated: the " + what + " of line " + std::to_string(line) + " needs " +
-             count_text(bytes) + " bytes, " + count_text(in.tellg() < 0 ? 0 : size - at) +
-             " are left");
-    in.seekg(static_cast<std::streamoff>(bytes), std::ios::cur);
-    array_end();
-    return true;
-  };
-  bool cell_lists = false, types = false;
-  for (std::string w = word(); !w.empty(); w = word()) {
-    const std::string where = "line " + std::to_string(number) + " (" + one_line(w) + ")";
-    if (is_keyword(w, "point_data") || is_keyword(w, "cell_data")) break;
-    if (is_keyword(w, "field")) {
-      word();  // its name
-      const long double arrays = count("FIELD");
-      for (long double a = 0; a < arrays; ++a) {
-        word();  // the array's name
-        const long double components = count("FIELD array");
-        const long double tuples = count("FIELD array");
-        if (!skip(components * tuples, word(), "array")) return;
-      }
-    } else if (is_keyword(w, "points")) {
-      const long double points = count("POINTS");
-      const std::string type = word();
-      // VTK 9.2 reads points of another type as none, and then crashes.
-      if (kLegacyTypeBytes.count(lower(type)) == 0)
-        g.fail(where + ": points of type " + excerpt(type) + " (float, double or an integer type)");
-      skip(3 * points, type, "POINTS");
-    } else if (grid && is_keyword(w, "cell_types")) {
-      types = true;
-      skip(count("CELL_TYPES"), "int", "CELL_TYPES");
-    } else if ((poly && (is_keyword(w, "vertices") || is_keyword(w, "lines") ||
-                         is_keyword(w, "polygons") || is_keyword(w, "triangle_strips"))) ||
-               (grid && is_keyword(w, "cells"))) {
-      cell_lists = true;
-      const long double cells = count(w), values = count(w);
-      if (v5) {
-        // OFFSETS TYPE, its block; CONNECTIVITY TYPE, its block.
-        if (!is_keyword(word(), "offsets") || !skip(cells, word(), "OFFSETS")) return;
-        if (!is_keyword(word(), "connectivity") || !skip(values, word(), "CONNECTIVITY")) return;
-        continue;
-      }
-      end_line();
-      const auto at = static_cast<long double>(in.tellg());
-      if (in.tellg() < 0 || 4 * values > size - at)
-        g.fail("truncated: the " + where + " needs " + count_text(4 * values) + " bytes, " +
-               count_text(in.tellg() < 0 ? 0 : size - at) + " are left");
-      std::vector<unsigned char> bytes(static_cast<std::size_t>(4 * values));
-      in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-      const auto value = [&](std::size_t i) {
-        const unsigned char* b = bytes.data() + 4 * i;
-        return static_cast<std::int32_t>(static_cast<std::uint32_t>(b[0]) << 24 |
-                                         static_cast<std::uint32_t>(b[1]) << 16 |
-                                         static_cast<std::uint32_t>(b[2]) << 8 | b[3]);
-      };
-      const auto n = static_cast<std::size_t>(values);
-      std::size_t i = 0;
-      for (long double c = 0; c < cells; ++c) {
-        const std::int32_t points = i < n ? value(i) : -1;
-        if (points < 0 || static_cast<std::size_t>(points) >= n - i)
-          g.fail(where + ": cell " + count_text(c) + " does not fit the list's declared size");
-        i += 1 + static_cast<std::size_t>(points);
-      }
-      if (i != n) g.fail(where + ": the cells do not add up to the list's declared size");
-    } else {
-      // What VTK would take for a keyword: a block before was cut short or
-      // overran.
-      g.fail("line " + std::to_string(number) + ": " + excerpt(w) + " is not a section of " + kind +
-             " (is the section before it cut short?)");
-    }
-  }
-  if (grid && cell_lists != types)
-    g.fail(std::string("an unstructured grid with ") +
-           (types ? "CELL_TYPES but no CELLS" : "CELLS but no CELL_TYPES"));
-}
-
-// Legacy structured grids: VTK 9.2's vtkStructuredGridReader, looking for
-// the dimensions before it reads, takes every word of the file in turn,
-// binary data included, and reads a FIELD section wherever a word begins
-// with "field" (any case); where that section cannot be read, it
-// dereferences null. Fuzzing found it on "FieldD" inside binary points. So
-// each such word must begin a FIELD section that VTK reads whole: a name, a
-// count of arrays, and each array's name, components, tuples, number type
-// and values (in BINARY, after the rest of that line).
-void precheck_structured_grid(const Guard& g) {
-  std::ifstream in(g.path(), std::ios::binary);
-  std::error_code ec;
-  const auto size = static_cast<long double>(fs::file_size(g.path(), ec));
-  std::string first, title, type_line;
-  if (!std::getline(in, first) || !std::getline(in, title) || !std::getline(in, type_line)) return;
-  const auto word = [&in] {
-    std::string w;
-    in >> std::setw(255) >> w;  // as VTK's ReadString
-    return w;
-  };
-  if (!is_keyword(word(), "dataset") || !is_keyword(word(), "structured_grid")) return;
-  const bool binary = is_keyword(type_line, "binary");
-  const auto fail = [&](const std::string& what) {
-    // The line where the scan is, for the message.
-    const auto at = in.tellg() < 0 ? std::streamoff(size) : std::streamoff(in.tellg());
-    std::ifstream again(g.path(), std::ios::binary);
-    long line = 1;
-    for (std::streamoff i = 0; i < at && again; ++i)
-      if (again.get() == '\n') ++line;
-    g.fail("line " + std::to_string(line) + ": " + what +
-           " (VTK 9.2's structured grid reader would crash on it)");
-  };
-  const auto number = [](const std::string& w) {
-    return !w.empty() && w.find_first_not_of("0123456789+-.eE") == std::string::npos &&
-           w.find_first_of("0123456789") != std::string::npos;
-  };
-  const auto count = [&](const std::string& w, const std::string& what) {
-    if (w.empty() || w.find_first_not_of("0123456789") != std::string::npos || w.size() > 12)
-      fail("a FIELD section whose " + what + " is " + excerpt(w) + ", not a count");
-    return std::stold(w);
-  };
-  for (std::string w = word(); !w.empty(); w = word()) {
-    if (!is_keyword(w, "field")) continue;
-    word();  // the section's name
-    const long double arrays = count(word(), "count of arrays");
-    for (long double a = 0; a < arrays; ++a) {
-      const std::string name = word();
-      if (name == "NULL_ARRAY") continue;
-      const long double values = count(word(), "array " + excerpt(name) + "'s components") *
-                                 count(word(), "array " + excerpt(name) + "'s tuples");
-      const std::string type = word();
-      const auto it = kLegacyTypeBytes.find(lower(type));
-      if (it == kLegacyTypeBytes.end())
-        fail("a FIELD array " + excerpt(name) + " of type " + excerpt(type) +
-             ", which is no number type");
-      if (binary) {
-        std::string rest;
-        std::getline(in, rest);
-        const long double bytes = values * it->second;
-        const auto at = in.tellg();
-        if (at < 0 || bytes > size - static_cast<long double>(at))
-          fail("a FIELD array " + excerpt(name) + " cut short (" + count_text(bytes) +
-               " bytes declared)");
-        in.seekg(static_cast<std::streamoff>(bytes), std::ios::cur);
-      } else {
-        if (values > size / 2) fail("a FIELD array " + excerpt(name) + " cut short");
-        for (long double v = 0; v < values; ++v)
-          if (!number(word()))
-            fail("a FIELD array " + excerpt(name) + " cut short or with a value that is no number");
-      }
-    }
-  }
-}
-
 // A single VTK file (legacy or XML, any dataset kind).
 vtkSmartPointer<vtkDataObject> read_vtk_file(const Guard& g) {
   require_file(g);
-  if (lower_extension(g.path()) == ".vtk") {
-    precheck_legacy(g);
-    precheck_legacy_ascii(g);
-    precheck_legacy_binary(g);
-    precheck_structured_grid(g);
-  } else {
-    precheck_xml(g);
-  }
   vtkSmartPointer<vtkDataObject> out;
   if (lower_extension(g.path()) == ".vtk") {
     vtkNew<vtkGenericDataObjectReader> reader;
@@ -1141,15 +296,46 @@ vtkSmartPointer<vtkDataObject> read_vtk_file(const Guard& g) {
   return out;
 }
 
-// ------------------------------------------------------------ .pvd series
+// ------------------------------------------------------------ series (.pvd, .series)
 
-struct PvdEntry {
+// A time series of files: for each distinct time, its files (parts).
+using SeriesSteps = std::vector<std::pair<double, std::vector<fs::path>>>;
+
+struct SeriesEntry {
   double time = 0.0;
   fs::path file;
 };
 
-// The steps of a .pvd collection: for each distinct time, its files (parts).
-std::vector<std::pair<double, std::vector<fs::path>>> read_pvd(const Guard& g) {
+// Entries in time order, those of one time together (the parts of a step).
+SeriesSteps group_steps(std::vector<SeriesEntry> entries, const Guard& g) {
+  if (entries.empty()) g.fail("the series lists no data sets");
+  std::stable_sort(entries.begin(), entries.end(),
+                   [](const SeriesEntry& a, const SeriesEntry& b) { return a.time < b.time; });
+  SeriesSteps steps;
+  for (const SeriesEntry& e : entries) {
+    if (steps.empty() || steps.back().first != e.time) steps.push_back({e.time, {}});
+    steps.back().second.push_back(e.file);
+  }
+  return steps;
+}
+
+fs::path beside(const Guard& g, const std::string& file) {
+  if (fs::path(file).is_absolute()) return file;
+  fs::path path = g.path().parent_path() / file;
+  // OpenFOAM 1912's foamToVTK -legacy lists "_10" for CASE_10.vtk in
+  // CASE.vtk.series: where the name is missing, the file it meant.
+  std::error_code ec;
+  const fs::path inner = g.path().stem();  // CASE.vtk
+  if (!fs::exists(path, ec) && !inner.extension().empty()) {
+    fs::path meant =
+        g.path().parent_path() / (inner.stem().string() + file + inner.extension().string());
+    if (fs::exists(meant, ec)) path = std::move(meant);
+  }
+  return path;
+}
+
+// A .pvd collection (ParaView's XML: <DataSet timestep= file=>).
+SeriesSteps read_pvd(const Guard& g) {
   require_file(g);
   vtkNew<vtkXMLDataParser> parser;
   parser->SetFileName(g.path().string().c_str());
@@ -1163,13 +349,13 @@ std::vector<std::pair<double, std::vector<fs::path>>> read_pvd(const Guard& g) {
     g.fail("not a VTK collection (.pvd): expected <VTKFile type=\"Collection\">");
   vtkXMLDataElement* collection = root->FindNestedElementWithName("Collection");
   if (!collection) g.fail("no <Collection> element");
-  std::vector<PvdEntry> entries;
+  std::vector<SeriesEntry> entries;
   for (int i = 0; i < collection->GetNumberOfNestedElements(); ++i) {
     vtkXMLDataElement* e = collection->GetNestedElement(i);
     if (std::strcmp(e->GetName(), "DataSet") != 0) continue;
     const char* file = e->GetAttribute("file");
     if (!file || !*file) g.fail("a <DataSet> without a file attribute");
-    PvdEntry entry;
+    SeriesEntry entry;
     if (const char* t = e->GetAttribute("timestep")) {
       try {
         entry.time = parse_number(t);
@@ -1177,18 +363,73 @@ std::vector<std::pair<double, std::vector<fs::path>>> read_pvd(const Guard& g) {
         g.fail(std::string("timestep '") + t + "' is not a number");
       }
     }
-    entry.file = fs::path(file).is_absolute() ? fs::path(file) : g.path().parent_path() / file;
+    entry.file = beside(g, file);
     entries.push_back(entry);
   }
-  if (entries.empty()) g.fail("the collection lists no data sets");
-  std::stable_sort(entries.begin(), entries.end(),
-                   [](const PvdEntry& a, const PvdEntry& b) { return a.time < b.time; });
-  std::vector<std::pair<double, std::vector<fs::path>>> steps;
-  for (const PvdEntry& e : entries) {
-    if (steps.empty() || steps.back().first != e.time) steps.push_back({e.time, {}});
-    steps.back().second.push_back(e.file);
+  return group_steps(std::move(entries), g);
+}
+
+// ParaView's JSON file series (NAME.EXT.series, as ParaView and foamToVTK
+// write it): {"file-series-version": "1.0", "files": [{"name": "a_0.vtu",
+// "time": 0}, ...]}; names relative to the .series file.
+SeriesSteps read_series(const Guard& g) {
+  require_file(g);
+  std::ifstream in(g.path(), std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const nlohmann::json doc = nlohmann::json::parse(text, nullptr, false);
+  if (doc.is_discarded()) g.fail("not a well-formed .series (JSON) file");
+  if (!doc.is_object() || !doc.contains("files") || !doc["files"].is_array())
+    g.fail("not a ParaView file series: no \"files\" list");
+  std::vector<SeriesEntry> entries;
+  for (const nlohmann::json& f : doc["files"]) {
+    if (!f.is_object() || !f.contains("name") || !f["name"].is_string() ||
+        f["name"].get<std::string>().empty())
+      g.fail("an entry of \"files\" without a \"name\"");
+    SeriesEntry entry;
+    entry.file = beside(g, f["name"].get<std::string>());
+    if (f.contains("time")) {
+      if (!f["time"].is_number())
+        g.fail("the time of '" + f["name"].get<std::string>() + "' is not a number");
+      entry.time = f["time"].get<double>();
+    } else {
+      entry.time = static_cast<double>(entries.size());
+    }
+    entries.push_back(entry);
   }
-  return steps;
+  return group_steps(std::move(entries), g);
+}
+
+bool is_series(const fs::path& p) {
+  const std::string ext = lower_extension(p);
+  return ext == ".pvd" || ext == ".series";
+}
+
+SeriesSteps read_series_file(const Guard& g) {
+  return lower_extension(g.path()) == ".pvd" ? read_pvd(g) : read_series(g);
+}
+
+// One step of a series: its one file, or its parts as blocks named by file.
+vtkSmartPointer<vtkDataObject> read_series_step(const SeriesSteps& steps, std::size_t k,
+                                                const Guard& g) {
+  if (k >= steps.size())
+    g.fail("has " + std::to_string(steps.size()) + " time steps, asked for step " +
+           std::to_string(k));
+  try {
+    if (steps[k].second.size() == 1) {
+      const Guard part(steps[k].second[0]);
+      return read_vtk_file(part);
+    }
+    vtkNew<vtkMultiBlockDataSet> parts;
+    unsigned i = 0;
+    for (const fs::path& file : steps[k].second) {
+      const Guard part(file);
+      parts->SetBlock(i, read_vtk_file(part));
+      parts->GetMetaData(i++)->Set(vtkCompositeDataSet::NAME(), file.stem().string().c_str());
+    }
+    return parts;
+  } catch (const InputError& e) {
+    g.fail(e.what());  // the series' name first, then the part's
+  }
 }
 
 // ------------------------------------------------------------ blocks and surfaces
@@ -1211,6 +452,17 @@ void collect_blocks(vtkDataObject* obj, const std::string& name, const std::stri
   } else if (auto* mp = vtkMultiPieceDataSet::SafeDownCast(obj)) {
     for (unsigned i = 0; i < mp->GetNumberOfPieces(); ++i)
       collect_blocks(mp->GetPieceAsDataObject(i), name, path, out);
+  } else if (auto* pc = vtkPartitionedDataSetCollection::SafeDownCast(obj)) {
+    for (unsigned i = 0; i < pc->GetNumberOfPartitionedDataSets(); ++i) {
+      std::string child = "block" + std::to_string(i);
+      if (pc->HasMetaData(i) && pc->GetMetaData(i)->Has(vtkCompositeDataSet::NAME()))
+        child = pc->GetMetaData(i)->Get(vtkCompositeDataSet::NAME());
+      collect_blocks(pc->GetPartitionedDataSet(i), child, path.empty() ? child : path + "/" + child,
+                     out);
+    }
+  } else if (auto* pd = vtkPartitionedDataSet::SafeDownCast(obj)) {
+    for (unsigned i = 0; i < pd->GetNumberOfPartitions(); ++i)
+      collect_blocks(pd->GetPartitionAsDataObject(i), name, path, out);
   } else if (auto* ds = vtkDataSet::SafeDownCast(obj)) {
     out.push_back({name, path, ds});
   }
@@ -1538,6 +790,33 @@ TriMesh merge_surfaces(std::vector<Surface>& surfaces, const std::vector<std::st
                            name + "' (NaN there)");
     s = Surface{};  // free as we go
   }
+  // A face that two blocks share, once: the first block's (a boundary
+  // patch's, before a volume's outer surface).
+  std::set<std::array<std::uint32_t, 3>> seen;
+  std::vector<bool> keep(mesh.triangles.size(), true);
+  std::size_t repeated = 0;
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    std::array<std::uint32_t, 3> k = mesh.triangles[t];
+    std::sort(k.begin(), k.end());
+    if (!seen.insert(k).second) {
+      keep[t] = false;
+      ++repeated;
+    }
+  }
+  if (repeated > 0) {
+    std::size_t out = 0;
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
+      if (keep[t]) mesh.triangles[out++] = mesh.triangles[t];
+    mesh.triangles.resize(out);
+    for (auto& [name, a] : cells) {
+      const auto c = static_cast<std::size_t>(a.first);
+      std::size_t o = 0;
+      for (std::size_t t = 0; t < keep.size(); ++t)
+        if (keep[t])
+          for (std::size_t k = 0; k < c; ++k) a.second[o++] = a.second[t * c + k];
+      a.second.resize(o);
+    }
+  }
   const std::size_t n = mesh.positions.size();
   for (auto& [name, a] : points) {
     if (a.second.size() != n * static_cast<std::size_t>(a.first)) continue;
@@ -1577,6 +856,12 @@ TriMesh surface_of(vtkDataObject* obj, const std::vector<std::string>& patterns,
                "' (blocks: " + (known.empty() ? "none" : known) + ")");
       }
   }
+  // Surfaces before volumes: where a volume's outer surface and a boundary
+  // block coincide (foamToVTK writes both, internal.vtu and the patches),
+  // the boundary's faces and arrays are the ones kept (merge_surfaces).
+  std::stable_partition(chosen.begin(), chosen.end(), [](const Block& b) {
+    return vtkPolyData::SafeDownCast(b.data) != nullptr;
+  });
   std::vector<Surface> surfaces;
   std::vector<std::string> names;
   vtkIdType cells = 0, points = 0;
@@ -1611,35 +896,38 @@ void finish(TriMesh& mesh, std::vector<std::string>& warnings, const Guard& g) {
   validate_mesh(mesh, g.path().string());
 }
 
-// What one step of a dataset reads as a surface.
-using StepReader = std::function<vtkSmartPointer<vtkDataObject>(std::size_t, const Guard&)>;
+// A dataset opened for reading its steps: their times (fewer than 2:
+// steady) and how to read step k.
+struct Source {
+  std::vector<double> times;
+  std::function<vtkSmartPointer<vtkDataObject>(std::size_t, const Guard&)> read_step;
+  bool patterns_applied = false;  // the reader chose the blocks (OpenFOAM patches)
+};
 
-Dataset read_steps(const DatasetRequest& request, std::vector<double> times, StepReader reader,
-                   bool patterns_applied) {
-  Dataset d;
-  {
-    const Guard g(request.path);
-    vtkSmartPointer<vtkDataObject> first = reader(0, g);
-    d.mesh = surface_of(first, request.blocks, &d.blocks, d.warnings, g, patterns_applied);
-    finish(d.mesh, d.warnings, g);
-  }
-  if (times.size() > 1) {
-    d.times = std::move(times);
-    const std::size_t vertices = d.mesh.vertex_count();
-    d.step = [request, reader, patterns_applied, vertices](std::size_t k) {
-      const Guard g(request.path);
-      std::vector<std::string> ignored;
-      TriMesh mesh =
-          surface_of(reader(k, g), request.blocks, nullptr, ignored, g, patterns_applied);
-      remove_degenerate_triangles(mesh);
-      if (mesh.vertex_count() != vertices)
-        g.fail("step " + std::to_string(k) + " has " + std::to_string(mesh.vertex_count()) +
-               " vertices, the first step " + std::to_string(vertices) +
-               " (a changing mesh is not supported)");
-      return mesh;
+Source open_source(const DatasetRequest& request, const Guard& g) {
+  const fs::path& path = request.path;
+  Source source;
+  if (is_openfoam(path)) {
+    require_file(g);
+    vtkSmartPointer<vtkOpenFOAMReader> reader = openfoam_reader(g, false, request.blocks);
+    source.times = openfoam_times(reader);
+    source.read_step = [reader, times = source.times](std::size_t k, const Guard& guard) {
+      return read_openfoam_step(reader, times, k, guard);
+    };
+    source.patterns_applied = true;
+  } else if (is_series(path)) {
+    const SeriesSteps steps = read_series_file(g);
+    for (const auto& s : steps) source.times.push_back(s.first);
+    source.read_step = [steps](std::size_t k, const Guard& guard) {
+      return read_series_step(steps, k, guard);
+    };
+  } else {
+    source.read_step = [](std::size_t k, const Guard& guard) {
+      if (k > 0) guard.fail("is one file, one time step; asked for step " + std::to_string(k));
+      return read_vtk_file(guard);
     };
   }
-  return d;
+  return source;
 }
 
 // Turns out-of-memory and other exceptions from VTK into a line about the file.
@@ -1656,36 +944,57 @@ auto guarded(const fs::path& path, F&& f) {
   }
 }
 
+// Runs `work` (VTK reading `path`) in a child process: a crash or an
+// allocation past the limit there becomes one error line naming the file
+// (core/isolation.h), so VTK's own parser is the only one, and nothing here
+// refuses what it reads.
+std::string read_in_child(const fs::path& path, const std::function<std::string()>& work) {
+  // No other thread of ours is inside VTK while the child is made.
+  const std::lock_guard lock(vtk_mutex());
+  return run_isolated(path.string(), "VTK's reader", [&] {
+    vtk_mutex_slot() = new std::recursive_mutex;  // NOLINT: the parent's stays held, unused
+    // One thread: a pool of worker threads made in the parent has none here.
+    vtkSMPTools::SetBackend("Sequential");
+    return guarded(path, work);
+  });
+}
+
+// Step k's surface (the first: with its blocks and what was repaired).
+std::string read_step_bytes(const DatasetRequest& request, std::size_t k,
+                            std::size_t vertices_of_first) {
+  const Guard g(request.path);
+  const Source source = open_source(request, g);
+  std::vector<std::string> blocks, warnings;
+  TriMesh mesh = surface_of(source.read_step(k, g), request.blocks, &blocks, warnings, g,
+                            source.patterns_applied);
+  ByteWriter out;
+  if (k == 0) {
+    finish(mesh, warnings, g);
+  } else {
+    remove_degenerate_triangles(mesh);
+    if (mesh.vertex_count() != vertices_of_first)
+      g.fail("step " + std::to_string(k) + " has " + std::to_string(mesh.vertex_count()) +
+             " vertices, the first step " + std::to_string(vertices_of_first) +
+             " (a changing mesh is not supported)");
+  }
+  put_mesh(out, mesh);
+  out.put(blocks);
+  out.put(warnings);
+  out.put(source.times);
+  return out.take();
+}
+
 // ------------------------------------------------------------ volumes for sampling
 
-struct CachedVolume {
-  std::string key;
-  vtkSmartPointer<vtkDataSet> data;
-};
-
 vtkSmartPointer<vtkDataSet> read_volume(const fs::path& path, std::size_t step, const Guard& g) {
-  static CachedVolume cache;
-  std::error_code ec;
-  const auto stamp = fs::last_write_time(path, ec).time_since_epoch().count();
-  const std::string key = path.string() + "|" + std::to_string(step) + "|" + std::to_string(stamp);
-  if (cache.key == key && cache.data) return cache.data;
   vtkSmartPointer<vtkDataObject> obj;
   if (is_openfoam(path)) {
+    std::error_code ec;
     if (!fs::exists(path, ec)) g.fail("no such file");
     auto reader = openfoam_reader(g, true, {});
     obj = read_openfoam_step(reader, openfoam_times(reader), step, g);
-  } else if (lower_extension(path) == ".pvd") {
-    const auto steps = read_pvd(g);
-    if (step >= steps.size())
-      g.fail("has " + std::to_string(steps.size()) + " time steps, asked for step " +
-             std::to_string(step));
-    vtkNew<vtkMultiBlockDataSet> all;
-    unsigned i = 0;
-    for (const fs::path& file : steps[step].second) {
-      const Guard part(file);
-      all->SetBlock(i++, read_vtk_file(part));
-    }
-    obj = all;
+  } else if (is_series(path)) {
+    obj = read_series_step(read_series_file(g), step, g);
   } else {
     if (step > 0) g.fail("is one file, one time step; asked for step " + std::to_string(step));
     obj = read_vtk_file(g);
@@ -1693,19 +1002,13 @@ vtkSmartPointer<vtkDataSet> read_volume(const fs::path& path, std::size_t step, 
   std::vector<Block> blocks;
   collect_blocks(obj, "", "", blocks);
   if (blocks.empty()) g.fail("holds no data set");
-  vtkSmartPointer<vtkDataSet> volume;
   for (const Block& b : blocks) check_dataset(b.data, b, g);
-  if (blocks.size() == 1) {
-    volume = blocks[0].data;
-  } else {
-    vtkNew<vtkAppendFilter> append;
-    for (const Block& b : blocks) append->AddInputData(b.data);
-    append->Update();
-    g.check();
-    volume = append->GetOutput();
-  }
-  cache = {key, volume};
-  return volume;
+  if (blocks.size() == 1) return blocks[0].data;
+  vtkNew<vtkAppendFilter> append;
+  for (const Block& b : blocks) append->AddInputData(b.data);
+  append->Update();
+  g.check();
+  return append->GetOutput();
 }
 
 std::string describe(vtkFieldData* data) {
@@ -1719,6 +1022,52 @@ std::string describe(vtkFieldData* data) {
   return out.empty() ? "none" : out;
 }
 
+VolumeSample sample_in_process(const fs::path& path, const std::string& array, std::size_t step,
+                               const std::vector<glm::vec3>& points) {
+  const Guard g(path);
+  vtkSmartPointer<vtkDataSet> volume = read_volume(path, step, g);
+  vtkNew<vtkPoints> pts;
+  pts->SetDataTypeToFloat();
+  pts->SetNumberOfPoints(static_cast<vtkIdType>(points.size()));
+  for (std::size_t i = 0; i < points.size(); ++i)
+    pts->SetPoint(static_cast<vtkIdType>(i), points[i].x, points[i].y, points[i].z);
+  vtkNew<vtkPolyData> where;
+  where->SetPoints(pts);
+  vtkNew<vtkProbeFilter> probe;
+  vtkNew<vtkStaticCellLocator> locator;
+  probe->SetCellLocatorPrototype(locator);
+  probe->SetInputData(where);
+  probe->SetSourceData(volume);
+  probe->Update();
+  g.check();
+  vtkDataSet* out = probe->GetOutput();
+  vtkDataArray* a = out->GetPointData()->GetArray(array.c_str());
+  if (!a) {
+    const bool has_point = volume->GetPointData()->GetAbstractArray(array.c_str()) != nullptr;
+    const bool has_cell = volume->GetCellData()->GetAbstractArray(array.c_str()) != nullptr;
+    if (!has_point && !has_cell)
+      g.fail("no array '" + array +
+             "' in the volume (point arrays: " + describe(volume->GetPointData()) +
+             "; cell arrays: " + describe(volume->GetCellData()) + ")");
+    g.fail("the array '" + array + "' is not numeric");
+  }
+  if (a->GetNumberOfComponents() != 3)
+    g.fail("the array '" + array + "' has " + std::to_string(a->GetNumberOfComponents()) +
+           " components; a field needs 3");
+  vtkDataArray* mask = out->GetPointData()->GetArray(probe->GetValidPointMaskArrayName());
+  VolumeSample result;
+  result.values.resize(points.size());
+  result.found.resize(points.size());
+  double v[3];
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const auto id = static_cast<vtkIdType>(i);
+    result.found[i] = mask ? static_cast<std::uint8_t>(mask->GetComponent(id, 0) != 0) : 1;
+    a->GetTuple(id, v);
+    result.values[i] = result.found[i] ? glm::vec3(v[0], v[1], v[2]) : glm::vec3(0.0f);
+  }
+  return result;
+}
+
 }  // namespace
 
 // ------------------------------------------------------------ public
@@ -1728,102 +1077,48 @@ std::string vtk_version() {
 }
 
 Dataset read(const DatasetRequest& request) {
-  return guarded(request.path, [&] {
-    const fs::path& path = request.path;
-    if (is_openfoam(path)) {
-      const Guard g(path);
-      require_file(g);
-      vtkSmartPointer<vtkOpenFOAMReader> reader = openfoam_reader(g, false, request.blocks);
-      const std::vector<double> times = openfoam_times(reader);
-      return read_steps(
-          request, times,
-          [reader, times](std::size_t k, const Guard& guard) {
-            return read_openfoam_step(reader, times, k, guard);
-          },
-          true);
-    }
-    if (lower_extension(path) == ".pvd") {
-      std::vector<std::pair<double, std::vector<fs::path>>> steps;
-      {
-        const Guard g(path);
-        steps = read_pvd(g);
-      }
-      std::vector<double> times;
-      for (const auto& s : steps) times.push_back(s.first);
-      return read_steps(
-          request, times,
-          [steps](std::size_t k, const Guard& guard) -> vtkSmartPointer<vtkDataObject> {
-            try {
-              if (steps[k].second.size() == 1) {
-                const Guard part(steps[k].second[0]);
-                return read_vtk_file(part);
-              }
-              vtkNew<vtkMultiBlockDataSet> parts;  // parts of one time: blocks named by file
-              unsigned i = 0;
-              for (const fs::path& file : steps[k].second) {
-                const Guard part(file);
-                parts->SetBlock(i, read_vtk_file(part));
-                parts->GetMetaData(i++)->Set(vtkCompositeDataSet::NAME(),
-                                             file.stem().string().c_str());
-              }
-              return parts;
-            } catch (const InputError& e) {
-              guard.fail(e.what());  // the collection's name first, then the part's
-            }
-          },
-          false);
-    }
-    return read_steps(
-        request, {}, [](std::size_t, const Guard& guard) { return read_vtk_file(guard); }, false);
-  });
+  const std::string subject = request.path.string();
+  const std::string bytes =
+      read_in_child(request.path, [&] { return read_step_bytes(request, 0, 0); });
+  ByteReader in(bytes, subject);
+  Dataset d;
+  d.mesh = get_mesh(in);
+  d.blocks = in.get_strings();
+  d.warnings = in.get_strings();
+  std::vector<double> times = in.get_vector<double>();
+  validate_mesh(d.mesh, subject);
+  if (times.size() > 1) {
+    d.times = std::move(times);
+    d.step = [request, vertices = d.mesh.vertex_count()](std::size_t k) {
+      const std::string step_bytes =
+          read_in_child(request.path, [&] { return read_step_bytes(request, k, vertices); });
+      ByteReader step_in(step_bytes, request.path.string());
+      TriMesh mesh = get_mesh(step_in);
+      if (mesh.vertex_count() != vertices)
+        throw InputError(request.path.string() + ": step " + std::to_string(k) +
+                         " changed its vertex count");
+      return mesh;
+    };
+  }
+  return d;
 }
 
 VolumeSample sample(const fs::path& path, const std::string& array, std::size_t step,
                     const std::vector<glm::vec3>& points) {
-  return guarded(path, [&] {
-    const Guard g(path);
-    vtkSmartPointer<vtkDataSet> volume = read_volume(path, step, g);
-    vtkNew<vtkPoints> pts;
-    pts->SetDataTypeToFloat();
-    pts->SetNumberOfPoints(static_cast<vtkIdType>(points.size()));
-    for (std::size_t i = 0; i < points.size(); ++i)
-      pts->SetPoint(static_cast<vtkIdType>(i), points[i].x, points[i].y, points[i].z);
-    vtkNew<vtkPolyData> where;
-    where->SetPoints(pts);
-    vtkNew<vtkProbeFilter> probe;
-    vtkNew<vtkStaticCellLocator> locator;
-    probe->SetCellLocatorPrototype(locator);
-    probe->SetInputData(where);
-    probe->SetSourceData(volume);
-    probe->Update();
-    g.check();
-    vtkDataSet* out = probe->GetOutput();
-    vtkDataArray* a = out->GetPointData()->GetArray(array.c_str());
-    if (!a) {
-      const bool has_point = volume->GetPointData()->GetAbstractArray(array.c_str()) != nullptr;
-      const bool has_cell = volume->GetCellData()->GetAbstractArray(array.c_str()) != nullptr;
-      if (!has_point && !has_cell)
-        g.fail("no array '" + array +
-               "' in the volume (point arrays: " + describe(volume->GetPointData()) +
-               "; cell arrays: " + describe(volume->GetCellData()) + ")");
-      g.fail("the array '" + array + "' is not numeric");
-    }
-    if (a->GetNumberOfComponents() != 3)
-      g.fail("the array '" + array + "' has " + std::to_string(a->GetNumberOfComponents()) +
-             " components; a field needs 3");
-    vtkDataArray* mask = out->GetPointData()->GetArray(probe->GetValidPointMaskArrayName());
-    VolumeSample result;
-    result.values.resize(points.size());
-    result.found.resize(points.size());
-    double v[3];
-    for (std::size_t i = 0; i < points.size(); ++i) {
-      const auto id = static_cast<vtkIdType>(i);
-      result.found[i] = mask ? static_cast<std::uint8_t>(mask->GetComponent(id, 0) != 0) : 1;
-      a->GetTuple(id, v);
-      result.values[i] = result.found[i] ? glm::vec3(v[0], v[1], v[2]) : glm::vec3(0.0f);
-    }
-    return result;
+  const std::string bytes = read_in_child(path, [&] {
+    const VolumeSample s = sample_in_process(path, array, step, points);
+    ByteWriter out;
+    out.put(s.values);
+    out.put(s.found);
+    return out.take();
   });
+  ByteReader in(bytes, path.string());
+  VolumeSample result;
+  result.values = in.get_vector<glm::vec3>();
+  result.found = in.get_vector<std::uint8_t>();
+  if (result.values.size() != points.size() || result.found.size() != points.size())
+    throw InputError(path.string() + ": the sampled values do not match the points");
+  return result;
 }
 
 void write_polydata(const TriMesh& mesh, const std::vector<glm::vec2>* uv, const fs::path& path,

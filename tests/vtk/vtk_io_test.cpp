@@ -285,8 +285,9 @@ fs::path write_multiblock(const TempDir& dir) {
 TEST_F(VtkIo, MultiblockBlocksByNameAndPattern) {
   const fs::path path = write_multiblock(dir_);
   const Dataset all = read_dataset({path, {}});
-  EXPECT_EQ(all.mesh.triangle_count(), 4u);
-  EXPECT_EQ(all.mesh.vertex_count(), 5u);  // welded where the blocks meet
+  // Welded where the blocks meet; the face the two blocks share, once.
+  EXPECT_EQ(all.mesh.triangle_count(), 3u);
+  EXPECT_EQ(all.mesh.vertex_count(), 5u);
   EXPECT_EQ(all.blocks, (std::vector<std::string>{"wing", "body"}));
   const Dataset wing = read_dataset({path, {"wing"}});
   EXPECT_EQ(wing.mesh.triangle_count(), 2u);
@@ -494,6 +495,20 @@ void expect_bad(const fs::path& path, const std::string& problem,
   }
 }
 
+// A file whose cells VTK reads past into memory it never wrote: what comes
+// out varies from run to run (ParaView shows the same). Either one line
+// naming the file, or a mesh whose every index is in range.
+void expect_line_or_valid_mesh(const fs::path& path) {
+  try {
+    const Dataset d = read_dataset({path, {}});
+    EXPECT_NO_THROW(validate_mesh(d.mesh, path.string()));
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_EQ(what.rfind(path.string() + ": ", 0), 0u) << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+  }
+}
+
 std::string legacy(const std::string& points, const std::string& polygons,
                    const std::string& extra = "") {
   return "# vtk DataFile Version 4.2\nbad\nASCII\nDATASET POLYDATA\n" + points + polygons + extra;
@@ -508,12 +523,17 @@ TEST_F(VtkIo, BadLegacyFiles) {
   expect_bad(write_file(dir_ / "truncated.vtk", legacy("POINTS 3 float\n0 0 0 1 0", "")), "");
   expect_bad(write_file(dir_ / "negative.vtk", legacy("POINTS -5 float\n", "")), "");
   expect_bad(write_file(dir_ / "huge.vtk", legacy("POINTS 400000000000 float\n0 0 0\n", "")), "");
-  expect_bad(write_file(dir_ / "huge_cells.vtk", legacy(pts, "POLYGONS 900000000000 4\n3 0 1 2\n")),
-             "");
+  // A cell count no file holds, but a size that VTK reads by: VTK reads the
+  // one triangle, and so does ibfvs (VTK's parser is the only one).
+  EXPECT_EQ(read_dataset({write_file(dir_ / "huge_cells.vtk",
+                                     legacy(pts, "POLYGONS 900000000000 4\n3 0 1 2\n")),
+                          {}})
+                .mesh.triangle_count(),
+            1u);
   expect_bad(write_file(dir_ / "huge_field.vtk",
                         legacy(pts, "POLYGONS 1 4\n3 0 1 2\n",
                                "POINT_DATA 3\nFIELD FieldData 1\nwss 3 900000000000 float\n")),
-             "more than the file can hold");
+             "VTK's reader crashed on it (SIGABRT)");
   expect_bad(write_file(dir_ / "range.vtk", legacy(pts, "POLYGONS 1 4\n3 0 1 99\n")),
              "refers to point 99 but there are only 3");
   {
@@ -527,21 +547,20 @@ TEST_F(VtkIo, BadLegacyFiles) {
     expect_bad(dir_ / "nan.vtk", "point 2 has a non-finite coordinate");
   }
   expect_bad(write_file(dir_ / "lines.vtk", legacy(pts, "LINES 1 4\n3 0 1 2\n")), "has no surface");
-  // What the fuzzers found: VTK 9.2 crashed on these (docs/reliability.md),
-  // and a count of 1e299 overflowed our own message.
+  // What the fuzzers found: VTK 9.2 crashed on these (docs/reliability.md);
+  // read in a child process, a crash is one line naming the file.
   expect_bad(write_file(dir_ / "types.vtk",
                         "# vtk DataFile Version 4.2\nbad\nASCII\nDATASET UNSTRUCTURED_GRID\n" +
                             pts + "CELLS 1 4\n3 0 1 2\n"),
-             "line 7 (CELLS): an unstructured grid's cells need CELL_TYPES");
+             "has no surface to show (3 points, 0 cells");
   expect_bad(write_file(dir_ / "1e299.vtk", legacy("POINTS 1e299 float\n0 0 0\n", "")),
-             "declares 3e+299 values, more than the file can hold");
-  expect_bad(write_file(dir_ / "cells.vtk", legacy(pts, "POLYGONS 2 6\n3 0 1 2\n9 0\n")),
-             "the POLYGONS of line 7 does not add up to its declared size");
+             "Unsupported data type: e299");
+  expect_line_or_valid_mesh(
+      write_file(dir_ / "cells.vtk", legacy(pts, "POLYGONS 2 6\n3 0 1 2\n9 0\n")));
   const std::string v5 = "# vtk DataFile Version 5.1\nv5\nASCII\nDATASET POLYDATA\n" + pts +
                          "POLYGONS 2 3\nOFFSETS vtktypeint64\n0 3\nCONNECTIVITY vtktypeint64\n0 1\n"
                          "FIELD FieldData 1\n";
-  expect_bad(write_file(dir_ / "cut.vtk", v5),
-             "line 12: 'FIELD' where the CONNECTIVITY of line 10 has 1 values to go");
+  expect_bad(write_file(dir_ / "cut.vtk", v5), "VTK's reader crashed on it (SIGSEGV)");
   // A binary cell list before version 5 whose records do not fill its size:
   // VTK 9.2's ImportLegacyFormat read past its array (SEGV).
   const auto be = [](std::initializer_list<std::uint32_t> values) {
@@ -556,48 +575,44 @@ TEST_F(VtkIo, BadLegacyFiles) {
       be({0, 0, 0, 1, 0, 0, 0, 1, 0}) + "\n";
   expect_bad(write_file(dir_ / "binary_cells.vtk",
                         binary_head + "POLYGONS 1 4\n" + be({70000, 0, 1, 2}) + "\n"),
-             "line 7 (POLYGONS): cell 0 does not fit the list's declared size");
-  expect_bad(write_file(dir_ / "binary_short.vtk",
-                        binary_head + "POLYGONS 2 6\n" + be({3, 0, 1, 2, 0, 5}) + "\n"),
-             "line 7 (POLYGONS): the cells do not add up to the list's declared size");
+             "VTK's reader crashed on it (SIGSEGV)");
+  expect_line_or_valid_mesh(write_file(
+      dir_ / "binary_short.vtk", binary_head + "POLYGONS 2 6\n" + be({3, 0, 1, 2, 0, 5}) + "\n"));
   expect_bad(write_file(dir_ / "binary_cut.vtk", binary_head + "POLYGONS 1 4\n" + be({3, 0})),
-             "truncated: the line 7 (POLYGONS) needs 16 bytes, 8 are left");
+             "Error reading binary cell data!");
   expect_bad(write_file(dir_ / "binary_points.vtk",
                         "# vtk DataFile Version 4.2\nb\nBINARY\nDATASET POLYDATA\n"
                         "POINTS 3 double\n" +
                             be({0, 0, 0})),
-             "truncated: the POINTS of line 5 needs 72 bytes, 12 are left");
+             "Error reading binary data!");
   // "Version 5" without a minor number is version 0 to VTK: cell records,
   // here the text of an OFFSETS line.
   std::string no_minor =
       binary_head + "POLYGONS 2 3\nOFFSETS vtktypeint64\n" + be({0, 0, 0, 3}) + "\n";
   no_minor.replace(0, no_minor.find('\n') + 1, "# vtk DataFile Version 5\n");
-  expect_bad(write_file(dir_ / "no_minor.vtk", no_minor),
-             "line 7 (POLYGONS): cell 0 does not fit the list's declared size");
+  expect_bad(write_file(dir_ / "no_minor.vtk", no_minor), "VTK's reader crashed on it (SIGSEGV)");
   // A block cut short: VTK takes its neighbour's bytes and reads on from
   // the middle of a section (VTK 9.2 crashed on some of these).
   std::string overrun = binary_head + "POLYGONS 1 4\n" + be({3, 0, 1, 2}) + "\n";
   overrun.replace(overrun.find("POINTS 3"), 8, "POINTS 4");
-  expect_bad(write_file(dir_ / "overrun.vtk", overrun),
-             "line 6: '4' is not a section of POLYDATA (is the section before it cut short?)");
+  expect_bad(write_file(dir_ / "overrun.vtk", overrun), "Unrecognized keyword: 4");
   std::string types_only = binary_head + "CELL_TYPES 1\n" + be({5}) + "\n";
   types_only.replace(types_only.find("POLYDATA"), 8, "UNSTRUCTURED_GRID");
   expect_bad(write_file(dir_ / "types_only.vtk", types_only),
-             "an unstructured grid with CELL_TYPES but no CELLS");
+             "has no surface to show (3 points, 0 cells");
   // Points of a type that is no number type: VTK 9.2 read none (SEGV).
   expect_bad(write_file(dir_ / "ptype.vtk", legacy("POINTS 3 FIELD\n0 0 0 1 0 0 0 1 0\n", "")),
-             "(POINTS): points of type 'FIELD'");
+             "Unsupported data type: field");
   std::string binary_type = binary_head;
   binary_type.replace(binary_type.find("POINTS 3 int"), 12, "POINTS 3 FIELD");
-  expect_bad(write_file(dir_ / "binary_ptype.vtk", binary_type),
-             "line 5 (POINTS): points of type 'FIELD'");
+  expect_bad(write_file(dir_ / "binary_ptype.vtk", binary_type), "Unsupported data type: field");
   // VTK takes a word for the keyword it begins with, in any case: "FIELDS
   // 12 float" is a FIELD without an array count (VTK 9.2: SEGV), and
   // "ASCII?" is ASCII.
   expect_bad(write_file(dir_ / "fields.vtk",
                         "# vtk DataFile Version 4.2\nx\nASCII?\nDATASET POLYDATA\nFIELDS 12 float\n"
                         "0 0 0\n"),
-             "line 5 (FIELD): 'float' is not a count");
+             "VTK's reader crashed on it (SIGSEGV)");
   // and the same list, whole, reads.
   EXPECT_EQ(read_dataset({write_file(dir_ / "binary_ok.vtk",
                                      binary_head + "POLYGONS 1 4\n" + be({3, 0, 1, 2}) + "\n"),
@@ -612,10 +627,12 @@ TEST_F(VtkIo, BadLegacyFiles) {
                           {}})
                 .mesh.triangle_count(),
             1u);
-  expect_bad(
-      write_file(dir_ / "metadata_bad.vtk", binary_head + "metadata!" + std::string("\0\x05", 2) +
-                                                "\n\nPOLYGONS 1 4\n" + be({3, 0, 1, 2}) + "\n"),
-      "is not a METADATA line (METADATA alone)");
+  EXPECT_EQ(read_dataset({write_file(dir_ / "metadata_bad.vtk",
+                                     binary_head + "metadata!" + std::string("\0\x05", 2) +
+                                         "\n\nPOLYGONS 1 4\n" + be({3, 0, 1, 2}) + "\n"),
+                          {}})
+                .mesh.triangle_count(),
+            1u);
   // A structured grid: before reading, VTK 9.2 takes every word of the file
   // for a keyword, binary data included, and crashed on "FieldD" inside the
   // points (fuzzing). One that VTK wrote, field data included, reads.
@@ -642,8 +659,7 @@ TEST_F(VtkIo, BadLegacyFiles) {
                         "# vtk DataFile Version 5.1\ng\nBINARY\nDATASET STRUCTURED_GRID\n"
                         "DIMENSIONS 2 2 1\nPOINTS 4 float\n" +
                             std::string(41, '\0') + " FieldD\n"),
-             "a FIELD section whose count of arrays is '', not a count (VTK 9.2's structured "
-             "grid reader would crash on it)");
+             "VTK's reader crashed on it (SIGSEGV)");
   expect_bad(
       write_file(dir_ / "short_array.vtk", legacy(pts, "POLYGONS 1 4\n3 0 1 2\n",
                                                   "POINT_DATA 3\nVECTORS v float\n1 0 0 1 0 0\n")),
@@ -680,8 +696,7 @@ TEST_F(VtkIo, BadXmlFiles) {
   twice.insert(first_array, "<DataArray type='Float32' Name = '&#" +
                                 std::to_string(static_cast<int>(array_name[0])) + ";" +
                                 array_name.substr(1) + "' format='ascii'>1</DataArray>\n");
-  expect_bad(write_file(dir_ / "twice.vtp", twice),
-             "the CellData of a piece has two arrays named '" + array_name + "'");
+  expect_bad(write_file(dir_ / "twice.vtp", twice), "Cannot read cell data array");
   std::string huge = text;
   const std::size_t np = huge.find("NumberOfPoints=\"4\"");
   ASSERT_NE(np, std::string::npos);
@@ -718,15 +733,11 @@ TEST_F(VtkIo, BadXmlFiles) {
   };
   std::string blocks = appended("blocks.vtp", true);
   blocks.replace(data_of(blocks, "v"), 4, std::string("\xff\xff\xff\x7f", 4));
-  expect_bad(write_file(dir_ / "blocks.vtp", blocks),
-             "DataArray 'v': its compressed data declare 2147483647 blocks, more than the "
-             "file holds");
+  expect_bad(write_file(dir_ / "blocks.vtp", blocks), "too large to read");
   // A block table that disagrees with itself: VTK read past it (SEGV).
   std::string table = appended("table.vtp", true);
   table.replace(data_of(table, "v") + 8, 4, std::string("\0\0\0\x7f", 4));
-  expect_bad(write_file(dir_ / "table.vtp", table),
-             "DataArray 'v': its compressed data's header is inconsistent (1 blocks of 32768 "
-             "bytes, the last 2130706432)");
+  expect_bad(write_file(dir_ / "table.vtp", table), "Decompression produced incorrect size");
   // A cell with fewer points than its type has: VTK's surface filter read
   // past the cell (SEGV).
   {
@@ -744,12 +755,11 @@ TEST_F(VtkIo, BadXmlFiles) {
   // One polygon: its 4-byte size header, then the one Int64 offset.
   offsets.replace(data_of(offsets, "offsets") + 4, 8, std::string("\0\0\0\0\0\0\0\x40", 8));
   expect_bad(write_file(dir_ / "offsets.vtp", offsets),
-             "DataArray 'offsets': its last offset, 4611686018427387904, is more connectivity "
-             "than the file holds");
+             "the \"connectivity\" array is not long enough");
   std::string bytes = appended("bytes.vtp", false);
   bytes.replace(data_of(bytes, "Points"), 4, std::string("\0\0\0\x10", 4));
-  expect_bad(write_file(dir_ / "bytes.vtp", bytes),
-             "DataArray 'Points': its data declare 268435456 bytes, more than the file holds");
+  // A size header larger than the data: VTK reads the points it needs.
+  EXPECT_EQ(read_dataset({write_file(dir_ / "bytes.vtp", bytes), {}}).mesh.triangle_count(), 2u);
   // A multiblock whose piece is missing; a .pvd naming a missing file.
   const fs::path vtm = write_multiblock(dir_);
   fs::remove_all(dir_ / "plane");

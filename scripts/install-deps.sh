@@ -23,6 +23,9 @@ packages=(
   # The Python module: pybind11, Debian's Python with numpy; pytest for its
   # tests, xarray for docs/python.md's netCDF example.
   pybind11-dev python3-dev python3-numpy python3-pytest python3-xarray
+  # OpenFOAM, for the test that runs a small case and reads every file it
+  # writes (tests/corpus); binaries need only WM_PROJECT_DIR.
+  openfoam
   # The ParaView plugin: what find_package(ParaView) needs beside paraview-dev
   # (its Qt, MPI and OpenGL dependencies), pvpython and pvbatch for its
   # tests, mpiexec for the distributed ones.

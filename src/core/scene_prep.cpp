@@ -236,6 +236,18 @@ PreparedScene prepare(const Scene& s, std::optional<LoadedMesh> given) {
   const glm::vec3 up = s.up_auto ? thinnest_axis(mesh) : s.up.value_or(glm::vec3(0, 1, 0));
   p.camera = s.camera;
   p.camera.up = up;
+  // A flat surface (one wall patch, a plate) seen edge-on from the default
+  // view shows nothing: the default view then looks at its face.
+  if (!s.up_auto && !s.up && s.camera.azimuth_deg == 0.0f && s.camera.elevation_deg == 0.0f &&
+      s.camera.target == glm::vec3(0.0f)) {
+    const Bounds b = mesh_bounds(mesh);
+    const glm::vec3 e = b.max - b.min;
+    const float largest = std::max({e.x, e.y, e.z});
+    if (e.x <= 1e-4f * largest)
+      p.camera.azimuth_deg = 90.0f;  // from +X
+    else if (e.y <= 1e-4f * largest)
+      p.camera.elevation_deg = 90.0f;  // from +Y, down
+  }
   if (field_spec && field_spec->kind == FieldKind::Gradient && !field_spec->vector_given)
     field_spec->value = up;
   std::optional<FieldSpec> default_field = s.default_field;

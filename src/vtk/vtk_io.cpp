@@ -57,6 +57,8 @@
 #include <vtkXMLDataElement.h>
 #include <vtkXMLDataParser.h>
 #include <vtkXMLGenericDataObjectReader.h>
+#include <vtkXMLPartitionedDataSetCollectionReader.h>
+#include <vtkXMLPartitionedDataSetReader.h>
 #include <vtkXMLPolyDataWriter.h>
 #include <vtk_nlohmannjson.h>
 #include VTK_NLOHMANN_JSON(json.hpp)
@@ -286,11 +288,20 @@ vtkSmartPointer<vtkDataObject> read_vtk_file(const Guard& g) {
     g.check();
     out = reader->GetOutput();
   } else {
-    vtkNew<vtkXMLGenericDataObjectReader> reader;
+    // The generic reader takes every XML kind but VTK 9.2's partitioned
+    // data sets and collections, which have readers of their own.
+    vtkSmartPointer<vtkXMLReader> reader;
+    const std::string ext = lower_extension(g.path());
+    if (ext == ".vtpd")
+      reader = vtkSmartPointer<vtkXMLPartitionedDataSetReader>::New();
+    else if (ext == ".vtpc")
+      reader = vtkSmartPointer<vtkXMLPartitionedDataSetCollectionReader>::New();
+    else
+      reader = vtkSmartPointer<vtkXMLGenericDataObjectReader>::New();
     reader->SetFileName(g.path().string().c_str());
     reader->Update();
     g.check();
-    out = reader->GetOutput();
+    out = reader->GetOutputDataObject(0);
   }
   if (!out) g.fail("VTK could not read it (not a VTK file?)");
   return out;
@@ -731,6 +742,29 @@ TriMesh merge_surfaces(std::vector<Surface>& surfaces, const std::vector<std::st
   for (const Surface& s : surfaces) {
     for (const auto& [name, a] : s.point_arrays) point_comps.emplace(name, a.first);
     for (const auto& [name, a] : s.cell_arrays) cell_comps.emplace(name, a.first);
+  }
+  // A block with an array as cell data where others have it as point data
+  // (foamToVTK -one-boundary: the patches' cell data beside the volume's
+  // point data) gets it at its vertices, area-weighted, rather than NaN.
+  for (Surface& s : surfaces) {
+    for (const auto& [name, c] : point_comps) {
+      const auto cell = s.cell_arrays.find(name);
+      if (s.point_arrays.count(name) || cell == s.cell_arrays.end() || cell->second.first != c)
+        continue;
+      TriMesh shape;
+      shape.positions = s.positions;
+      shape.triangles = s.triangles;
+      const auto n = static_cast<std::size_t>(c);
+      std::vector<float> at_vertices(s.positions.size() * n);
+      for (std::size_t k = 0; k < n; ++k) {
+        std::vector<float> component(s.triangles.size());
+        for (std::size_t t = 0; t < component.size(); ++t)
+          component[t] = cell->second.second[t * n + k];
+        const std::vector<float> v = triangle_to_vertex(shape, component);
+        for (std::size_t i = 0; i < v.size(); ++i) at_vertices[i * n + k] = v[i];
+      }
+      s.point_arrays[name] = {c, std::move(at_vertices)};
+    }
   }
   Arrays points, cells;
   for (const auto& [name, c] : point_comps) points[name].first = c;

@@ -54,22 +54,26 @@ def sphere(n=96):
     return pts, tris, {"v": v, "uv2": pts[:, :2].copy(), "height": pts[:, 2].copy()}
 
 
-def write_vtp(path, pts, tris, arrays):
+def write_vtp(path, pts, tris, arrays, cell_arrays=None):
     def block(a):
         return " ".join("%.7g" % x for x in np.asarray(a, dtype=float).ravel())
 
-    data = "".join(
-        '<DataArray type="Float32" Name="%s" NumberOfComponents="%d" format="ascii">%s</DataArray>'
-        % (name, 1 if a.ndim == 1 else a.shape[1], block(a))
-        for name, a in arrays.items())
+    def data_arrays(arrays):
+        return "".join(
+            '<DataArray type="Float32" Name="%s" NumberOfComponents="%d" format="ascii">%s'
+            "</DataArray>" % (name, 1 if a.ndim == 1 else a.shape[1], block(a))
+            for name, a in arrays.items())
+
     path.write_text(
         '<?xml version="1.0"?><VTKFile type="PolyData" version="1.0"><PolyData>'
         '<Piece NumberOfPoints="%d" NumberOfPolys="%d"><PointData>%s</PointData>'
+        "<CellData>%s</CellData>"
         '<Points><DataArray type="Float32" NumberOfComponents="3" format="ascii">%s</DataArray></Points>'
         '<Polys><DataArray type="Int64" Name="connectivity" format="ascii">%s</DataArray>'
         '<DataArray type="Int64" Name="offsets" format="ascii">%s</DataArray></Polys>'
         "</Piece></PolyData></VTKFile>"
-        % (len(pts), len(tris), data, block(pts), " ".join(map(str, tris.ravel())),
+        % (len(pts), len(tris), data_arrays(arrays), data_arrays(cell_arrays or {}), block(pts),
+           " ".join(map(str, tris.ravel())),
            " ".join(str(3 * (k + 1)) for k in range(len(tris)))))
 
 
@@ -105,6 +109,10 @@ def data(tmp_path_factory):
     pts, tris, arrays = sphere()
     write_vtp(d / "sphere.vtp", pts, tris, arrays)
     write_vtp(d / "plain.vtp", pts, tris, {"height": arrays["height"]})
+    # A cell scalar in bands of longitude, which Surface colours flat per cell.
+    centre = pts[tris].mean(axis=1)
+    bands = np.floor(6 * (np.arctan2(centre[:, 1], centre[:, 0]) / np.pi + 1)) + centre[:, 2]
+    write_vtp(d / "cells.vtp", pts, tris, arrays, {"band": bands})
     write_pieces(d, pts, tris, arrays)
     return d
 
@@ -282,6 +290,77 @@ def test_colour_by_a_scalar_through_paraviews_colour_map(data, tmp_path):
     assert warmth(top) > 30
     assert warmth(top) - warmth(bottom) > 40
     assert local_contrast(img, mask) > 4
+
+
+def hue_and_chroma(img):
+    """Hue in degrees and chroma (max - min channel, 0..1) per pixel."""
+    rgb = img / 255.0
+    hi, lo = rgb.max(axis=-1), rgb.min(axis=-1)
+    chroma = hi - lo
+    r, g, b = rgb[..., 0], rgb[..., 1], rgb[..., 2]
+    c = np.where(chroma > 0, chroma, 1.0)
+    h = np.where(hi == r, ((g - b) / c) % 6, np.where(hi == g, (b - r) / c + 2, (r - g) / c + 4))
+    return 60.0 * h, chroma
+
+
+def hue_difference(ibfvs, surface, mask):
+    """Per pixel of the surface (less its blended rim) where both pictures
+    have colour enough to have a hue: the hue difference in degrees; and
+    the share of the surface compared."""
+    inside = ~grown(~mask)
+    h1, c1 = hue_and_chroma(ibfvs)
+    h2, c2 = hue_and_chroma(surface)
+    compared = inside & (c1 > 0.06) & (c2 > 0.12)
+    d = np.abs(h1 - h2)[compared]
+    return np.minimum(d, 360.0 - d), compared.sum() / max(inside.sum(), 1)
+
+
+COLOURINGS = {
+    "point-scalar": {"color": ["POINTS", "height"]},
+    "vector-magnitude": {"color": ["POINTS", "v"]},
+    "vector-component": {"color": ["POINTS", "v"],
+                         "lut": {"VectorMode": "Component", "VectorComponent": 1}},
+    "log-scale": {"color": ["POINTS", "v"], "lut": {"UseLogScale": 1}},
+    "cell-scalar": {"color": ["CELLS", "band"], "data": "cells.vtp"},
+    "data-changes": {"color": ["POINTS", "c"], "calculator": ["c", "coordsX", "coordsY*coordsZ"]},
+}
+
+
+@pytest.mark.parametrize("case", list(COLOURINGS))
+def test_colours_have_surfaces_hue_at_every_pixel(data, tmp_path, case):
+    """With a scalar coloured, the IBFVS representation's hue at every pixel
+    is the Surface representation's at that pixel: the grey texture changes
+    only brightness and saturation (the paper's blend), never the hue."""
+    cfg = dict(COLOURINGS[case])
+    cfg["data"] = str(data / cfg.get("data", "sphere.vtp"))
+    _, out = run(dict(cfg, vectors=["POINTS", "v"], frames=12, shots=[12], mask=True,
+                      reference=True, size=[400, 300]), tmp_path)
+    mask = mask_of(out)
+    pairs = [("-12.png", "-reference.png")]
+    if "calculator" in cfg:
+        pairs.append(("-changed.png", "-reference-changed.png"))
+    for shot, ref in pairs:
+        ibfvs, surface = image(out + shot), image(out + ref)
+        d, share = hue_difference(ibfvs, surface, mask)
+        assert share > 0.4, "%s: only %.0f%% of the surface has colour to compare" % (shot,
+                                                                                     100 * share)
+        assert np.median(d) < 2.0 and np.percentile(d, 99) < 12.0, (
+            "%s: hue differs by %.1f degrees (median), %.1f (99th percentile), %.1f%% of pixels "
+            "by more than 10" % (shot, np.median(d), np.percentile(d, 99), 100 * (d > 10).mean()))
+        # And the texture is there, over the colour.
+        assert local_contrast(ibfvs, mask) > 3 * local_contrast(surface, mask)
+
+
+@pytest.mark.skipif(MPIEXEC is None, reason="needs mpiexec")
+def test_colours_under_mpi_have_surfaces_hue(data, tmp_path):
+    _, out = run({"data": str(data / "sphere.pvtp"), "vectors": ["POINTS", "v"],
+                  "color": ["POINTS", "height"], "frames": 12, "shots": [12], "mask": True,
+                  "reference": True, "size": [400, 300]}, tmp_path, ranks=2)
+    d, share = hue_difference(image(out + "-12.png"), image(out + "-reference.png"),
+                              mask_of(out))
+    assert share > 0.4
+    assert np.median(d) < 2.0 and np.percentile(d, 99) < 12.0, (np.median(d),
+                                                                np.percentile(d, 99))
 
 
 @pytest.mark.parametrize("vectors,expected", [

@@ -710,14 +710,61 @@ Surface block_surface(vtkDataSet* ds) {
   return s;
 }
 
+// Every triangle with three vertices of its own, so that its cells' values
+// stay its own (flat, as Surface colours cells) instead of being averaged at
+// shared vertices: point arrays and smooth normals (of the welded surface)
+// copied to each triangle's corners, `per_triangle` arrays (one tuple per
+// triangle) to all three.
+TriMesh cells_kept_apart(TriMesh& welded, const Arrays& per_triangle) {
+  compute_vertex_normals(welded);
+  TriMesh out;
+  const std::size_t n = welded.triangles.size();
+  const auto gather = [&](const auto& values) {
+    std::remove_cvref_t<decltype(values)> v(3 * n);
+    for (std::size_t t = 0; t < n; ++t)
+      for (std::size_t k = 0; k < 3; ++k) v[3 * t + k] = values[welded.triangles[t][k]];
+    return v;
+  };
+  out.positions = gather(welded.positions);
+  out.normals = gather(welded.normals);
+  for (const auto& [name, v] : welded.scalars) out.scalars[name] = gather(v);
+  for (const auto& [name, v] : welded.vector_arrays) out.vector_arrays[name] = gather(v);
+  out.other_arrays = welded.other_arrays;
+  out.triangles.resize(n);
+  for (std::size_t t = 0; t < n; ++t) {
+    const auto i = static_cast<std::uint32_t>(3 * t);
+    out.triangles[t] = {i, i + 1, i + 2};
+  }
+  for (const auto& [name, a] : per_triangle) {
+    const auto c = static_cast<std::size_t>(a.first);
+    if (c == 1) {
+      std::vector<float>& v = out.scalars[name];
+      v.resize(3 * n);
+      for (std::size_t t = 0; t < n; ++t) v[3 * t] = v[3 * t + 1] = v[3 * t + 2] = a.second[t];
+    } else if (c == 3) {
+      std::vector<glm::vec3>& v = out.vector_arrays[name];
+      v.resize(3 * n);
+      for (std::size_t t = 0; t < n; ++t)
+        v[3 * t] = v[3 * t + 1] = v[3 * t + 2] =
+            glm::vec3(a.second[3 * t], a.second[3 * t + 1], a.second[3 * t + 2]);
+    } else {
+      out.other_arrays[name] = a.first;
+    }
+  }
+  return out;
+}
+
 // The blocks' surfaces as one mesh: points welded where blocks meet (the
 // patches of an OpenFOAM case share their edges), arrays missing from a
 // block NaN there, cell arrays carried to the vertices area-weighted.
 TriMesh merge_surfaces(std::vector<Surface>& surfaces, const std::vector<std::string>& names,
-                       std::vector<std::string>& warnings, const Guard& g) {
+                       std::vector<std::string>& warnings, const Guard& g, bool cells_apart) {
   TriMesh mesh;
+  Arrays per_triangle;  // cells_apart: the cell arrays as they are
   const auto store = [&](const std::string& name, int c, std::vector<float> values, bool cell) {
-    if (c == 1) {
+    if (cell && cells_apart) {
+      per_triangle[name] = {c, std::move(values)};
+    } else if (c == 1) {
       mesh.scalars[name] = cell ? triangle_to_vertex(mesh, values) : std::move(values);
     } else if (c == 3) {
       std::vector<glm::vec3> v(values.size() / 3);
@@ -734,9 +781,9 @@ TriMesh merge_surfaces(std::vector<Surface>& surfaces, const std::vector<std::st
     mesh.triangles = std::move(s.triangles);
     for (auto& [name, a] : s.point_arrays) store(name, a.first, std::move(a.second), false);
     for (auto& [name, a] : s.cell_arrays)
-      if (!mesh.scalars.count(name) && !mesh.vector_arrays.count(name))  // point data wins
-        store(name, a.first, std::move(a.second), true);
-    return mesh;
+      if (cells_apart || (!mesh.scalars.count(name) && !mesh.vector_arrays.count(name)))
+        store(name, a.first, std::move(a.second), true);  // point data wins, unless apart
+    return cells_apart ? cells_kept_apart(mesh, per_triangle) : mesh;
   }
   std::map<std::string, int> point_comps, cell_comps;
   for (const Surface& s : surfaces) {
@@ -857,16 +904,17 @@ TriMesh merge_surfaces(std::vector<Surface>& surfaces, const std::vector<std::st
     store(name, a.first, std::move(a.second), false);
   }
   for (auto& [name, a] : cells) {
-    if (mesh.scalars.count(name) || mesh.vector_arrays.count(name)) continue;  // point data wins
+    if (!cells_apart && (mesh.scalars.count(name) || mesh.vector_arrays.count(name)))
+      continue;  // point data wins, unless apart
     store(name, a.first, std::move(a.second), true);
   }
-  return mesh;
+  return cells_apart ? cells_kept_apart(mesh, per_triangle) : mesh;
 }
 
 // Surfaces of the selected blocks of a data object, merged into one mesh.
 TriMesh surface_of(vtkDataObject* obj, const std::vector<std::string>& patterns,
                    std::vector<std::string>* block_names, std::vector<std::string>& warnings,
-                   const Guard& g, bool patterns_applied) {
+                   const Guard& g, bool patterns_applied, bool cells_apart = false) {
   std::vector<Block> blocks;
   collect_blocks(obj, "", "", blocks);
   std::vector<Block> chosen;
@@ -915,7 +963,7 @@ TriMesh surface_of(vtkDataObject* obj, const std::vector<std::string>& patterns,
            ", none of them a polygon, strip or volume cell" +
            (blocks.empty() ? std::string(", no data set at all") : std::string()) + ")");
   if (block_names) *block_names = names;
-  TriMesh mesh = merge_surfaces(surfaces, names, warnings, g);
+  TriMesh mesh = merge_surfaces(surfaces, names, warnings, g, cells_apart);
   return mesh;
 }
 
@@ -1242,11 +1290,11 @@ void write_polydata(const TriMesh& mesh, const std::vector<glm::vec2>* uv, const
   });
 }
 
-TriMesh surface_mesh(vtkDataObject* data, const std::string& name) {
+TriMesh surface_mesh(vtkDataObject* data, const std::string& name, bool cells_apart) {
   if (!data) throw InputError(name + ": no data");
   const Guard g(name, false);
   std::vector<std::string> warnings;
-  return surface_of(data, {}, nullptr, warnings, g, true);
+  return surface_of(data, {}, nullptr, warnings, g, true, cells_apart);
 }
 
 void install_vtk_io() {

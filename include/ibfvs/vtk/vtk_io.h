@@ -6,9 +6,12 @@
 // and the writers then reach it.
 //
 // Read: legacy .vtk (4.2 and 5.1 layouts, ASCII and binary, any dataset
-// kind; arrays as SCALARS/VECTORS or FIELD data), XML .vtp .vtu .vts .vtr
-// .vti and .vtm multiblocks, .pvd series, OpenFOAM cases (.foam or the case
-// folder; boundary patches, time folders). Polygons and quads are
+// kind; arrays as SCALARS/VECTORS or FIELD data), XML of every kind (.vtp
+// .vtu .vts .vtr .vti, their parallel .pvt*, .vtm multiblocks, .vtpd and
+// .vtpc partitioned data), .pvd and .series time series, OpenFOAM cases
+// (.foam or the case folder; boundary patches, time folders). Files are
+// read in a child process (core/isolation.h): VTK's parser is the only one,
+// and a crash or an allocation past the limit there is an error line. Polygons and quads are
 // triangulated, strips unrolled, lines and vertices dropped; a volume shows
 // its outer surface. Cell arrays reach the vertices area-weighted.
 
@@ -34,9 +37,13 @@ std::string vtk_version();
 /// ParaView hands a representation), as read() makes it of a file's: every
 /// block's polygons triangulated or a volume's outer surface, blocks welded,
 /// arrays by name (cell arrays area-weighted to the vertices), no normals
-/// computed. Leaves VTK's output window alone. Throws InputError starting
-/// with `name` when there is no surface.
-TriMesh surface_mesh(vtkDataObject* data, const std::string& name);
+/// computed. With `cells_apart`, every triangle has three vertices of its
+/// own instead, carrying its cell's values unaveraged (flat per cell, as
+/// ParaView's Surface colours cell data), with the welded surface's smooth
+/// normals; cell arrays then win over point arrays of the same name.
+/// Leaves VTK's output window alone. Throws InputError starting with `name`
+/// when there is no surface.
+TriMesh surface_mesh(vtkDataObject* data, const std::string& name, bool cells_apart = false);
 
 /// What dataset_io.h's functions do, callable directly.
 Dataset read(const DatasetRequest& request);

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <exception>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -26,7 +27,9 @@
 
 #include "vtkActor.h"
 #include "vtkCamera.h"
+#include "vtkColorTransferFunction.h"
 #include "vtkDataObject.h"
+#include "vtkLookupTable.h"
 #include "vtkMath.h"
 #include "vtkMatrix3x3.h"
 #include "vtkMatrix4x4.h"
@@ -86,6 +89,7 @@ class vtkIBFVSMapper::Internals {
   vtkMTimeType input_time = 0;
   vtkDataObject* input = nullptr;
   std::string input_vectors;
+  bool cells_apart = false;              // coloured by a cell array: triangles apart
   std::shared_ptr<ibfvs::TriMesh> mesh;  // null: this rank's piece is empty
   std::string problem;                   // why this rank cannot draw the texture
   float speed = 0.0f;                    // fastest vector of this piece
@@ -201,14 +205,15 @@ std::string array_names(const ibfvs::TriMesh& mesh) {
 // The surface of this rank's piece with the chosen vectors; `problem` says
 // why there is none. An empty piece is no problem (null mesh).
 std::shared_ptr<ibfvs::TriMesh> take_surface(vtkDataObject* input, const std::string& vectors,
-                                             std::string& problem, float& speed) {
+                                             bool cells_apart, std::string& problem, float& speed) {
   problem.clear();
   speed = 0.0f;
   if (!input || input->GetNumberOfElements(vtkDataObject::POINT) == 0) {
     return nullptr;
   }
   try {
-    auto mesh = std::make_shared<ibfvs::TriMesh>(ibfvs::vtk::surface_mesh(input, "the input"));
+    auto mesh =
+        std::make_shared<ibfvs::TriMesh>(ibfvs::vtk::surface_mesh(input, "the input", cells_apart));
     bool any_vectors = false;
     for (const auto& a : mesh->vector_arrays) any_vectors = any_vectors || a.first != "Normals";
     if (!any_vectors) {
@@ -258,9 +263,32 @@ std::shared_ptr<ibfvs::TriMesh> take_surface(vtkDataObject* input, const std::st
   }
 }
 
-// Positions in ParaView's lookup table for each vertex, and the table at 256
-// points: the colour of a scalar the way the Surface representation maps
-// it (linear or log scale, magnitude or component of a vector array).
+// Whether the Surface representation would colour by a cell array: what
+// ParaView's ColorBy(("CELLS", name)) sets.
+bool colours_cells(int scalar_mode) {
+  return scalar_mode == VTK_SCALAR_MODE_USE_CELL_FIELD_DATA ||
+         scalar_mode == VTK_SCALAR_MODE_USE_CELL_DATA;
+}
+
+// The colour ParaView's table gives values it cannot map (NaN).
+std::optional<glm::vec3> nan_colour(vtkScalarsToColors* lut) {
+  double c[3];
+  if (auto* f = vtkColorTransferFunction::SafeDownCast(lut)) {
+    f->GetNanColor(c);
+  } else if (auto* t = vtkLookupTable::SafeDownCast(lut)) {
+    const double* rgba = t->GetNanColor();
+    std::copy(rgba, rgba + 3, c);
+  } else {
+    return std::nullopt;
+  }
+  return glm::vec3(c[0], c[1], c[2]);
+}
+
+// Positions in ParaView's lookup table for each vertex (of the prepared
+// mesh, in its order), and the table at 256 points: the colour of a scalar
+// the way the Surface representation maps it (linear or log scale,
+// magnitude or component of a vector array). NaN stays NaN: the shader then
+// shows the surface colour, which the caller sets to the table's NaN colour.
 bool map_colours(const ibfvs::TriMesh& mesh, const char* name, vtkScalarsToColors* lut,
                  std::vector<float>& t, std::vector<glm::vec3>& table) {
   if (!name || !*name || !lut) return false;
@@ -282,6 +310,10 @@ bool map_colours(const ibfvs::TriMesh& mesh, const char* name, vtkScalarsToColor
   const double span = hi > lo ? hi - lo : 1.0;
   t.resize(values.size());
   for (std::size_t i = 0; i < values.size(); ++i) {
+    if (std::isnan(values[i])) {
+      t[i] = values[i];
+      continue;
+    }
     const double x = log && values[i] <= 0.0f ? lo : f(values[i]);
     const double u = (x - lo) / span;
     t[i] = std::isfinite(u) ? static_cast<float>(std::clamp(u, 0.0, 1.0)) : 0.0f;
@@ -320,12 +352,15 @@ void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor) {
   // ---- this rank's surface (again only when the data or the vectors changed)
   vtkDataObject* input = this->GetInputDataObject(0, 0);
   const vtkMTimeType input_time = input ? input->GetMTime() : 0;
+  const char* colour_array = this->GetScalarVisibility() ? this->GetArrayName() : nullptr;
+  const bool cells_apart = colour_array && *colour_array && colours_cells(this->GetScalarMode());
   if (in.geometry_changed || input != in.input || input_time != in.input_time ||
-      in.vectors != in.input_vectors) {
+      in.vectors != in.input_vectors || cells_apart != in.cells_apart) {
     in.input = input;
     in.input_time = input_time;
     in.input_vectors = in.vectors;
-    in.mesh = take_surface(input, in.vectors, in.problem, in.speed);
+    in.cells_apart = cells_apart;
+    in.mesh = take_surface(input, in.vectors, cells_apart, in.problem, in.speed);
     if (in.mesh && !in.mesh->positions.empty()) {
       in.lower = in.upper = in.mesh->positions.front();
       for (const glm::vec3& p : in.mesh->positions) {
@@ -421,8 +456,9 @@ void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor) {
     double diffuse[3];
     actor->GetProperty()->GetDiffuseColor(diffuse);
     settings.surface_color = glm::vec3(diffuse[0], diffuse[1], diffuse[2]);
-    // Colour by ParaView's own colour map, when the Surface representation would.
-    const char* colour_array = this->GetScalarVisibility() ? this->GetArrayName() : nullptr;
+    // Colour by ParaView's own colour map, when the Surface representation
+    // would, at the prepared mesh's vertices (ordered for the GPU: not the
+    // input's order).
     vtkScalarsToColors* lut = this->GetLookupTable();
     const std::string key = std::string(colour_array ? colour_array : "") + "|" +
                             std::to_string(lut ? lut->GetMTime() : 0) + "|" +
@@ -430,9 +466,11 @@ void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor) {
     if (key != in.colour_key) {
       in.colour_key = key;
       in.colour_table.clear();
-      if (map_colours(*in.mesh, colour_array, lut, in.colour_t, in.colour_table))
+      if (map_colours(*session->scene().mesh, colour_array, lut, in.colour_t, in.colour_table))
         session->renderer().set_scalars(in.colour_t, {});
     }
+    if (!in.colour_table.empty())
+      if (const std::optional<glm::vec3> nan = nan_colour(lut)) settings.surface_color = *nan;
     settings.use_color = !in.colour_table.empty();
     settings.color_table = in.colour_table;
     settings.color_range = glm::vec2(0.0f, 1.0f);

@@ -11,6 +11,11 @@
 #   size       [w, h]; out: file name prefix; mask: also save the surface's mask
 #   properties {name: value} set on the representation
 #   camera, focal, view_angle: the view (default from (3.5, 2.1, 2.8) at the origin)
+#   lut        {property: value} set on the colour array's transfer function
+#   reference  also save the Surface representation coloured alike (-reference.png)
+#   calculator [name, function, later function]: colour by an array computed
+#              from the data, its function changed after the frames, then
+#              frames again (-changed.png) and Surface's (-reference-changed.png)
 import json
 import sys
 
@@ -24,6 +29,10 @@ if cfg.get("plugin"):
 source = OpenDataFile(cfg["data"])
 if cfg.get("pieces"):
     source = ProcessIdScalars(Input=source)
+calculator = None
+if cfg.get("calculator"):
+    name, function, _ = cfg["calculator"]
+    source = calculator = Calculator(Input=source, ResultArrayName=name, Function=function)
 
 paraview.simple._DisableFirstRenderCameraReset()  # the camera below is the view
 view = GetActiveViewOrCreate("RenderView")
@@ -45,7 +54,10 @@ if cfg.get("pieces"):
     ColorBy(display, None)
 
 if cfg.get("mask"):
-    # The surface in flat magenta: where the texture may be, and nowhere else.
+    # The surface in flat magenta: where the texture may be, and nowhere else
+    # (uncoloured: Show colours a calculator's output by its result).
+    if display.ColorArrayName[1]:
+        ColorBy(display, None)
     display.AmbientColor = [1, 0, 1]
     display.DiffuseColor = [1, 0, 1]
     display.Ambient, display.Diffuse = 1.0, 0.0
@@ -57,6 +69,31 @@ if cfg.get("mask"):
     Render(view)
     SaveScreenshot(cfg["out"] + "-surface.png", view, ImageResolution=[w, h])
 
+
+
+def colour():
+    """Colours by cfg's array through its transfer function, with cfg's
+    settings of that function, over the data's range."""
+    ColorBy(display, tuple(cfg["color"]))
+    lut = GetColorTransferFunction(cfg["color"][1])
+    for name, value in cfg.get("lut", {}).items():
+        setattr(lut, name, value)
+    display.RescaleTransferFunctionToDataRange(False, True)
+
+
+def reference(suffix):
+    """The Surface representation's picture of the same colouring."""
+    shown = display.Representation
+    display.Representation = "Surface"
+    Render(view)
+    SaveScreenshot("%s-reference%s.png" % (cfg["out"], suffix), view, ImageResolution=[w, h])
+    display.Representation = shown
+
+
+if cfg.get("reference"):
+    colour()
+    reference("")
+
 available = list(display.Representation.Available)
 display.Representation = cfg.get("representation", "IBFVS")
 if cfg.get("vectors"):
@@ -64,13 +101,21 @@ if cfg.get("vectors"):
 for name, value in cfg.get("properties", {}).items():
     setattr(display, name, value)
 if cfg.get("color"):
-    ColorBy(display, tuple(cfg["color"]))
+    colour()
 
 shots = set(cfg.get("shots", []))
 for frame in range(1, cfg["frames"] + 1):
     Render(view)
     if frame in shots:
         SaveScreenshot("%s-%d.png" % (cfg["out"], frame), view, ImageResolution=[w, h])
+if calculator is not None:
+    calculator.Function = cfg["calculator"][2]
+    calculator.UpdatePipeline()
+    display.RescaleTransferFunctionToDataRange(False, True)  # as Apply does in the GUI
+    for frame in range(cfg["frames"]):
+        Render(view)
+    SaveScreenshot(cfg["out"] + "-changed.png", view, ImageResolution=[w, h])
+    reference("-changed")
 with open(cfg["out"] + ".json", "w") as f:
     json.dump({"available": available}, f)
 print("rendered", cfg["frames"], "frames")

@@ -1031,14 +1031,29 @@ auto guarded(const fs::path& path, F&& f) {
 // (core/isolation.h), so VTK's own parser is the only one, and nothing here
 // refuses what it reads.
 std::string read_in_child(const fs::path& path, const std::function<std::string()>& work) {
+  // A file that holds all its data may take 256 times its size (zlib's best
+  // ratio is about 1,000:1, real data's rarely beyond 20:1; then VTK's
+  // filters), at least 2 GiB, at most the usual half of the memory: so that
+  // a damaged header stops at a size near the file's, not after gigabytes.
+  // Collections, series and cases name other files: the usual limit.
+  IsolationLimits limits = reader_limits();
+  static const std::set<std::string> whole = {".vtk", ".vtp", ".vtu", ".vts", ".vtr", ".vti"};
+  std::error_code ec;
+  const std::uintmax_t size = fs::file_size(path, ec);
+  if (!ec && whole.count(lower_extension(path)) && limits.memory_bytes > 0)
+    limits.memory_bytes = std::min<std::uint64_t>(limits.memory_bytes,
+                                                  std::max<std::uint64_t>(2ull << 30, 256 * size));
   // No other thread of ours is inside VTK while the child is made.
   const std::lock_guard lock(vtk_mutex());
-  return run_isolated(path.string(), "VTK's reader", [&] {
-    vtk_mutex_slot() = new std::recursive_mutex;  // NOLINT: the parent's stays held, unused
-    // One thread: a pool of worker threads made in the parent has none here.
-    vtkSMPTools::SetBackend("Sequential");
-    return guarded(path, work);
-  });
+  return run_isolated(
+      path.string(), "VTK's reader",
+      [&] {
+        vtk_mutex_slot() = new std::recursive_mutex;  // NOLINT: the parent's stays held, unused
+        // One thread: a pool of worker threads made in the parent has none here.
+        vtkSMPTools::SetBackend("Sequential");
+        return guarded(path, work);
+      },
+      limits);
 }
 
 // Step k's surface (the first: with its blocks and what was repaired).

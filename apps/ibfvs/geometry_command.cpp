@@ -19,8 +19,8 @@ namespace fs = std::filesystem;
 
 void add_geometry_options(CLI::App& cmd, GeometryOptions& o) {
   cmd.add_option("mesh", o.mesh,
-                 "Triangle mesh: .off .obj .ply .stl, or a dataset: .vtk .vtp .vtu .vtm .pvd, an "
-                 "OpenFOAM case")
+                 "Triangle mesh: .off .obj .ply .stl, or a dataset: " + dataset_extensions_text() +
+                     ", an OpenFOAM case")
       ->required();
   cmd.add_option("--subdivide", o.subdivide,
                  "Loop subdivision levels (0..12, as many as memory holds)")

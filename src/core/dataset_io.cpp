@@ -51,17 +51,27 @@ void require_dataset_io(const fs::path& path, const std::string& what) {
                      "paraview-dev); this build left them out");
 }
 
+const std::vector<std::string>& dataset_extensions() {
+  // VTK's legacy and XML files (serial and parallel, every dataset kind,
+  // multiblock and partitioned collections) and ParaView's series.
+  static const std::vector<std::string> extensions = {
+      ".vtk",  ".vtp",  ".vtu", ".vts",  ".vtr",  ".vti",  ".pvtp", ".pvtu",  ".pvts",
+      ".pvtr", ".pvti", ".vtm", ".vtmb", ".vtpd", ".vtpc", ".pvd",  ".series"};
+  return extensions;
+}
+
+std::string dataset_extensions_text() {
+  std::string text;
+  for (const std::string& e : dataset_extensions()) text += (text.empty() ? "" : " ") + e;
+  return text;
+}
+
 bool is_dataset_path(const fs::path& path) {
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  // VTK's legacy and XML files (serial and parallel, every dataset kind,
-  // multiblock and partitioned collections), ParaView's series (.pvd,
-  // .series) and OpenFOAM cases.
-  static const std::set<std::string> kExtensions = {
-      ".vtk",  ".vtp",  ".vtu",  ".vts",  ".vtr",  ".vti",  ".vtm", ".vtmb",   ".vtpd",
-      ".vtpc", ".pvtp", ".pvtu", ".pvts", ".pvtr", ".pvti", ".pvd", ".series", ".foam"};
-  if (kExtensions.count(ext)) return true;
+  const auto& known = dataset_extensions();
+  if (ext == ".foam" || std::find(known.begin(), known.end(), ext) != known.end()) return true;
   std::error_code ec;
   return fs::is_directory(path, ec) && fs::is_regular_file(path / "system" / "controlDict", ec);
 }

@@ -10,6 +10,7 @@
 #include <toml++/toml.h>
 
 #include "ibfvs/core/data_paths.h"
+#include "ibfvs/core/dataset_io.h"
 #include "ibfvs/core/error.h"
 #include "ibfvs/core/limits.h"
 #include "ibfvs/core/text.h"
@@ -170,11 +171,11 @@ std::vector<SceneKey> make_keys() {
   return {
       // ---- mesh
       {"mesh", KeyKind::String,
-       "mesh file (.off .obj .ply .stl; .vtk .vtp .vtu .vtm .pvd, an OpenFOAM .foam or case "
-       "folder; NAME_*.EXT a numbered series) or generated: "
-       "landscape[:SEED[:CONTROLS[:RESOLUTION]]], "
-       "relief:FILE:VAR:BOX[:SCALE[:RES]], globe[:LEVEL], torus[:R,r], "
-       "cylinder[:RADIUS,LENGTH[,COUNT]]; empty: the demo",
+       "mesh file (.off .obj .ply .stl; " + dataset_extensions_text() +
+           ", an OpenFOAM .foam or case folder; NAME_*.EXT a numbered series) or generated: "
+           "landscape[:SEED[:CONTROLS[:RESOLUTION]]], "
+           "relief:FILE:VAR:BOX[:SCALE[:RES]], globe[:LEVEL], torus[:R,r], "
+           "cylinder[:RADIUS,LENGTH[,COUNT]]; empty: the demo",
        [](Scene& s, std::string_view t) { s.mesh = t; },
        [](const Scene& s) { return s.mesh.empty() ? none() : one(s.mesh); }},
       {"blocks", KeyKind::String,

@@ -74,7 +74,14 @@ bool dataset_io_available();
 /// with ParaView's VTK ..." unless the implementation is installed.
 void require_dataset_io(const std::filesystem::path& path, const std::string& what = {});
 
-/// True for a path the dataset formats read: .vtk .vtp .vtu .vtm .pvd .foam
+/// The extensions of the VTK formats and series (lower case, with the dot):
+/// the one table for is_dataset_path and for help texts.
+const std::vector<std::string>& dataset_extensions();
+
+/// dataset_extensions() as one line, ".vtk .vtp ... .series".
+std::string dataset_extensions_text();
+
+/// True for a path the dataset formats read: dataset_extensions(), .foam
 /// (any case) or a folder holding an OpenFOAM case (system/controlDict).
 bool is_dataset_path(const std::filesystem::path& path);
 

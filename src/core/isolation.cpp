@@ -16,6 +16,7 @@
 #include <new>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 #include "ibfvs/core/error.h"
 #include "ibfvs/core/limits.h"
@@ -66,6 +67,12 @@ bool write_all(int fd, const char* data, std::size_t size) {
 
 int g_result_fd = -1;  // the child's result file, for on_terminate
 
+// Empties the result buffer (a part of the result may be there) for what
+// the child says instead; only calls that a signal handler may make.
+bool restart_result() {
+  return ::ftruncate(g_result_fd, 0) == 0 && ::lseek(g_result_fd, 0, SEEK_SET) == 0;
+}
+
 // A reader that lets an allocation failure escape through a function that
 // may not throw (std::terminate): that is the memory limit, said as such.
 [[noreturn]] void on_terminate() {
@@ -73,7 +80,7 @@ int g_result_fd = -1;  // the child's result file, for on_terminate
     if (const std::exception_ptr e = std::current_exception()) std::rethrow_exception(e);
   } catch (const std::bad_alloc&) {
     const char tag = static_cast<char>(Outcome::kOutOfMemory);
-    if (::write(g_result_fd, &tag, 1) == 1) ::_exit(0);
+    if (restart_result() && ::write(g_result_fd, &tag, 1) == 1) ::_exit(0);
   } catch (...) {
   }
   std::abort();
@@ -81,13 +88,13 @@ int g_result_fd = -1;  // the child's result file, for on_terminate
 
 void on_fatal_signal(int sig) {
   char tag = static_cast<char>(Outcome::kDied);
-  if (::write(g_result_fd, &tag, 1) == 1 && g_last_words_size > 0) {
+  if (restart_result() && ::write(g_result_fd, &tag, 1) == 1 && g_last_words_size > 0) {
     [[maybe_unused]] const ssize_t n = ::write(g_result_fd, g_last_words, g_last_words_size);
   }
   ::raise(sig);  // the handler was reset: the child ends by this signal
 }
 
-[[noreturn]] void run_child(int fd, const std::function<std::string()>& work,
+[[noreturn]] void run_child(int fd, const std::function<void(ByteWriter&)>& work,
                             const IsolationLimits& limits) {
   g_result_fd = fd;
   std::set_terminate(on_terminate);
@@ -117,26 +124,35 @@ void on_fatal_signal(int sig) {
     const rlimit cpu{limits.cpu_seconds, limits.cpu_seconds + 5};
     setrlimit(RLIMIT_CPU, &cpu);
   }
+  // The result goes straight into the buffer after its tag; on a failure
+  // the buffer is emptied and says what went wrong instead.
   Outcome outcome = Outcome::kOk;
-  std::string payload;
+  std::string message;
+  const char ok_tag = static_cast<char>(Outcome::kOk);
   try {
-    payload = work();
+    if (!write_all(fd, &ok_tag, 1)) ::_exit(3);
+    ByteWriter out(fd);
+    work(out);
+    out.flush();
   } catch (const InputError& e) {
     outcome = Outcome::kInputError;
-    payload = e.what();
+    message = e.what();
   } catch (const std::bad_alloc&) {
     outcome = Outcome::kOutOfMemory;
-    payload.clear();
   } catch (const std::exception& e) {
     outcome = Outcome::kOther;
-    payload = e.what();
+    message = e.what();
   } catch (...) {
     outcome = Outcome::kOther;
-    payload = "an unknown error";
+    message = "an unknown error";
   }
-  const char tag = static_cast<char>(outcome);
-  const bool ok = write_all(fd, &tag, 1) && write_all(fd, payload.data(), payload.size());
-  ::_exit(ok ? 0 : 3);
+  if (outcome != Outcome::kOk) {
+    const char tag = static_cast<char>(outcome);
+    if (!restart_result() || !write_all(fd, &tag, 1) ||
+        !write_all(fd, message.data(), message.size()))
+      ::_exit(3);
+  }
+  ::_exit(0);
 }
 
 std::string signal_name(int sig) {
@@ -144,19 +160,14 @@ std::string signal_name(int sig) {
   return abbrev ? std::string("SIG") + abbrev : "signal " + std::to_string(sig);
 }
 
-std::string read_back(int fd) {
+// The child's buffer, mapped (empty: nothing written).
+IsolatedBytes map_back(int fd) {
   struct stat st {};
   if (::fstat(fd, &st) != 0 || st.st_size <= 0) return {};
-  std::string bytes(static_cast<std::size_t>(st.st_size), '\0');
-  std::size_t at = 0;
-  while (at < bytes.size()) {
-    const ssize_t n = ::pread(fd, bytes.data() + at, bytes.size() - at, static_cast<off_t>(at));
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) break;
-    at += static_cast<std::size_t>(n);
-  }
-  bytes.resize(at);
-  return bytes;
+  const auto size = static_cast<std::size_t>(st.st_size);
+  void* p = ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE, fd, 0);
+  if (p == MAP_FAILED) throw std::bad_alloc();
+  return IsolatedBytes(static_cast<const char*>(p), size, 0);
 }
 
 class Fd {
@@ -189,8 +200,37 @@ IsolationLimits reader_limits() {
   return limits;
 }
 
-std::string run_isolated(const std::string& subject, const std::string& who,
-                         const std::function<std::string()>& work, const IsolationLimits& limits) {
+IsolatedBytes::IsolatedBytes(const char* data, std::size_t size, std::size_t skip)
+    : data_(data), size_(size), skip_(std::min(skip, size)) {}
+
+IsolatedBytes::~IsolatedBytes() {
+  if (data_) ::munmap(const_cast<char*>(data_), size_);
+}
+
+IsolatedBytes::IsolatedBytes(IsolatedBytes&& other) noexcept
+    : data_(std::exchange(other.data_, nullptr)),
+      size_(std::exchange(other.size_, 0)),
+      skip_(std::exchange(other.skip_, 0)) {}
+
+IsolatedBytes IsolatedBytes::after(std::size_t n) && {
+  IsolatedBytes out(std::move(*this));
+  out.skip_ = std::min(out.skip_ + n, out.size_);
+  return out;
+}
+
+IsolatedBytes& IsolatedBytes::operator=(IsolatedBytes&& other) noexcept {
+  if (this != &other) {
+    if (data_) ::munmap(const_cast<char*>(data_), size_);
+    data_ = std::exchange(other.data_, nullptr);
+    size_ = std::exchange(other.size_, 0);
+    skip_ = std::exchange(other.skip_, 0);
+  }
+  return *this;
+}
+
+IsolatedBytes run_isolated(const std::string& subject, const std::string& who,
+                           const std::function<void(ByteWriter&)>& work,
+                           const IsolationLimits& limits) {
   const Fd result(::memfd_create("ibfvs-isolated", MFD_CLOEXEC));
   if (result.get() < 0)
     throw InputError(subject + ": cannot make a buffer to read it in (" + std::strerror(errno) +
@@ -205,11 +245,13 @@ std::string run_isolated(const std::string& subject, const std::string& who,
     if (errno != EINTR)
       throw InputError(subject + ": lost the process reading it (" + std::strerror(errno) + ")");
 
+  IsolatedBytes said = map_back(result.get());
+  const std::string_view bytes = said.view();
   if (WIFSIGNALED(status)) {
     const int sig = WTERMSIG(status);
-    const std::string said = read_back(result.get());
-    const std::string last =
-        said.size() > 1 && said[0] == static_cast<char>(Outcome::kDied) ? said.substr(1) : "";
+    const std::string last = bytes.size() > 1 && bytes[0] == static_cast<char>(Outcome::kDied)
+                                 ? std::string(bytes.substr(1))
+                                 : std::string();
     if (sig == SIGXCPU)
       throw InputError(subject + ": " + who + " ran for more than " +
                        std::to_string(limits.cpu_seconds) + " s of CPU time on it");
@@ -220,16 +262,17 @@ std::string run_isolated(const std::string& subject, const std::string& who,
                               (last.empty() ? ": the file is damaged, or not what its name says"
                                             : " after reporting: " + last)));
   }
-  const std::string bytes = read_back(result.get());
   const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   if (code != 0 || bytes.empty())
     throw InputError(subject + ": " + who + " stopped on it without an answer (exit status " +
                      std::to_string(code) +
                      "; out of memory, or a failed check; IBFVS_READER_STDERR=1 shows its output)");
-  const std::string payload = bytes.substr(1);
+  const std::string payload(bytes.size() > 1 && bytes[0] != static_cast<char>(Outcome::kOk)
+                                ? bytes.substr(1)
+                                : std::string_view());
   switch (static_cast<Outcome>(bytes[0])) {
     case Outcome::kOk:
-      return payload;
+      return std::move(said).after(1);
     case Outcome::kInputError:
       throw InputError(payload);
     case Outcome::kOutOfMemory:
@@ -244,6 +287,24 @@ std::string run_isolated(const std::string& subject, const std::string& who,
 }
 
 // ------------------------------------------------------------ bytes
+
+void ByteWriter::append(const char* data, std::size_t size) {
+  constexpr std::size_t kBuffer = 1 << 20;
+  if (fd_ < 0 || size < kBuffer) {
+    buffer_.append(data, size);
+    if (fd_ >= 0 && buffer_.size() >= kBuffer) flush();
+    return;
+  }
+  flush();  // a large array: from its own memory, not through the buffer
+  if (!write_all(fd_, data, size)) throw std::runtime_error("cannot write the result");
+}
+
+void ByteWriter::flush() {
+  if (fd_ < 0 || buffer_.empty()) return;
+  if (!write_all(fd_, buffer_.data(), buffer_.size()))
+    throw std::runtime_error("cannot write the result");
+  buffer_.clear();
+}
 
 std::size_t ByteReader::count(std::size_t each) {
   const auto n = get<std::uint64_t>();

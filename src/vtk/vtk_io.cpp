@@ -1030,7 +1030,7 @@ auto guarded(const fs::path& path, F&& f) {
 // allocation past the limit there becomes one error line naming the file
 // (core/isolation.h), so VTK's own parser is the only one, and nothing here
 // refuses what it reads.
-std::string read_in_child(const fs::path& path, const std::function<std::string()>& work) {
+IsolatedBytes read_in_child(const fs::path& path, const std::function<void(ByteWriter&)>& work) {
   // A file that holds all its data may take 256 times its size (zlib's best
   // ratio is about 1,000:1, real data's rarely beyond 20:1; then VTK's
   // filters), at least 2 GiB, at most the usual half of the memory: so that
@@ -1047,24 +1047,23 @@ std::string read_in_child(const fs::path& path, const std::function<std::string(
   const std::lock_guard lock(vtk_mutex());
   return run_isolated(
       path.string(), "VTK's reader",
-      [&] {
+      [&](ByteWriter& out) {
         vtk_mutex_slot() = new std::recursive_mutex;  // NOLINT: the parent's stays held, unused
         // One thread: a pool of worker threads made in the parent has none here.
         vtkSMPTools::SetBackend("Sequential");
-        return guarded(path, work);
+        guarded(path, [&] { work(out); });
       },
       limits);
 }
 
 // Step k's surface (the first: with its blocks and what was repaired).
-std::string read_step_bytes(const DatasetRequest& request, std::size_t k,
-                            std::size_t vertices_of_first) {
+void read_step_bytes(const DatasetRequest& request, std::size_t k, std::size_t vertices_of_first,
+                     ByteWriter& out) {
   const Guard g(request.path);
   const Source source = open_source(request, g);
   std::vector<std::string> blocks, warnings;
   TriMesh mesh = surface_of(source.read_step(k, g), request.blocks, &blocks, warnings, g,
                             source.patterns_applied);
-  ByteWriter out;
   if (k == 0) {
     finish(mesh, warnings, g);
   } else {
@@ -1078,7 +1077,6 @@ std::string read_step_bytes(const DatasetRequest& request, std::size_t k,
   out.put(blocks);
   out.put(warnings);
   out.put(source.times);
-  return out.take();
 }
 
 // ------------------------------------------------------------ volumes for sampling
@@ -1175,9 +1173,9 @@ std::string vtk_version() {
 
 Dataset read(const DatasetRequest& request) {
   const std::string subject = request.path.string();
-  const std::string bytes =
-      read_in_child(request.path, [&] { return read_step_bytes(request, 0, 0); });
-  ByteReader in(bytes, subject);
+  const IsolatedBytes bytes =
+      read_in_child(request.path, [&](ByteWriter& out) { read_step_bytes(request, 0, 0, out); });
+  ByteReader in(bytes.view(), subject);
   Dataset d;
   d.mesh = get_mesh(in);
   d.blocks = in.get_strings();
@@ -1187,9 +1185,9 @@ Dataset read(const DatasetRequest& request) {
   if (times.size() > 1) {
     d.times = std::move(times);
     d.step = [request, vertices = d.mesh.vertex_count()](std::size_t k) {
-      const std::string step_bytes =
-          read_in_child(request.path, [&] { return read_step_bytes(request, k, vertices); });
-      ByteReader step_in(step_bytes, request.path.string());
+      const IsolatedBytes step_bytes = read_in_child(
+          request.path, [&](ByteWriter& out) { read_step_bytes(request, k, vertices, out); });
+      ByteReader step_in(step_bytes.view(), request.path.string());
       TriMesh mesh = get_mesh(step_in);
       if (mesh.vertex_count() != vertices)
         throw InputError(request.path.string() + ": step " + std::to_string(k) +
@@ -1202,14 +1200,12 @@ Dataset read(const DatasetRequest& request) {
 
 VolumeSample sample(const fs::path& path, const std::string& array, std::size_t step,
                     const std::vector<glm::vec3>& points) {
-  const std::string bytes = read_in_child(path, [&] {
+  const IsolatedBytes bytes = read_in_child(path, [&](ByteWriter& out) {
     const VolumeSample s = sample_in_process(path, array, step, points);
-    ByteWriter out;
     out.put(s.values);
     out.put(s.found);
-    return out.take();
   });
-  ByteReader in(bytes, path.string());
+  ByteReader in(bytes.view(), path.string());
   VolumeSample result;
   result.values = in.get_vector<glm::vec3>();
   result.found = in.get_vector<std::uint8_t>();

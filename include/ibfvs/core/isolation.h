@@ -35,19 +35,44 @@ struct IsolationLimits {
 /// memory, or IBFVS_MEMORY_LIMIT) and an hour of CPU time.
 IsolationLimits reader_limits();
 
-/// Runs `work` in a child process and returns the bytes it returned. The
+class ByteWriter;
+
+/// What a child handed back: its bytes, mapped from the buffer it wrote
+/// (no copy). Move-only.
+class IsolatedBytes {
+ public:
+  IsolatedBytes() = default;
+  IsolatedBytes(const char* data, std::size_t size, std::size_t skip);
+  ~IsolatedBytes();
+  IsolatedBytes(IsolatedBytes&& other) noexcept;
+  IsolatedBytes& operator=(IsolatedBytes&& other) noexcept;
+  IsolatedBytes(const IsolatedBytes&) = delete;
+  IsolatedBytes& operator=(const IsolatedBytes&) = delete;
+  [[nodiscard]] std::string_view view() const {
+    return data_ ? std::string_view(data_ + skip_, size_ - skip_) : std::string_view();
+  }
+  /// The same bytes less the first n.
+  [[nodiscard]] IsolatedBytes after(std::size_t n) &&;
+
+ private:
+  const char* data_ = nullptr;  // the mapping (null: nothing)
+  std::size_t size_ = 0, skip_ = 0;
+};
+
+/// Runs `work` in a child process, which writes its result with the writer
+/// it is given (straight into a shared buffer), and returns those bytes. The
 /// child's InputError comes back as an InputError with the same message;
 /// another exception as "SUBJECT: its message"; running out of memory as
-/// "SUBJECT: too large to read (more than N of memory)"; a crash as
-/// "SUBJECT: WHO crashed on it (SIGSEGV, ...)". `subject` is what messages
-/// start with (the file), `who` what does the reading ("VTK's reader").
-/// The child never returns: it leaves by _exit, so neither atexit handlers
-/// nor the parent's buffered output run twice. The calling thread must hold
-/// no lock the work takes (the child has only that thread; a lock another
-/// thread held at the fork stays held there).
-std::string run_isolated(const std::string& subject, const std::string& who,
-                         const std::function<std::string()>& work,
-                         const IsolationLimits& limits = reader_limits());
+/// "SUBJECT: too large to read (it needs more than N of memory)"; a crash
+/// as "SUBJECT: WHO crashed on it (SIGSEGV)", with its last_words. `subject`
+/// is what messages start with (the file), `who` what does the reading
+/// ("VTK's reader"). The child never returns: it leaves by _exit, so
+/// neither atexit handlers nor the parent's buffered output run twice. The
+/// calling thread must hold no lock the work takes (the child has only that
+/// thread; a lock another thread held at the fork stays held there).
+IsolatedBytes run_isolated(const std::string& subject, const std::string& who,
+                           const std::function<void(ByteWriter&)>& work,
+                           const IsolationLimits& limits = reader_limits());
 
 /// What a child says before it may die: the reader's last complaint (VTK's
 /// "Unable to allocate ..." before it aborts). If the child then crashes,
@@ -55,31 +80,44 @@ std::string run_isolated(const std::string& subject, const std::string& who,
 /// (a copy), and harmless outside a child.
 void last_words(std::string_view text);
 
-/// Appends values to a byte string (host byte order: the reader is this
-/// program's own child).
+/// Appends values to a byte string, or writes them to a file descriptor
+/// (buffered; large arrays straight from their memory). Host byte order:
+/// the reader is this program's own child.
 class ByteWriter {
  public:
+  ByteWriter() = default;  ///< into a string: take()
+  explicit ByteWriter(int fd) : fd_(fd) {}
+  ~ByteWriter() = default;
+  ByteWriter(const ByteWriter&) = delete;
+  ByteWriter& operator=(const ByteWriter&) = delete;
+
   template <class T>
   requires std::is_trivially_copyable_v<T>
-  void put(const T& value) { out_.append(reinterpret_cast<const char*>(&value), sizeof value); }
+  void put(const T& value) { append(reinterpret_cast<const char*>(&value), sizeof value); }
   template <class T>
   requires std::is_trivially_copyable_v<T>
   void put(const std::vector<T>& values) {
     put<std::uint64_t>(values.size());
-    out_.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
+    append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
   }
   void put(const std::string& text) {
     put<std::uint64_t>(text.size());
-    out_ += text;
+    append(text.data(), text.size());
   }
   void put(const std::vector<std::string>& texts) {
     put<std::uint64_t>(texts.size());
     for (const std::string& t : texts) put(t);
   }
-  std::string take() { return std::move(out_); }
+  /// Writes what is buffered (to the file); throws std::runtime_error when
+  /// the file cannot take it.
+  void flush();
+  /// The bytes (string mode).
+  std::string take() { return std::move(buffer_); }
 
  private:
-  std::string out_;
+  void append(const char* data, std::size_t size);
+  int fd_ = -1;
+  std::string buffer_;
 };
 
 /// Reads what a ByteWriter wrote, checking every length against what is

@@ -166,6 +166,14 @@ for name, data in [("sphere", poly), ("sphere-ug", unstructured(poly)), ("wavele
             assert w.Write() == 1, file
             note(file, "legacy " + data.GetClassName(), "vtkGenericDataObjectWriter")
 
+def write_composite(writer_class, data, name, kind):
+    w = writer_class()
+    w.SetInputData(data)
+    w.SetFileName(os.path.join(out, name))
+    assert w.Write() == 1, name
+    note(name, kind, writer_class.__name__)
+
+
 # Composite data: a multiblock (nested, named blocks), a partitioned data set
 # and a partitioned collection, as ParaView 5.11 writes them.
 mb = vtkMultiBlockDataSet()
@@ -176,32 +184,19 @@ mb.SetBlock(0, poly)
 mb.GetMetaData(0).Set(vtkMultiBlockDataSet.NAME(), "middle")
 mb.SetBlock(1, inner)
 mb.GetMetaData(1).Set(vtkMultiBlockDataSet.NAME(), "group")
-w = vtkXMLMultiBlockDataWriter()
-w.SetInputData(mb)
-w.SetFileName(os.path.join(out, "blocks.vtm"))
-assert w.Write() == 1
-note("blocks.vtm", "multiblock", "vtkXMLMultiBlockDataWriter")
-
+write_composite(vtkXMLMultiBlockDataWriter, mb, "blocks.vtm", "multiblock")
 pd = vtkPartitionedDataSet()
 pd.SetPartition(0, sphere(centre=(-2.5, 0, 0)))
 pd.SetPartition(1, unstructured(sphere(centre=(2.5, 0, 0))))
-w = vtkXMLPartitionedDataSetWriter()
-w.SetInputData(pd)
-w.SetFileName(os.path.join(out, "parts.vtpd"))
-assert w.Write() == 1
-note("parts.vtpd", "partitioned", "vtkXMLPartitionedDataSetWriter")
-
+write_composite(vtkXMLPartitionedDataSetWriter, pd, "parts.vtpd", "partitioned")
 pc = vtkPartitionedDataSetCollection()
 pc.SetPartitionedDataSet(0, pd)
-w = vtkXMLPartitionedDataSetCollectionWriter()
-w.SetInputData(pc)
-w.SetFileName(os.path.join(out, "collection.vtpc"))
-assert w.Write() == 1
-note("collection.vtpc", "partitioned collection", "vtkXMLPartitionedDataSetCollectionWriter")
+write_composite(vtkXMLPartitionedDataSetCollectionWriter, pc, "collection.vtpc",
+                "partitioned collection")
 
 # ParaView's own writers through paraview.simple, as File > Save Data does:
-# serial and parallel XML, legacy, and a time series as .pvd (the sphere
-# growing over three steps).
+# serial and parallel XML, legacy, a multiblock, and a time series as .pvd
+# (the swirl growing over three steps).
 src = pv.Sphere(ThetaResolution=40, PhiResolution=20)
 calc = pv.Calculator(Input=src, ResultArrayName="v", Function="(0-coordsY)*iHat+coordsX*jHat+0.3*kHat")
 for name in ("pv-sphere.vtp", "pv-sphere.pvtp", "pv-sphere-legacy.vtk"):

@@ -490,8 +490,18 @@ void expect_bad(const fs::path& path, const std::string& problem,
   } catch (const InputError& e) {
     const std::string what = e.what();
     EXPECT_EQ(what.rfind(path.string() + ": ", 0), 0u) << what;
-    EXPECT_NE(what.find(problem), std::string::npos) << what;
     EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+#ifdef __SANITIZE_ADDRESS__
+    // Under AddressSanitizer an allocation past the child's limit ends the
+    // child with the sanitizer's own report (exit status 1), before VTK's
+    // abort or our bad_alloc can say so.
+    const bool memory = problem.find("too large to read") != std::string::npos ||
+                        problem.find("(SIGABRT)") != std::string::npos;
+    if (memory && what.find("VTK's reader stopped on it without an answer (exit status 1") !=
+                      std::string::npos)
+      return;
+#endif
+    EXPECT_NE(what.find(problem), std::string::npos) << what;
   }
 }
 

@@ -333,10 +333,10 @@ def test_colours_have_surfaces_hue_at_every_pixel(data, tmp_path, case):
     only brightness and saturation (the paper's blend), never the hue."""
     cfg = dict(COLOURINGS[case])
     cfg["data"] = str(data / cfg.get("data", "sphere.vtp"))
-    _, out = run(dict(cfg, vectors=["POINTS", "v"], frames=12, shots=[12], mask=True,
+    _, out = run(dict(cfg, vectors=["POINTS", "v"], frames=8, shots=[8], mask=True,
                       reference=True, size=[400, 300]), tmp_path)
     mask = mask_of(out)
-    pairs = [("-12.png", "-reference.png")]
+    pairs = [("-8.png", "-reference.png")]
     if "calculator" in cfg:
         pairs.append(("-changed.png", "-reference-changed.png"))
     for shot, ref in pairs:

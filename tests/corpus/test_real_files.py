@@ -51,7 +51,7 @@ def render(path, array, out):
     or None."""
     png = out / (str(path).replace("/", "_") + ".png")
     done = subprocess.run([EXE, "render", "--mesh", str(path), "--field", "file:" + array,
-                           "--frames", "40", "--size", "%dx%d" % (SIZE, SIZE), "--out", str(png)],
+                           "--frames", "24", "--size", "%dx%d" % (SIZE, SIZE), "--out", str(png)],
                           capture_output=True, text=True, timeout=300)
     if done.returncode != 0:
         return "exit %d: %s" % (done.returncode, done.stderr.strip()[-400:])

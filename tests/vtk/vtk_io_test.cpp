@@ -524,6 +524,53 @@ std::string legacy(const std::string& points, const std::string& polygons,
   return "# vtk DataFile Version 4.2\nbad\nASCII\nDATASET POLYDATA\n" + points + polygons + extra;
 }
 
+TEST_F(VtkIo, JsonFileSeriesIsUnsteady) {
+  write_series(dir_);  // step0.vtp .. step2.vtp
+  // ParaView's and foamToVTK's .series; times out of order are sorted.
+  const fs::path path = write_file(dir_ / "run.vtp.series", R"({
+  "file-series-version" : "1.0",
+  "files" : [
+    { "name" : "step2.vtp", "time" : 20 },
+    { "name" : "step0.vtp", "time" : 0 },
+    { "name" : "step1.vtp", "time" : 10 }
+  ]
+})");
+  const Dataset d = read_dataset({path, {}});
+  EXPECT_EQ(d.times, (std::vector<double>{0.0, 10.0, 20.0}));
+  ASSERT_TRUE(d.step);
+  EXPECT_EQ(d.step(2).vector_arrays.at("v")[0], glm::vec3(3, 0, 0));
+  // OpenFOAM 1912's foamToVTK -legacy writes "_1" for CASE_1.vtk.
+  {
+    vtkNew<vtkPolyDataWriter> w;
+    w->SetInputData(square());
+    for (int k = 0; k < 2; ++k) {
+      w->SetFileName((dir_ / ("case_" + std::to_string(k) + ".vtk")).c_str());
+      ASSERT_EQ(w->Write(), 1);
+    }
+  }
+  const Dataset legacy = read_dataset(
+      {write_file(dir_ / "case.vtk.series",
+                  R"({"files": [{"name": "_0", "time": 0}, {"name": "_1", "time": 1}]})"),
+       {}});
+  EXPECT_EQ(legacy.times, (std::vector<double>{0.0, 1.0}));
+  EXPECT_EQ(legacy.mesh.triangle_count(), 2u);
+
+  expect_bad(write_file(dir_ / "bad.vtp.series", "{\"files\": [ {\"name\": "),
+             "not a well-formed .series (JSON) file");
+  expect_bad(write_file(dir_ / "list.vtp.series", "[1, 2]"),
+             "not a ParaView file series: no \"files\" list");
+  expect_bad(write_file(dir_ / "noname.vtp.series", R"({"files": [{"time": 1}]})"),
+             "an entry of \"files\" without a \"name\"");
+  expect_bad(
+      write_file(dir_ / "time.vtp.series", R"({"files": [{"name": "step0.vtp", "time": "x"}]})"),
+      "the time of 'step0.vtp' is not a number");
+  expect_bad(write_file(dir_ / "empty.vtp.series", R"({"files": []})"),
+             "the series lists no data sets");
+  expect_bad(
+      write_file(dir_ / "gone.vtp.series", R"({"files": [{"name": "gone.vtp", "time": 0}]})"),
+      "gone.vtp: no such file");
+}
+
 TEST_F(VtkIo, BadLegacyFiles) {
   const std::string pts = "POINTS 3 float\n0 0 0 1 0 0 0 1 0\n";
   expect_bad(write_file(dir_ / "empty.vtk", ""), "empty");

@@ -4,7 +4,6 @@
 #include <cctype>
 #include <mutex>
 #include <optional>
-#include <set>
 
 #include "ibfvs/core/error.h"
 

@@ -22,6 +22,13 @@ struct QualityOptions {
   std::string png;
   std::vector<float>
       centre;  ///< the rotation's centre in pixels (x right, y down); default the middle
+  /// With png: the true flow direction per pixel in the same view instead of
+  /// a rotation (a direction-coded picture: red, green = 0.5 + 0.5 x, y of the
+  /// unit direction, x right and y up; blue 255 where it is defined, 0 not).
+  std::string direction;
+  /// Measure the picture as shown (the scene's beta, shading, background)
+  /// rather than the texture alone with beta 1 and a red background.
+  bool shown = false;
 };
 
 void add_quality_options(CLI::App& command, SceneOptions& scene, QualityOptions& options);

@@ -35,10 +35,10 @@ ImageF gaussian_blur(const ImageF& image, float sigma) {
   return pass(pass(image, 1, 0), 0, 1);
 }
 
-double flow_alignment(const ImageF& image, const std::vector<std::uint8_t>& mask,
-                      const std::function<glm::vec2(float, float)>& flow, int margin) {
-  const int w = image.width, h = image.height;
-  // Distance to the nearest unmasked pixel, as a square (Chebyshev) erosion.
+namespace {
+
+// The masked pixels at least `margin` pixels (Chebyshev) from any unmasked one.
+std::vector<std::uint8_t> eroded(const std::vector<std::uint8_t>& mask, int w, int h, int margin) {
   std::vector<std::uint8_t> inner = mask;
   for (int step = 0; step < margin + 1; ++step) {
     std::vector<std::uint8_t> next = inner;
@@ -56,6 +56,15 @@ double flow_alignment(const ImageF& image, const std::vector<std::uint8_t>& mask
       }
     inner.swap(next);
   }
+  return inner;
+}
+
+}  // namespace
+
+double flow_alignment(const ImageF& image, const std::vector<std::uint8_t>& mask,
+                      const std::function<glm::vec2(float, float)>& flow, int margin) {
+  const int w = image.width, h = image.height;
+  const std::vector<std::uint8_t> inner = eroded(mask, w, h, margin);
   const ImageF blurred = gaussian_blur(image, 1.0f);
   double along = 0.0, total = 0.0;
   for (int y = 1; y < h - 1; ++y)
@@ -74,6 +83,69 @@ double flow_alignment(const ImageF& image, const std::vector<std::uint8_t>& mask
       total += static_cast<double>(gx) * gx + static_cast<double>(gy) * gy;
     }
   return total > 0.0 ? along / total : std::numeric_limits<double>::quiet_NaN();
+}
+
+double streak_width(const ImageF& image, const std::vector<std::uint8_t>& mask,
+                    const std::function<glm::vec2(float, float)>& flow, int margin) {
+  const int w = image.width, h = image.height;
+  if (mask.size() != static_cast<std::size_t>(w) * h)
+    throw InputError("streak_width: the mask must match the image");
+  const std::vector<std::uint8_t> inner = eroded(mask, w, h, margin);
+  // Band-pass: a Gaussian of 0.7 pixels minus the mean over 9 x 9 pixels
+  // (summed-area table), on the first channel.
+  const ImageF fine = gaussian_blur(image.select_channels(0, 1), 0.7f);
+  std::vector<double> sat(static_cast<std::size_t>(w + 1) * (h + 1), 0.0);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      sat[(y + 1) * (w + 1) + x + 1] = image.at(x, y, 0) + sat[y * (w + 1) + x + 1] +
+                                       sat[(y + 1) * (w + 1) + x] - sat[y * (w + 1) + x];
+  ImageF band(w, h, 1);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const int x0 = std::max(x - 4, 0), x1 = std::min(x + 5, w);
+      const int y0 = std::max(y - 4, 0), y1 = std::min(y + 5, h);
+      const double box = sat[y1 * (w + 1) + x1] - sat[y0 * (w + 1) + x1] - sat[y1 * (w + 1) + x0] +
+                         sat[y0 * (w + 1) + x0];
+      band.at(x, y) = fine.at(x, y) - static_cast<float>(box / ((x1 - x0) * (y1 - y0)));
+    }
+  struct Sample {
+    float x, y, nx, ny, value;
+  };
+  std::vector<Sample> samples;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      if (!inner[static_cast<std::size_t>(y) * w + x]) continue;
+      const float px = static_cast<float>(x) + 0.5f, py = static_cast<float>(y) + 0.5f;
+      const glm::vec2 f = flow(px, py);
+      const float len = glm::length(f);
+      if (!(len > 0.0f)) continue;
+      samples.push_back({px, py, -f.y / len, f.x / len, band.at(x, y)});
+    }
+  if (samples.size() < 16) return std::numeric_limits<double>::quiet_NaN();
+  // The correlation of the band-passed picture with itself shifted s pixels
+  // along each pixel's normal to the flow; W is where it falls below 0.5.
+  const auto correlation = [&](float s) {
+    double sa = 0, sb = 0, saa = 0, sbb = 0, sab = 0, n = 0;
+    for (const Sample& p : samples) {
+      const float qx = p.x + s * p.nx, qy = p.y + s * p.ny;
+      const int xi = static_cast<int>(std::floor(qx)), yi = static_cast<int>(std::floor(qy));
+      if (xi < 0 || yi < 0 || xi >= w || yi >= h || !mask[static_cast<std::size_t>(yi) * w + xi])
+        continue;
+      const double a = p.value, b = sample_bilinear(band, qx, qy, 0);
+      sa += a, sb += b, saa += a * a, sbb += b * b, sab += a * b, n += 1;
+    }
+    if (n < 2) return 0.0;
+    const double va = saa / n - (sa / n) * (sa / n), vb = sbb / n - (sb / n) * (sb / n);
+    return va > 0 && vb > 0 ? (sab / n - (sa / n) * (sb / n)) / std::sqrt(va * vb) : 0.0;
+  };
+  constexpr float kStep = 0.05f;
+  double last = 1.0;
+  for (int k = 1; k <= 200; ++k) {
+    const double c = correlation(kStep * static_cast<float>(k));
+    if (c < 0.5) return kStep * (k - 1 + (last - 0.5) / (last - c));
+    last = c;
+  }
+  return kStep * 200;
 }
 
 namespace {

@@ -117,5 +117,35 @@ TEST(ImageAnalysis, AlignmentOfStripes) {
   EXPECT_TRUE(std::isnan(flow_alignment(img, thin, along, 2)));
 }
 
+// Streaks along x whose value changes every `rows` rows at random: W grows
+// with their width and is unbounded across the streaks' own direction.
+TEST(ImageAnalysis, StreakWidthFollowsTheWidthOfTheStreaks) {
+  const auto streaks = [](int rows) {
+    ImageF img(128, 128, 1);
+    std::uint32_t state = 12345;
+    for (int y = 0; y < 128; y += rows) {
+      state = state * 1664525u + 1013904223u;
+      const float v = static_cast<float>(state >> 8) / 16777216.0f;
+      for (int r = y; r < std::min(y + rows, 128); ++r)
+        for (int x = 0; x < 128; ++x) img.at(x, r) = v;
+    }
+    return img;
+  };
+  std::vector<std::uint8_t> mask(128 * 128, 1);
+  const auto along = [](float, float) { return glm::vec2(1, 0); };
+  const auto across = [](float, float) { return glm::vec2(0, -1); };
+  const double thin = streak_width(streaks(1), mask, along, 4);
+  const double wide = streak_width(streaks(4), mask, along, 4);
+  RecordProperty("thin", std::to_string(thin));
+  EXPECT_GT(thin, 0.5);
+  EXPECT_LT(thin, 1.1);
+  // Band-passed (the 9-pixel mean taken off) streaks 4 pixels wide.
+  EXPECT_GT(wide, thin + 0.4);
+  EXPECT_LT(wide, 2.5);
+  EXPECT_GE(streak_width(streaks(1), mask, across, 4), 10.0);
+  std::vector<std::uint8_t> none(128 * 128, 0);
+  EXPECT_TRUE(std::isnan(streak_width(streaks(1), none, along, 4)));
+}
+
 }  // namespace
 }  // namespace ibfvs

@@ -13,6 +13,7 @@ struct QualityReport {
   int width = 0, height = 0, warmup = 0;
   double coverage = 0.0;         ///< fraction of the image the surface covers
   double alignment = 0.0;        ///< A (flow_alignment), 0.5 isotropic, 1 perfect streaks
+  double streak_width = 0.0;     ///< W (streak_width) in pixels: thin lines about 0.8
   double red_inflow = 0.0;       ///< surface pixels tinted by the red background, fraction
   PatternMotion lag8, lag16;     ///< the pattern's motion over 8 and 16 frames
   double carried = 0.0;          ///< frame-to-frame correlation along the flow (flicker: low)
@@ -24,7 +25,9 @@ struct QualityReport {
 /// Runs the scene with beta 1 and a red background (B = 1,0,0) for `warmup`
 /// frames and 17 more, reading the displayed texture and the flow of each of
 /// the 17. The flow is taken as steady over them and the camera as still
-/// (orbit and lock are switched off). Needs a current OpenGL 4.5 context.
-QualityReport measure_quality(PreparedScene scene, int warmup = 120);
+/// (orbit and lock are switched off). `shown`: the picture as the scene shows
+/// it instead (its beta, shading and background; red_inflow is then NaN), A
+/// and W on its luminance. Needs a current OpenGL 4.5 context.
+QualityReport measure_quality(PreparedScene scene, int warmup = 120, bool shown = false);
 
 }  // namespace ibfvs

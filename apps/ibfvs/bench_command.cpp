@@ -96,8 +96,13 @@ void add_bench_options(CLI::App& cmd, BenchOptions& o) {
       ->capture_default_str();
   cmd.add_option("--csv", o.csv, "Also write the results as CSV to this file");
   cmd.add_option("--json", o.json, "Also write the results as JSON to this file");
+  cmd.add_option("--looks", o.looks,
+                 "Looks to measure, a table each: paper (style paper, Table 1's algorithm: "
+                 "the verdict counts its cells) and default (the default look)")
+      ->check(CLI::IsMember({"paper", "default"}))
+      ->capture_default_str();
   cmd.add_option("--set", o.settings,
-                 "KEY=VALUE: a scene setting on top of the defaults (repeatable; ibfvs keys "
+                 "KEY=VALUE: a scene setting on top of each look (repeatable; ibfvs keys "
                  "lists them), e.g. --set filter=0 --set contrast=0");
   cmd.add_flag("-q,--quiet", o.quiet, "Print only the table");
 }
@@ -162,94 +167,105 @@ int run_bench(const BenchOptions& o) {
   std::fflush(stdout);  // before the progress lines on stderr
   std::vector<BenchCell> cells;
   using clock = std::chrono::steady_clock;
-  for (const int level : o.subdivide) {
-    // The scene of the paper's Table 1: the cow in a rotation about +Y, 3
-    // pixels per frame, prepared once per level and fitted to each size.
-    Scene scene;
-    scene.mesh = mesh_path;
-    scene.subdivide = level;
-    scene.field = FieldSpec::parse("rotate:0,1,0");
-    apply_bench_settings(scene, o.settings);
-    const PreparedScene prepared = prepare_scene(scene);
-    for (const auto& [w, h] : sizes) {
-      Session session(resized(prepared, w, h));
-      IbfvsRenderer& renderer = session.renderer();
-      const TriMesh& mesh = *session.scene().mesh;
-      for (const bool dynamic : {false, true}) {
-        Camera camera(mesh_bounds(mesh), session.scene().camera,
-                      static_cast<float>(w) / static_cast<float>(h));
-        const auto frame = [&] {
-          if (dynamic) camera.orbit(o.orbit);
-          session.render(camera);
-          renderer.finish();
-        };
-        renderer.reset();
-        for (int k = 0; k < o.warmup; ++k) frame();
-        BenchCell cell{level, mesh.triangle_count(), w, h, dynamic, 0.0, {}};
-        for (int r = 0; r < o.repeats; ++r) {
-          const auto start = clock::now();
-          int frames = 0;
-          double elapsed = 0.0;
-          do {
-            frame();
-            ++frames;
-            elapsed = std::chrono::duration<double>(clock::now() - start).count();
-          } while (elapsed < o.seconds);
-          cell.runs.push_back(frames / elapsed);
-        }
-        cell.fps = median(cell.runs);
-        context.throw_if_errors();
-        if (!o.quiet)
-          std::fprintf(stderr, "  %s triangles, %dx%d, %s: %s fps\n",
-                       triangles_label(cell.triangles).c_str(), w, h,
-                       dynamic ? "dynamic" : "static", fmt(cell.fps).c_str());
-        cells.push_back(cell);
-      }
-    }
-  }
-
-  // The table: rows are image sizes, columns meshes, as in the paper.
-  const auto find = [&](int level, int w, int h, bool dynamic) -> const BenchCell* {
-    for (const BenchCell& c : cells)
-      if (c.subdivide == level && c.width == w && c.height == h && c.dynamic == dynamic) return &c;
-    return nullptr;
-  };
-  std::printf("\nfps, static (dynamic); paper: GeForce4 Ti200, 2003; x: ours / paper\n\n| image |");
-  for (const int level : o.subdivide) {
-    const BenchCell* c = find(level, sizes[0].first, sizes[0].second, false);
-    std::printf(" %s triangles |", triangles_label(c ? c->triangles : 0).c_str());
-  }
-  std::printf("\n|---|");
-  for (std::size_t i = 0; i < o.subdivide.size(); ++i) std::printf("---|");
-  std::printf("\n");
-  int met = 0, compared = 0;
-  for (const auto& [w, h] : sizes) {
-    std::printf("| %dx%d |", w, h);
+  for (const std::string& look : o.looks)
     for (const int level : o.subdivide) {
-      const BenchCell* s = find(level, w, h, false);
-      const BenchCell* d = find(level, w, h, true);
-      std::string text = fmt(s->fps) + " (" + fmt(d->fps) + ")";
-      const double ps = paper_table1_fps(level, w, h, false);
-      const double pd = paper_table1_fps(level, w, h, true);
-      if (ps > 0.0) {
-        text += "; paper " + fmt(ps) + " (" + fmt(pd) + "); x" + fmt(s->fps / ps) + " (x" +
-                fmt(d->fps / pd) + ")";
-        compared += 2;
-        met += (s->fps >= ps) + (d->fps >= pd);
+      // The scene of the paper's Table 1: the cow in a rotation about +Y, 3
+      // pixels per frame, prepared once per level and fitted to each size.
+      Scene scene;
+      scene.mesh = mesh_path;
+      scene.subdivide = level;
+      scene.field = FieldSpec::parse("rotate:0,1,0");
+      if (look == "paper") apply_style(scene, Style::Paper);
+      apply_bench_settings(scene, o.settings);
+      const PreparedScene prepared = prepare_scene(scene);
+      for (const auto& [w, h] : sizes) {
+        Session session(resized(prepared, w, h));
+        IbfvsRenderer& renderer = session.renderer();
+        const TriMesh& mesh = *session.scene().mesh;
+        for (const bool dynamic : {false, true}) {
+          Camera camera(mesh_bounds(mesh), session.scene().camera,
+                        static_cast<float>(w) / static_cast<float>(h));
+          const auto frame = [&] {
+            if (dynamic) camera.orbit(o.orbit);
+            session.render(camera);
+            renderer.finish();
+          };
+          renderer.reset();
+          for (int k = 0; k < o.warmup; ++k) frame();
+          BenchCell cell{look, level, mesh.triangle_count(), w, h, dynamic, 0.0, {}};
+          for (int r = 0; r < o.repeats; ++r) {
+            const auto start = clock::now();
+            int frames = 0;
+            double elapsed = 0.0;
+            do {
+              frame();
+              ++frames;
+              elapsed = std::chrono::duration<double>(clock::now() - start).count();
+            } while (elapsed < o.seconds);
+            cell.runs.push_back(frames / elapsed);
+          }
+          cell.fps = median(cell.runs);
+          context.throw_if_errors();
+          if (!o.quiet)
+            std::fprintf(stderr, "  %s look, %s triangles, %dx%d, %s: %s fps\n", look.c_str(),
+                         triangles_label(cell.triangles).c_str(), w, h,
+                         dynamic ? "dynamic" : "static", fmt(cell.fps).c_str());
+          cells.push_back(cell);
+        }
       }
-      std::printf(" %s |", text.c_str());
     }
+
+  // A table per look: rows are image sizes, columns meshes, as in the paper.
+  for (const std::string& look : o.looks) {
+    const auto find = [&](int level, int w, int h, bool dynamic) -> const BenchCell* {
+      for (const BenchCell& c : cells)
+        if (c.look == look && c.subdivide == level && c.width == w && c.height == h &&
+            c.dynamic == dynamic)
+          return &c;
+      return nullptr;
+    };
+    std::printf(
+        "\n%s\nfps, static (dynamic); paper: GeForce4 Ti200, 2003; x: ours / paper\n\n| image |",
+        look == "paper" ? "The paper's look (style paper): Table 1"
+                        : "The default look (display filter along the streamline, "
+                          "sharpened; docs/quality.md)");
+    for (const int level : o.subdivide) {
+      const BenchCell* c = find(level, sizes[0].first, sizes[0].second, false);
+      std::printf(" %s triangles |", triangles_label(c ? c->triangles : 0).c_str());
+    }
+    std::printf("\n|---|");
+    for (std::size_t i = 0; i < o.subdivide.size(); ++i) std::printf("---|");
     std::printf("\n");
+    int met = 0, compared = 0;
+    for (const auto& [w, h] : sizes) {
+      std::printf("| %dx%d |", w, h);
+      for (const int level : o.subdivide) {
+        const BenchCell* s = find(level, w, h, false);
+        const BenchCell* d = find(level, w, h, true);
+        std::string text = fmt(s->fps) + " (" + fmt(d->fps) + ")";
+        const double ps = paper_table1_fps(level, w, h, false);
+        const double pd = paper_table1_fps(level, w, h, true);
+        if (ps > 0.0) {
+          text += "; paper " + fmt(ps) + " (" + fmt(pd) + "); x" + fmt(s->fps / ps) + " (x" +
+                  fmt(d->fps / pd) + ")";
+          compared += 2;
+          met += (s->fps >= ps) + (d->fps >= pd);
+        }
+        std::printf(" %s |", text.c_str());
+      }
+      std::printf("\n");
+    }
+    if (compared > 0)
+      std::printf("\n%s look: %d of %d cells at or above the paper's figure.\n", look.c_str(), met,
+                  compared);
   }
-  if (compared > 0)
-    std::printf("\n%d of %d cells at or above the paper's figure.\n", met, compared);
 
   if (!o.csv.empty()) {
     std::ofstream out(o.csv);
-    out << "triangles,subdivide,width,height,case,fps,paper_fps,runs\n";
+    out << "look,triangles,subdivide,width,height,case,fps,paper_fps,runs\n";
     for (const BenchCell& c : cells) {
-      out << c.triangles << "," << c.subdivide << "," << c.width << "," << c.height << ","
-          << (c.dynamic ? "dynamic" : "static") << "," << c.fps << ","
+      out << c.look << "," << c.triangles << "," << c.subdivide << "," << c.width << "," << c.height
+          << "," << (c.dynamic ? "dynamic" : "static") << "," << c.fps << ","
           << paper_table1_fps(c.subdivide, c.width, c.height, c.dynamic) << ",";
       for (std::size_t i = 0; i < c.runs.size(); ++i) out << (i ? " " : "") << c.runs[i];
       out << "\n";
@@ -271,9 +287,10 @@ int run_bench(const BenchOptions& o) {
         << ",\n  \"repeats\": " << o.repeats << ",\n  \"cells\": [\n";
     for (std::size_t i = 0; i < cells.size(); ++i) {
       const BenchCell& c = cells[i];
-      out << "    {\"triangles\": " << c.triangles << ", \"subdivide\": " << c.subdivide
-          << ", \"width\": " << c.width << ", \"height\": " << c.height << ", \"case\": \""
-          << (c.dynamic ? "dynamic" : "static") << "\", \"fps\": " << c.fps
+      out << "    {\"look\": \"" << c.look << "\", \"triangles\": " << c.triangles
+          << ", \"subdivide\": " << c.subdivide << ", \"width\": " << c.width
+          << ", \"height\": " << c.height << ", \"case\": \"" << (c.dynamic ? "dynamic" : "static")
+          << "\", \"fps\": " << c.fps
           << ", \"paper_fps\": " << paper_table1_fps(c.subdivide, c.width, c.height, c.dynamic)
           << ", \"runs\": [";
       for (std::size_t k = 0; k < c.runs.size(); ++k) out << (k ? ", " : "") << c.runs[k];

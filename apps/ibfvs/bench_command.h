@@ -21,14 +21,17 @@ struct BenchOptions {
   int warmup = 20;        ///< frames before measuring
   float orbit = 1.0f;     ///< degrees per frame in the dynamic case
   std::string csv, json;  ///< also write the results there
-  /// Scene settings KEY=VALUE on top of the defaults (another look: the
-  /// paper's is profile=square, scale=4, vg=0.02, filter=0, contrast=0).
+  /// The looks measured, one table each: "paper" (style paper: Table 1's
+  /// algorithm, whose cells the verdict counts) and "default" (the defaults).
+  std::vector<std::string> looks{"paper", "default"};
+  /// Scene settings KEY=VALUE on top of each look.
   std::vector<std::string> settings;
   bool quiet = false;
 };
 
 /// One measured cell.
 struct BenchCell {
+  std::string look;  ///< "paper" or "default"
   int subdivide = 0;
   std::size_t triangles = 0;
   int width = 0, height = 0;

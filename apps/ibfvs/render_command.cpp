@@ -46,7 +46,11 @@ void add_scene_options(CLI::App& cmd, SceneOptions& o) {
     const std::string flag = flag_of(key.name == "quiet" ? "quiet,-q" : key.name);
     CLI::Option* option = nullptr;
     if (key.kind == KeyKind::Flag) {
-      option = cmd.add_flag(flag, key.help);
+      // A flag that is on by default is turned off by --no-NAME.
+      const std::vector<std::string> shown = key.get(Scene{});
+      const bool on = !shown.empty() && shown.front() == "true";
+      option = on ? cmd.add_flag(flag + ",!" + flag_of("no_" + std::string(key.name)), key.help)
+                  : cmd.add_flag(flag, key.help);
     } else {
       option = cmd.add_option(flag, key.help)->type_name("VALUE")->expected(1);
       option->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
@@ -114,7 +118,7 @@ Scene scene_from_command_line(const SceneOptions& o) {
   for (const auto& [key, option] : o.flags) {
     if (option->count() == 0) continue;
     if (key->kind == KeyKind::Flag) {
-      settings.push_back({std::string(key->name), "true", ""});
+      settings.push_back({std::string(key->name), option->as<bool>() ? "true" : "false", ""});
       continue;
     }
     const std::vector<std::string> values = option->results();

@@ -12,6 +12,7 @@ ReferenceIbfvs::ReferenceIbfvs(int width, int height, float background, const No
     : background_(background), noise_(width, height, noise) {
   texture_ = ImageF(width, height, 1, background);
   shown_ = texture_;
+  moved_ = ImageF(width, height, 2, 0.0f);
   covered_.assign(static_cast<std::size_t>(width) * height, 0);
 }
 
@@ -64,17 +65,28 @@ float ReferenceIbfvs::sample(float x, float y) const {
   return sample_bilinear(texture_, x, y, 0);
 }
 
+float ReferenceIbfvs::display_tap(glm::vec2 p, float value, glm::vec2 along) const {
+  if (!(sharpen_ > 0.0f)) return value;
+  const glm::vec2 across(-along.y, along.x);
+  const glm::vec2 a = p + across, b = p - across;
+  if (!footprint_covered(a.x, a.y) || !footprint_covered(b.x, b.y)) return value;
+  return value + sharpen_ * (value - 0.5f * (sample(a.x, a.y) + sample(b.x, b.y)));
+}
+
 void ReferenceIbfvs::step(const BackwardMap& map, int frame, float alpha, InjectMode mode) {
   if (map.width != texture_.width || map.height != texture_.height)
     throw InputError("reference: backward map size differs from the image size");
   ImageF next = texture_;
   ImageF shown = texture_;
+  ImageF moved(texture_.width, texture_.height, 2, 0.0f);
   const int taps = filter_taps(filter_length_);
   const float spacing = filter_spacing(filter_length_);
+  const bool display = taps > 0 || sharpen_ > 0.0f;
   const auto blend = [&](float prev, float g) {
     return mode == InjectMode::Blend ? (1 - alpha) * prev + alpha * g
                                      : std::min(1.0f, (1 - alpha) * prev + g);
   };
+  const auto normalised = [](glm::vec2 v) { return v / std::sqrt(v.x * v.x + v.y * v.y); };
   for (int y = 0; y < texture_.height; ++y)
     for (int x = 0; x < texture_.width; ++x) {
       const std::size_t i = static_cast<std::size_t>(y) * texture_.width + x;
@@ -90,29 +102,40 @@ void ReferenceIbfvs::step(const BackwardMap& map, int frame, float alpha, Inject
                          : cubic_ ? sample_cubic(s.x, s.y)
                                   : sample(s.x, s.y);
       next.pixels[i] = blend(prev, g);
-      // The display filter: taps around the source in F_t,prev, around the
-      // pixel in G, along the displacement (as the fragment shader).
       const glm::vec2 here(static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f);
-      const glm::vec2 moved = here - s;
-      const float length = std::sqrt(moved.x * moved.x + moved.y * moved.y);
+      const glm::vec2 d = here - s;
+      moved.at(x, y, 0) = d.x;
+      moved.at(x, y, 1) = d.y;
       shown.pixels[i] = next.pixels[i];
-      if (taps == 0 || !same || !(length > 1e-6f)) continue;
-      const glm::vec2 along = moved / length;
-      float sum = next.pixels[i], weights = 1.0f;
-      for (int k = 1; k <= taps; ++k)
-        for (const float side : {-1.0f, 1.0f}) {
-          const glm::vec2 offset = side * spacing * static_cast<float>(k) * along;
-          const glm::vec2 at = s + offset;
-          if (!footprint_covered(at.x, at.y)) continue;
+      const float length = std::sqrt(d.x * d.x + d.y * d.y);
+      if (!display || !same || !(length > 1e-6f)) continue;
+      // The display filter, as the fragment shader: along the streamline
+      // through the source in the last frame's F_t and stored displacements.
+      const glm::vec2 along = d / length;
+      float sum = display_tap(s, prev, along), weights = 1.0f;
+      for (const float side : {-1.0f, 1.0f}) {
+        glm::vec2 p = s, heading = side * along, last = heading;
+        for (int k = 1; k <= taps; ++k) {
+          const glm::vec2 turned = heading + 0.5f * (heading - last);
+          p += spacing *
+               (turned.x * turned.x + turned.y * turned.y > 1e-12f ? normalised(turned) : heading);
+          if (!footprint_covered(p.x, p.y)) break;
+          const glm::vec2 f(sample_bilinear(moved_, p.x, p.y, 0),
+                            sample_bilinear(moved_, p.x, p.y, 1));
+          if (!(std::sqrt(f.x * f.x + f.y * f.y) > 1e-6f)) break;
+          last = heading;
+          heading = side * normalised(f);
+          if (heading.x * last.x + heading.y * last.y < 0.0f) break;
           const float w = filter_weight(filter_length_, k);
-          sum += w * blend(sample(at.x, at.y),
-                           noise_.sample(here.x + offset.x, here.y + offset.y, frame));
+          sum += w * display_tap(p, sample(p.x, p.y), heading);
           weights += w;
         }
+      }
       shown.pixels[i] = sum / weights;
     }
   texture_ = std::move(next);
   shown_ = std::move(shown);
+  moved_ = std::move(moved);
   covered_ = map.covered;
 }
 

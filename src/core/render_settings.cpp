@@ -32,6 +32,8 @@ void RenderSettings::validate() const {
                                         std::to_string(color_table.size()));
   if (!(image_step >= 0.0f) || !std::isfinite(image_step))
     throw SettingError("step", "the image-space step must be a finite number of pixels >= 0");
+  if (!(sharpen >= 0.0f && sharpen <= 4.0f))
+    throw SettingError("sharpen", "must be between 0 (off) and 4");
   if (!(filter_length >= 0.0f && filter_length <= 32.0f))
     throw SettingError("filter", "the filter length must be between 0 and 32 pixels");
   if (!(contrast >= 0.0f && contrast <= 0.5f))

@@ -232,14 +232,20 @@ std::vector<SceneKey> make_keys() {
       IBFVS_NUMBER_KEY(dt, "time step in world units per frame; > 0 overrides step",
                        require(v >= 0.0f, "must be a non-negative number")),
       {"image_normalize", KeyKind::Flag,
-       "every moving point moves step pixels per frame (paper figure 2)",
+       "every moving point moves step pixels per frame (paper figure 2), whatever its speed; "
+       "on by default (--no-image-normalize: the flow's own speeds, the fastest moving step "
+       "pixels)",
        [](Scene& s, std::string_view t) { s.image_normalize = flag(t); },
-       [](const Scene& s) { return s.image_normalize ? one("true") : none(); }},
+       [](const Scene& s) { return one(s.image_normalize ? "true" : "false"); }},
       IBFVS_ENUM_KEY(resample, Resample, "how F_t is sampled at t(x) each frame (eq. 13)"),
       IBFVS_NUMBER_KEY(filter,
-                       "display only: Gaussian filter along the flow over F_t, its length in "
-                       "pixels, 0..32 (0 off)",
+                       "display only: Gaussian filter along the curved streamline over F_t, "
+                       "its length in pixels, 0..32 (0 off)",
                        require(v >= 0.0f && v <= 32.0f, "must be between 0 and 32 pixels")),
+      IBFVS_NUMBER_KEY(sharpen,
+                       "display only: each filter tap plus k times its excess over its two "
+                       "neighbours one pixel across the flow, 0..4 (0 off): thinner lines",
+                       require(v >= 0.0f && v <= 4.0f, "must be between 0 (off) and 4")),
       IBFVS_NUMBER_KEY(contrast,
                        "display only: RMS contrast of the shown texture, mean 0.5, 0..0.5 (0: "
                        "as synthesised; section 3.4)",
@@ -662,11 +668,22 @@ void apply_style(Scene& s, Style style) {
       s.background = glm::vec3(0.5f);
       break;
     case Style::Crisp:
-      // docs/quality.md: A >= 0.93 on the test meshes (VTK's Surface LIC:
-      // 0.98 on a sphere, static); about twice the cost per pixel of flow.
-      s.image_normalize = true;
+      // docs/quality.md: thinner lines than the defaults at about 1.3 times
+      // their cost per pixel.
       s.resample = Resample::Cubic;
-      s.filter = 12.0f;
+      s.filter = 16.0f;
+      s.sharpen = 3.0f;
+      break;
+    case Style::Paper:
+      // Section 5's look, and Table 1's cost: 4-pixel noise cells, the
+      // square profile at v_g 0.02, the flow's own speed, no display stage.
+      s.scale = 4.0f;
+      s.profile = NoiseProfile::Square;
+      s.vg = 0.02f;
+      s.image_normalize = false;
+      s.filter = 0.0f;
+      s.sharpen = 0.0f;
+      s.contrast = 0.0f;
       break;
     case Style::Particles:
       // Figure 8a: short spikes so that few grid values are bright, added
@@ -677,6 +694,8 @@ void apply_style(Scene& s, Style style) {
       s.inject = InjectMode::Add;
       s.contrast = 0.0f;  // sparse bright spikes on the dark: no stretch to mean 0.5
       s.filter = 0.0f;    // the comet tails as they are
+      s.sharpen = 0.0f;
+      s.image_normalize = false;  // faster particles where the flow is faster
       s.alpha = 0.08f;
       s.background = {0.05f, 0.05f, 0.08f};
       s.beta = 0.7f;
@@ -710,6 +729,8 @@ void apply_style(Scene& s, Style style) {
       s.scale = 4.0f;     // the colour cells of the figure
       s.contrast = 0.0f;  // colours, not a grey texture
       s.filter = 0.0f;
+      s.sharpen = 0.0f;
+      s.image_normalize = false;
       s.resample = Resample::Linear;
       s.default_field = FieldSpec::parse("gradient:down:normalize");
       s.up_auto = true;

@@ -110,6 +110,7 @@ void apply_texture_settings(const Scene& s, RenderSettings& settings) {
   settings.image_step = s.image_normalize ? s.step : 0.0f;
   settings.filter_length = s.filter;
   settings.resample = s.resample;
+  settings.sharpen = s.sharpen;
   settings.contrast = s.contrast;
   settings.noise.profile = s.profile;
   settings.noise.rate = s.vg;
@@ -130,7 +131,7 @@ bool is_live_texture_key(std::string_view key) {
   static const std::set<std::string_view> live = {
       "alpha",       "beta",        "vg",         "profile",     "background", "surface_color",
       "color_map",   "color_range", "beta_range", "advect_view", "inject",     "spike_width",
-      "noise_space", "filter",      "contrast",   "resample"};
+      "noise_space", "filter",      "contrast",   "resample",    "sharpen"};
   return live.count(key) > 0;
 }
 

@@ -70,7 +70,8 @@ IbfvsRenderer::IbfvsRenderer(const RenderSettings& settings) : settings_(setting
 
 void IbfvsRenderer::allocate_texture(bool colour) {
   colour_texture_ = colour;
-  const gl::Format format = colour ? gl::Format::RGBA16F : gl::Format::RG16F;
+  // Grey: value, depth and the displacement (the display filter follows it).
+  const gl::Format format = gl::Format::RGBA16F;
   for (int i = 0; i < 2; ++i)
     texture_[i] = gl::Texture2D(settings_.width, settings_.height, format, true);
   build_framebuffers();
@@ -98,12 +99,12 @@ void IbfvsRenderer::record_flow(bool on) {
 
 void IbfvsRenderer::use_colour_texture() {
   if (colour_texture_) return;
-  const ImageF raw = read_texture_raw();  // value, depth
-  std::vector<float> rgba(raw.pixels.size() * 2);
-  for (std::size_t i = 0; i < raw.pixels.size() / 2; ++i) {
-    const float v = raw.pixels[2 * i];
+  const ImageF raw = read_texture_raw();  // value, depth, displacement
+  std::vector<float> rgba(raw.pixels.size());
+  for (std::size_t i = 0; i < raw.pixels.size() / 4; ++i) {
+    const float v = raw.pixels[4 * i];
     rgba[4 * i] = rgba[4 * i + 1] = rgba[4 * i + 2] = v;
-    rgba[4 * i + 3] = raw.pixels[2 * i + 1];
+    rgba[4 * i + 3] = raw.pixels[4 * i + 1];
   }
   allocate_texture(true);
   texture_[current_].upload_float(rgba, 4);
@@ -122,6 +123,7 @@ shaders::ShaderFeatures IbfvsRenderer::features() const {
   f.filter_taps = ibfvs::filter_taps(settings_.filter_length);
   f.contrast = settings_.contrast > 0.0f;
   f.record_flow = record_flow_;
+  f.sharpen = settings_.sharpen > 0.0f;
   return f;
 }
 
@@ -160,6 +162,7 @@ IbfvsRenderer::Variant& IbfvsRenderer::current_variant() {
     v.u.filter_spacing = p.location("u_filter_spacing");
     v.u.filter_weights = p.location("u_filter_weights");
     v.u.contrast = p.location("u_contrast");
+    v.u.sharpen = p.location("u_sharpen");
   }
   if (v.applied != settings_version_) {  // the settings changed since it was last used
     const gl::Program& p = v.program;
@@ -188,6 +191,7 @@ IbfvsRenderer::Variant& IbfvsRenderer::current_variant() {
       p.set(v.u.filter_weights, std::span<const float>(weights));
     }
     p.set(v.u.contrast, settings_.contrast);
+    p.set(v.u.sharpen, settings_.sharpen);
     v.applied = settings_version_;
   }
   return v;
@@ -483,9 +487,8 @@ void IbfvsRenderer::read_output(ImageU8& image) const {
 }
 
 ImageF IbfvsRenderer::read_texture_raw() const {
-  const int channels = colour_texture_ ? 4 : 2;
-  ImageF image(settings_.width, settings_.height, channels);
-  texture_[current_].read_float(image.pixels, channels);
+  ImageF image(settings_.width, settings_.height, 4);
+  texture_[current_].read_float(image.pixels, 4);
   return image;
 }
 
@@ -494,10 +497,10 @@ ImageF IbfvsRenderer::read_texture() const {
   ImageF image(settings_.width, settings_.height, 4);
   for (std::size_t i = 0; i < image.pixels.size() / 4; ++i) {
     float* p = &image.pixels[4 * i];
-    if (raw.channels == 4)
+    if (colour_texture_)
       std::copy_n(&raw.pixels[4 * i], 3, p);
     else
-      p[0] = p[1] = p[2] = raw.pixels[2 * i];
+      p[0] = p[1] = p[2] = raw.pixels[4 * i];
     p[3] = 1.0f;
   }
   return image;
@@ -534,7 +537,7 @@ void IbfvsRenderer::draw_to_host(glm::ivec2 origin) const {
 }
 
 void IbfvsRenderer::write_texture_raw(const ImageF& texture) {
-  const int channels = colour_texture_ ? 4 : 2;
+  const int channels = 4;
   if (texture.width != settings_.width || texture.height != settings_.height ||
       texture.channels != channels)
     throw InputError("renderer: write_texture_raw needs a " + std::to_string(settings_.width) +

@@ -155,7 +155,10 @@ layout(location = 2) out vec2 o_flow;  // this frame's displacement in pixels (m
 #endif
 #ifdef IBFVS_FILTER
 uniform float u_filter_spacing;        // pixels between taps
-uniform float u_filter_weights[8];     // exp(-2 (d / L)^2) of tap k at d = (k + 1) spacing
+uniform float u_filter_weights[16];    // exp(-2 (d / L)^2) of tap k at d = (k + 1) spacing
+#endif
+#ifdef IBFVS_SHARPEN
+uniform float u_sharpen;  // k: each tap plus k (its value - the mean of its neighbours across)
 #endif
 #ifdef IBFVS_CONTRAST
 flat in vec2 v_contrast;  // (mean, gain) of the contrast stage
@@ -211,13 +214,34 @@ float solid_noise(vec3 p) {
 }
 #endif
 
-// F_t as stored: the value (grey in one channel, or RGB) and the eye depth.
+// F_t as stored: the value (grey in one channel, or RGB) and the eye depth;
+// a grey F_t also keeps the pixel's displacement in that frame (in pixels),
+// which the display filter follows.
 #ifdef IBFVS_MONO_TEXTURE
 vec3 stored_value(vec4 t) { return t.rrr; }
 float stored_depth(vec4 t) { return t.g; }
+vec2 stored_flow(vec4 t, vec2 fallback) { return t.ba; }
 #else
 vec3 stored_value(vec4 t) { return t.rgb; }
 float stored_depth(vec4 t) { return t.a; }
+vec2 stored_flow(vec4 t, vec2 fallback) { return fallback; }
+#endif
+
+#if defined(IBFVS_FILTER) || defined(IBFVS_SHARPEN)
+// A display tap at p (pixels) of the last frame's F_t: its value plus, when
+// sharpening, k times its excess over its two neighbours one pixel across
+// the flow (unit direction `along`), which counters the blur that the
+// frames' resampling leaves across the flow.
+vec3 display_tap(vec2 p, vec3 value, vec2 along) {
+#ifdef IBFVS_SHARPEN
+  vec2 across = vec2(-along.y, along.x);
+  vec4 a = textureLod(u_previous, (p + across) * u_inverse_size, 0.0);
+  vec4 b = textureLod(u_previous, (p - across) * u_inverse_size, 0.0);
+  if (stored_depth(a) > -255.0 && stored_depth(b) > -255.0)
+    value += u_sharpen * (value - 0.5 * (stored_value(a) + stored_value(b)));
+#endif
+  return value;
+}
 #endif
 
 #ifdef IBFVS_CUBIC
@@ -303,52 +327,58 @@ void main() {
   vec3 ft = mix(previous, vec3(g), u_alpha);  // equation 10
 #endif
   if (u_locked != 0) ft = previous;  // a locked texture is only mapped, never changed
+  vec2 moved = ahead && u_locked == 0 ? gl_FragCoord.xy - unshifted / u_inverse_size : vec2(0.0);
 #ifdef IBFVS_MONO_TEXTURE
-  o_texture = vec4(ft.r, depth, 0.0, 0.0);
+  o_texture = vec4(ft.r, depth, moved);
 #else
   o_texture = vec4(ft, depth);
 #endif
-  vec2 moved = ahead && u_locked == 0 ? gl_FragCoord.xy - unshifted / u_inverse_size : vec2(0.0);
 #ifdef IBFVS_RECORD_FLOW
   o_flow = moved;
 #endif
 
   // The displayed texture D(F_t), for display only: F_t stays as synthesised.
   vec3 shown = ft;
-#ifdef IBFVS_FILTER
-  // A Gaussian filter along the flow, exp(-2 (d / L)^2) at distance d (taps
-  // L / (n + 1/2) apart, n = ceil(L / 4) on each side: F_t is smooth along
-  // the flow already, the filter evens out what is left): this
-  // frame's F_t at x + d along the displacement is (1 - alpha) F_t,prev(t(x) + d)
-  // + alpha G(x + d) (a translation locally), so the taps read the last
-  // frame's texture around t(x) and the noise around x, and no pass reads
-  // this frame's F_t again. Taps off the last frame's surface are left out.
+#if defined(IBFVS_FILTER) || defined(IBFVS_SHARPEN)
+  // A line integral along the flow: a Gaussian exp(-2 (d / L)^2) over taps
+  // u_filter_spacing apart along the streamline through t(x) in the last
+  // frame's F_t, which follows the displacement each pixel stored there
+  // (second-order steps: the heading turned on by half the last turn), so
+  // the lines stay thin where the flow curves. It reads the last frame's
+  // F_t carried to this frame, without this frame's fresh noise (alpha G,
+  // which is not yet smooth along the flow), and no pass reads this frame's
+  // F_t again. The line stops where it leaves the last frame's surface or
+  // meets one at another depth.
   float moved_length = length(moved);
   if (same_surface && moved_length > 1e-6) {
     vec2 along = moved / moved_length;
-    vec3 sum = ft;
+    vec2 start = texcoord / u_inverse_size;
+    shown = display_tap(start, previous, along);
+#ifdef IBFVS_FILTER
+    vec3 sum = shown;
     float weights = 1.0;
-    for (int k = 0; k < IBFVS_FILTER; ++k) {  // taps per side, a compile-time constant
-      float w = u_filter_weights[k];
-      for (int side = -1; side <= 1; side += 2) {
-        vec2 offset = float(side) * u_filter_spacing * float(k + 1) * along;
-        vec4 t = textureLod(u_previous, texcoord + offset * u_inverse_size, 0.0);
-        vec3 tp = stored_value(t);
-        if (!(stored_depth(t) > -255.0)) continue;
-#ifdef IBFVS_OBJECT_NOISE
-        float tg = g;
-#else
-        float tg = noise(gl_FragCoord.xy + offset - u_noise_shift);
-#endif
-#ifdef IBFVS_INJECT_ADD
-        sum += w * min(tp * (1.0 - u_alpha) + vec3(tg), vec3(1.0));
-#else
-        sum += w * mix(tp, vec3(tg), u_alpha);
-#endif
+    float depth_tolerance = 0.05 * abs(previous_depth);
+    for (int side = -1; side <= 1; side += 2) {
+      vec2 p = start, heading = float(side) * along, last = heading;
+      for (int k = 0; k < IBFVS_FILTER; ++k) {  // taps per side, a compile-time constant
+        vec2 turned = heading + 0.5 * (heading - last);
+        p += u_filter_spacing * (dot(turned, turned) > 1e-12 ? normalize(turned) : heading);
+        vec4 t = textureLod(u_previous, p * u_inverse_size, 0.0);
+        if (!(stored_depth(t) > -255.0) || abs(stored_depth(t) - previous_depth) > depth_tolerance)
+          break;
+        vec2 f = stored_flow(t, along);
+        float fl = length(f);
+        if (!(fl > 1e-6)) break;
+        last = heading;
+        heading = float(side) * f / fl;
+        if (dot(heading, last) < 0.0) break;  // a stagnation line: no crossing it
+        float w = u_filter_weights[k];
+        sum += w * display_tap(p, stored_value(t), heading);
         weights += w;
       }
     }
     shown = sum / weights;
+#endif
   }
 #endif
   float shown_mean = (shown.r + shown.g + shown.b) / 3.0;
@@ -460,6 +490,7 @@ std::string with_defines(const ShaderFeatures& features, const char* body, bool 
     source += "#define IBFVS_FILTER " + std::to_string(features.filter_taps) + "\n";
   define(features.contrast, "IBFVS_CONTRAST");
   define(features.record_flow, "IBFVS_RECORD_FLOW");
+  define(features.sharpen, "IBFVS_SHARPEN");
   if (profile) source += kProfile;
   return source + body;
 }
@@ -470,7 +501,8 @@ unsigned ShaderFeatures::key() const {
   return (object_noise ? 1u : 0u) | (surface_image ? 2u : 0u) | (color_scalar ? 4u : 0u) |
          (beta_scalar ? 8u : 0u) | (image_step ? 16u : 0u) | (inject_add ? 32u : 0u) |
          (mono_texture ? 64u : 0u) | (cubic ? 128u : 0u) | (contrast ? 256u : 0u) |
-         (record_flow ? 512u : 0u) | (static_cast<unsigned>(filter_taps) << 10u);
+         (record_flow ? 512u : 0u) | (sharpen ? 1024u : 0u) |
+         (static_cast<unsigned>(filter_taps) << 11u);
 }
 
 std::string ibfvs_vertex_source(const ShaderFeatures& features) {

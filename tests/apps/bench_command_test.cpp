@@ -28,23 +28,26 @@ TEST_F(BenchCommand, TinyRunPrintsTheTableAndFiles) {
   file("sq.off", "OFF\n4 2 0\n-1 -1 0\n1 -1 0\n1 1 0\n-1 1 0\n3 0 1 2\n3 0 2 3\n");
   const Result r =
       run("bench --mesh sq.off --subdivide 0 1 --sizes 32x32 48x48 --seconds 0.02 --repeats 2 "
-          "--warmup 2 --csv b.csv --json b.json");
+          "--warmup 2 --csv b.csv --json b.json --looks paper default");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("renderer: "), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("| image | 2 triangles | 8 triangles |"), std::string::npos) << r.out;
+  // A table per look, the paper's first.
+  EXPECT_LT(r.out.find("The paper's look"), r.out.find("The default look")) << r.out;
   // A row per size, a cell per level: "static (dynamic)" figures.
   for (const char* row : {"| 32x32 | ", "| 48x48 | "}) {
-    const std::size_t at = r.out.find(row);
+    const std::size_t at = r.out.rfind(row);
     ASSERT_NE(at, std::string::npos) << r.out;
     const std::string line = r.out.substr(at, r.out.find('\n', at) - at);
     EXPECT_EQ(std::count(line.begin(), line.end(), '|'), 4) << line;
     EXPECT_EQ(std::count(line.begin(), line.end(), '('), 2) << line;
   }
   const std::string csv = test::read_file(dir_ / "b.csv");
-  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 2 * 2 * 2) << csv;  // header + cells
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 2 * 2 * 2 * 2) << csv;  // header + cells
+  EXPECT_NE(csv.find("\npaper,2,0,32,32,static,"), std::string::npos) << csv;
   const std::string json = test::read_file(dir_ / "b.json");
   EXPECT_NE(json.find("\"cells\": ["), std::string::npos) << json;
-  EXPECT_EQ(std::count(json.begin(), json.end(), '{'), 1 + 8) << json;
+  EXPECT_EQ(std::count(json.begin(), json.end(), '{'), 1 + 16) << json;
 }
 
 TEST_F(BenchCommand, BadOptionsFailCleanly) {
@@ -58,15 +61,18 @@ TEST_F(BenchCommand, BadOptionsFailCleanly) {
   expect_error(b + "--set filter", "--set: expected KEY=VALUE, got 'filter'");
   expect_error(b + "--set filter=99", "--filter: must be between 0 and 32 pixels");
   expect_error(b + "--set nonsense=1", "nonsense");
+  expect_error(b + "--looks fancy", "--looks");
 }
 
 TEST_F(BenchCommand, SettingsChangeTheLook) {
   // The paper's look on the protocol: it runs, and the settings reach the scene.
   const test::Result r =
       run("bench --subdivide 0 --sizes 32x32 --seconds 0.02 --repeats 1 --warmup 1 -q "
-          "--set profile=square --set scale=4 --set vg=0.02 --set filter=0 --set contrast=0");
+          "--looks default --set profile=square --set scale=4 --set vg=0.02 --set filter=0 "
+          "--set contrast=0");
   EXPECT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("| 32x32 |"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("The paper's look"), std::string::npos) << r.out;
 }
 
 }  // namespace

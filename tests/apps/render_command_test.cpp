@@ -543,9 +543,10 @@ TEST_F(RenderCommand, StylesLockingAndTopology) {
       run("render --mesh landscape:2:6:24 --noise-space object --orbit 2 --size 32x32 "
           "--frames 3 --out o.png -q");
   EXPECT_EQ(o.status, 0) << o.err;
-  expect_error(m + "--style cartoon",
-               "--style: expected flow, crisp, particles, principal, bronze, eroded or topology, "
-               "got 'cartoon'");
+  expect_error(
+      m + "--style cartoon",
+      "--style: expected flow, crisp, paper, particles, principal, bronze, eroded or topology, "
+      "got 'cartoon'");
   expect_error(m + "--init noise", "--init");
   expect_error(m + "--lock-at -5", "--lock-at");
   expect_error(m + "--lock-camera 1,2", "--lock-camera");

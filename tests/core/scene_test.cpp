@@ -63,7 +63,8 @@ Scene busy_scene() {
       {"resample", "cubic"},
       {"filter", "4.5"},
       {"contrast", "0.15"},
-      {"image_normalize", "true"},
+      {"image_normalize", "false"},
+      {"sharpen", "1.5"},
       {"inject", "add"},
       {"background", "0.1,0.2,0.3"},
       {"surface_color", "1,0.5,0"},
@@ -197,7 +198,7 @@ TEST(EnumNames, ParsePrintAndListComeFromOneTable) {
   EXPECT_EQ(parse_enum<ColorMap>("diverging"), ColorMap::CoolWarm);  // an alias
   EXPECT_EQ(enum_name(ColorMap::CoolWarm), "coolwarm");
   EXPECT_EQ(enum_name_list<ColorMap>(), "viridis, coolwarm, grey or bronze");
-  EXPECT_EQ(enum_entries<Style>().size(), 7u);
+  EXPECT_EQ(enum_entries<Style>().size(), 8u);
   EXPECT_EQ(enum_index(NoiseProfile::Spike), 3);
   for (const EnumName<NoiseProfile>& e : enum_entries<NoiseProfile>())
     EXPECT_EQ(parse_enum<NoiseProfile>(e.name), e.value);

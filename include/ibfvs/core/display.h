@@ -23,7 +23,7 @@ namespace ibfvs {
 /// the image.
 int display_stats_size(int width, int height);
 
-/// The display filter's taps per side for a length L: ceil(L / 4), at most 8
+/// The display filter's taps per side for a length L: ceil(L / 2), at most 16
 /// (0 for L = 0), spaced L / (taps + 1/2) apart.
 int filter_taps(float length);
 float filter_spacing(float length);

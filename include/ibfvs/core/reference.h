@@ -55,10 +55,14 @@ class ReferenceIbfvs {
   /// flows in (section 3.5's inflow).
   void step(const BackwardMap& map, int frame, float alpha, InjectMode mode = InjectMode::Blend);
   /// The display filter (RenderSettings::filter_length, core/display.h) for
-  /// the next steps: shown() is F_t filtered along each pixel's displacement
-  /// as the GPU pass computes it, from the last frame's F_t around the source
-  /// and the noise around the pixel; 0 shows F_t as it is.
+  /// the next steps: shown() is, as the GPU pass computes it, a Gaussian
+  /// along the streamline through the source in the last frame's F_t, which
+  /// follows the displacements stored with it (second-order steps), without
+  /// this frame's fresh noise; 0 shows F_t as it is.
   void set_filter_length(float length) { filter_length_ = length; }
+  /// Each display tap plus k times its excess over the mean of its two
+  /// neighbours one pixel across the flow (RenderSettings::sharpen); 0 off.
+  void set_sharpen(float k) { sharpen_ = k; }
   /// F_t,prev(source) by Catmull-Rom (RenderSettings::resample cubic) where
   /// the 4 x 4 texels around it were all on the surface, else bilinearly.
   void set_cubic(bool cubic) { cubic_ = cubic; }
@@ -81,7 +85,11 @@ class ReferenceIbfvs {
   ImageF texture_;
   ImageF shown_;
   float filter_length_ = 0.0f;
+  float sharpen_ = 0.0f;
   bool cubic_ = false;
+  ImageF moved_;  // each pixel's displacement in the last frame (2 channels)
+  // A display tap at p of the last frame's F_t, sharpened across `along`.
+  [[nodiscard]] float display_tap(glm::vec2 p, float value, glm::vec2 along) const;
   [[nodiscard]] float sample_cubic(float x, float y) const;
   std::vector<std::uint8_t> covered_;  // the previous frame's surface
   float background_;

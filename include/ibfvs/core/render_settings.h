@@ -69,10 +69,16 @@ struct RenderSettings {
   /// says whether to move (0 stops, as when locked).
   float image_step = 0.0f;
   /// Display only (the feedback loop keeps F_t as synthesised): length L in
-  /// pixels of a Gaussian filter along the flow over F_t, taps 1 pixel apart
-  /// out to L on both sides; 0 shows F_t as it is.
+  /// pixels of a Gaussian filter along the curved streamline through the
+  /// pixel's source in the last frame's F_t (core/display.h: ceil(L / 2)
+  /// taps each side); 0 shows F_t as it is.
   float filter_length = 0.0f;
   Resample resample = Resample::Linear;  ///< how F_t is sampled at t(x)
+  /// Display only: each tap of the display filter plus k times its excess
+  /// over the mean of its two neighbours one pixel across the flow, which
+  /// counters the blur that each frame's resampling leaves across it
+  /// (thinner lines); 0 off.
+  float sharpen = 0.0f;
   /// Display only: the displayed texture's values moved to mean 0.5 and this
   /// standard deviation (RMS contrast) over the surface; 0 leaves them.
   float contrast = 0.0f;

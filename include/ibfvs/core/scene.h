@@ -57,13 +57,15 @@ struct EnumNames<InitMode> {
 };
 
 /// The paper's looks (section 5: "for standard cases ... default settings").
-enum class Style { Flow, Crisp, Particles, Principal, Bronze, Eroded, Topology };
+enum class Style { Flow, Crisp, Paper, Particles, Principal, Bronze, Eroded, Topology };
 template <>
 struct EnumNames<Style> {
   static constexpr EnumName<Style> table[] = {
       {Style::Flow, "flow", "dense moving texture (figures 1, 5)"},
       {Style::Crisp, "crisp",
-       "the sharpest streaks: image-normalised flow, Catmull-Rom warp, long display filter"},
+       "the sharpest streaks: Catmull-Rom warp, longer and sharper display filter"},
+      {Style::Paper, "paper",
+       "the 2003 paper's look and cost (Table 1): scale 4, square profile, no display stage"},
       {Style::Particles, "particles", "bright particles along kappa_min (figure 8a)"},
       {Style::Principal, "principal", "dense texture along kappa_min (figure 8b)"},
       {Style::Bronze, "bronze", "patina in the hollows, dirt texture (figure 9)"},
@@ -144,21 +146,23 @@ struct Scene {
   std::string surface_image;               ///< equirectangular PNG standing in for F_s
 
   // ---- texture (paper equations 5-12). The defaults are the look measured
-  // in docs/quality.md: a finer grain (s 2), noise that never repeats (the
-  // pattern moves with the flow), a short display filter along the flow and
-  // a fixed RMS contrast, within the paper's Table 1 speeds on llvmpipe; the
-  // crisp style adds a Catmull-Rom warp and a longer filter. The paper's own
-  // look: scale 4, profile square, vg 0.02, filter 0, contrast 0.
+  // on real CFD data in docs/quality.md: flow normalised in image space
+  // (shear spans decades), pixel-fine noise that never repeats (the pattern
+  // moves with the flow), a display filter along the curved streamline,
+  // sharpened across it, and a fixed RMS contrast. The crisp style adds a
+  // Catmull-Rom warp and a longer, sharper filter; the paper style is the
+  // 2003 look: scale 4, profile square, vg 0.02, no display stage.
   float alpha = 0.1f, beta = 0.5f;
-  float scale = 2.0f;  ///< s, pixels per noise cell
+  float scale = 1.0f;  ///< s, pixels per noise cell
   NoiseProfile profile = NoiseProfile::Random;
   float vg = 0.2f, spike_width = 0.1f;
   std::uint32_t seed = 1;
   float step = 3.0f;  ///< pixels per frame of the fastest vertex (sets dt)
   float dt = 0.0f;    ///< world units per frame; > 0 overrides step
-  bool image_normalize = false;
-  float filter = 4.0f;  ///< display filter length along the flow, pixels (0 off)
+  bool image_normalize = true;
+  float filter = 8.0f;  ///< display filter length along the flow, pixels (0 off)
   Resample resample = Resample::Linear;
+  float sharpen = 2.0f;    ///< display taps sharpened across the flow (0 off)
   float contrast = 0.25f;  ///< target RMS contrast of the shown texture (0: as synthesised)
   InjectMode inject = InjectMode::Blend;
   glm::vec3 background{0.5f};

@@ -124,8 +124,9 @@ class IbfvsRenderer {
   /// The texture image F_t, RGBA float (values as stored in 16-bit float; a
   /// one-channel F_t is spread to grey RGB with alpha 1).
   [[nodiscard]] ImageF read_texture() const;
-  /// F_t as stored: two channels (grey value, eye depth) or four (RGB, eye
-  /// depth); the depth is kNoDepth off the surface.
+  /// F_t as stored, four channels: grey value, eye depth and the pixel's
+  /// displacement in its frame (x, y pixels; the display filter follows it),
+  /// or RGB and eye depth; the depth is kNoDepth off the surface.
   [[nodiscard]] ImageF read_texture_raw() const;
   /// Records every pixel's displacement from now on (for measurements: it
   /// costs a fourth attachment), or stops.
@@ -180,7 +181,7 @@ class IbfvsRenderer {
     int view_projection, advect_view_projection, view, clip_to_depth, dt, alpha, beta, noise_time,
         noise_scale, profile, spike_width, surface_color, phase_size, inverse_size, color_range,
         beta_range, field_mix, image_centre, locked, object_cell, seed, image_step, probe, size,
-        texture_shift, noise_shift, filter_spacing, filter_weights, contrast;
+        texture_shift, noise_shift, filter_spacing, filter_weights, contrast, sharpen;
   };
   struct Variant {
     gl::Program program;

@@ -176,6 +176,9 @@ IBFVS_SETTING(NoiseRate, double, vg, static_cast<float>(std::clamp(value, 0.0, 1
 IBFVS_SETTING(ImageNormalize, int, image_normalize, value != 0, false)
 IBFVS_SETTING(FilterLength, double, filter, static_cast<float>(std::clamp(value, 0.0, 32.0)), false)
 IBFVS_SETTING(Contrast, double, contrast, static_cast<float>(std::clamp(value, 0.0, 0.5)), false)
+IBFVS_SETTING(Sharpen, double, sharpen, static_cast<float>(std::clamp(value, 0.0, 4.0)), false)
+IBFVS_SETTING(Resample, int, resample,
+              value != 0 ? ibfvs::Resample::Cubic : ibfvs::Resample::Linear, false)
 IBFVS_SETTING(Seed, int, seed, static_cast<std::uint32_t>(std::max(value, 0)), true)
 #undef IBFVS_SETTING
 
@@ -518,7 +521,7 @@ void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor) {
     const int w = in.width, h = in.height;
     ibfvs::ImageF depth = session ? session->renderer().read_depth() : ibfvs::ImageF(w, h, 1, 1.0f);
     ibfvs::ImageF texture =
-        session ? session->renderer().read_texture_raw() : ibfvs::ImageF(w, h, 2, 0.0f);
+        session ? session->renderer().read_texture_raw() : ibfvs::ImageF(w, h, 4, 0.0f);
     // Every rank counts frames alike; the statistics are due on the same ones.
     const bool statistics = in.scene.contrast > 0.0f && in.frame % 4 == 0;
     ibfvs::ImageF output;

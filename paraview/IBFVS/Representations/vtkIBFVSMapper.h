@@ -37,6 +37,8 @@ class IBFVSREPRESENTATIONS_EXPORT vtkIBFVSMapper : public vtkCompositePolyDataMa
   void SetImageNormalize(int on);
   void SetFilterLength(double pixels);
   void SetContrast(double contrast);
+  void SetSharpen(double k);
+  void SetResample(int cubic);
   void SetSeed(int seed);
 
   /// Frames drawn with the texture since it last started afresh.

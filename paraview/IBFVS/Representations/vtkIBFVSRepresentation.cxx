@@ -63,5 +63,7 @@ IBFVS_FORWARD(NoiseRate, double)
 IBFVS_FORWARD(ImageNormalize, int)
 IBFVS_FORWARD(FilterLength, double)
 IBFVS_FORWARD(Contrast, double)
+IBFVS_FORWARD(Sharpen, double)
+IBFVS_FORWARD(Resample, int)
 IBFVS_FORWARD(Seed, int)
 #undef IBFVS_FORWARD

@@ -37,6 +37,8 @@ class IBFVSREPRESENTATIONS_EXPORT vtkIBFVSRepresentation
   void SetImageNormalize(int on);
   void SetFilterLength(double pixels);
   void SetContrast(double contrast);
+  void SetSharpen(double k);
+  void SetResample(int cubic);
   void SetSeed(int seed);
 
   int ProcessViewRequest(vtkInformationRequestKey* request_type, vtkInformation* inInfo,

@@ -70,8 +70,11 @@ IbfvsRenderer::IbfvsRenderer(const RenderSettings& settings) : settings_(setting
 
 void IbfvsRenderer::allocate_texture(bool colour) {
   colour_texture_ = colour;
-  // Grey: value, depth and the displacement (the display filter follows it).
-  const gl::Format format = gl::Format::RGBA16F;
+  // Grey: value and depth, and the displacement when the display filter
+  // follows it (the paper's look, without the filter, reads and writes half
+  // the bytes).
+  texture_flow_ = !colour && ibfvs::filter_taps(settings_.filter_length) > 0;
+  const gl::Format format = colour || texture_flow_ ? gl::Format::RGBA16F : gl::Format::RG16F;
   for (int i = 0; i < 2; ++i)
     texture_[i] = gl::Texture2D(settings_.width, settings_.height, format, true);
   build_framebuffers();
@@ -219,6 +222,11 @@ void IbfvsRenderer::update_settings(const RenderSettings& settings) {
     throw InputError("renderer: size, noise scale and seed need a new renderer");
   settings_ = settings;
   if (!grey(settings_.background)) use_colour_texture();  // a grey texture stays until reset()
+  if (!colour_texture_ && texture_flow_ != (ibfvs::filter_taps(settings_.filter_length) > 0)) {
+    const ImageF raw = read_texture_raw();  // F_t carries over into the other format
+    allocate_texture(false);
+    texture_[current_].upload_float(raw.pixels, 4);
+  }
   apply_settings();
 }
 
@@ -305,7 +313,9 @@ void IbfvsRenderer::set_scalars(std::span<const float> color, std::span<const fl
 
 void IbfvsRenderer::reset() {
   gl::prepare_own_draw();
-  if (colour_texture_ == grey(settings_.background)) allocate_texture(!grey(settings_.background));
+  if (colour_texture_ == grey(settings_.background) ||
+      (!colour_texture_ && texture_flow_ != (ibfvs::filter_taps(settings_.filter_length) > 0)))
+    allocate_texture(!grey(settings_.background));
   for (auto& fb : framebuffer_) clear_targets(fb);
   stats_framebuffer_.clear_color(0, glm::vec4(0.0f));  // no statistics before the first frame
   current_ = 0;

@@ -160,7 +160,7 @@ struct Scene {
   float step = 3.0f;  ///< pixels per frame of the fastest vertex (sets dt)
   float dt = 0.0f;    ///< world units per frame; > 0 overrides step
   bool image_normalize = true;
-  float filter = 8.0f;  ///< display filter length along the flow, pixels (0 off)
+  float filter = 4.0f;  ///< display filter length along the flow, pixels (0 off)
   Resample resample = Resample::Linear;
   float sharpen = 2.0f;    ///< display taps sharpened across the flow (0 off)
   float contrast = 0.25f;  ///< target RMS contrast of the shown texture (0: as synthesised)

@@ -125,8 +125,9 @@ class IbfvsRenderer {
   /// one-channel F_t is spread to grey RGB with alpha 1).
   [[nodiscard]] ImageF read_texture() const;
   /// F_t as stored, four channels: grey value, eye depth and the pixel's
-  /// displacement in its frame (x, y pixels; the display filter follows it),
-  /// or RGB and eye depth; the depth is kNoDepth off the surface.
+  /// displacement in its frame (x, y pixels, kept when the display filter is
+  /// on: it follows them; else 0, 1), or RGB and eye depth; the depth is
+  /// kNoDepth off the surface.
   [[nodiscard]] ImageF read_texture_raw() const;
   /// Records every pixel's displacement from now on (for measurements: it
   /// costs a fourth attachment), or stops.
@@ -203,6 +204,7 @@ class IbfvsRenderer {
   void allocate_texture(bool colour);
   void use_colour_texture();
   bool colour_texture_ = true;
+  bool texture_flow_ = true;  // a grey F_t also keeps each pixel's displacement
 
   RenderSettings settings_;
   std::unordered_map<unsigned, Variant> variants_;  // by ShaderFeatures::key()

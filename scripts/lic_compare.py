@@ -1,0 +1,249 @@
+"""ibfvs's representation against ParaView's Surface LIC on real data, in one
+pvbatch session: same data, same cameras, same size, each at its defaults
+(docs/quality.md, "Real data"). For every view it saves the plain Surface,
+Surface LIC, IBFVS after the warm-up frames and 100 frames later, and a
+direction-coded picture of the TRUE projected flow (red, green: 0.5 + 0.5 x,
+y of the unit image-space direction; blue 255 where the direction is defined:
+the vector is not zero and not within 17 degrees of the line of sight), then
+measures alignment A and streak width W of each against it with
+`ibfvs quality --png P --direction D`, times a frame of each (the camera
+nudged by 0.001 degrees each frame, so that nothing is cached) and prints one
+Markdown table. Crops magnified 4x, side by side, go to OUT/crops-VIEW.png.
+
+  xvfb-run -a pvbatch scripts/lic_compare.py DATA ARRAY OUT [options]
+
+  DATA    a surface file ParaView opens (.vtp, .vtm, .foam, ...)
+  ARRAY   the vector array (point or cell data; cell data is moved to the points
+          for every picture alike)
+  --reverse             negate it (OpenFOAM's wallShearStress)
+  --views NAME=AZ,EL    cameras about the data's centre (degrees; azimuth about
+                        the up axis from +X, elevation above the horizon),
+                        default front=0,10 side=90,10
+  --up X,Y,Z            the up axis (default 0,0,1)
+  --zoom F              the data's bounding sphere fills 1/F of the view height (default 1)
+  --size W,H            default 1024,768
+  --crop X,Y            the crop's centre from the top left (default the middle)
+  --plugin PATH         IBFVS.so (default: build/lib/ibfvs/paraview/IBFVS/IBFVS.so)
+  --ibfvs PATH          the ibfvs binary (default: build/ibfvs)
+  --set NAME=VALUE      a property of the IBFVS representation (repeatable)
+  --frames N            IBFVS warm-up frames before the first picture (default 120)
+"""
+import argparse
+import math
+import os
+import subprocess
+import time
+
+import paraview.simple as pv
+
+root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+parser = argparse.ArgumentParser()
+parser.add_argument("data")
+parser.add_argument("array")
+parser.add_argument("out")
+parser.add_argument("--reverse", action="store_true")
+parser.add_argument("--views", nargs="*", default=["front=0,10", "side=90,10"])
+parser.add_argument("--up", default="0,0,1")
+parser.add_argument("--zoom", type=float, default=1.0)
+parser.add_argument("--size", default="1024,768")
+parser.add_argument("--crop", default="")
+parser.add_argument("--plugin", default=os.path.join(root, "build/lib/ibfvs/paraview/IBFVS/IBFVS.so"))
+parser.add_argument("--ibfvs", default=os.path.join(root, "build/ibfvs"))
+parser.add_argument("--set", action="append", default=[])
+parser.add_argument("--frames", type=int, default=120)
+args = parser.parse_args()
+os.makedirs(args.out, exist_ok=True)
+w, h = (int(v) for v in args.size.split(","))
+up = [float(v) for v in args.up.split(",")]
+pv.LoadPlugin(args.plugin, remote=False, ns={})
+
+# The data, its vectors on the points (as Surface LIC needs them), reversed if asked.
+source = pv.OpenDataFile(args.data)
+if hasattr(source, "MeshRegions"):  # OpenFOAM: the walls, not the volume
+    source.MeshRegions = [r for r in source.GetProperty("MeshRegions").Available
+                          if r.startswith("patch/") or r.startswith("wall")] or ["internalMesh"]
+source.UpdatePipeline()
+surface = pv.ExtractSurface(Input=pv.MergeBlocks(Input=source))
+info = surface.GetDataInformation()
+on_cells = surface.CellData.GetArray(args.array) is not None and \
+    surface.PointData.GetArray(args.array) is None
+if on_cells:
+    surface = pv.CellDatatoPointData(Input=surface)
+flow = pv.Calculator(Input=surface, ResultArrayName="flow",
+                     Function=("-" if args.reverse else "") + args.array)
+flow.UpdatePipeline()
+bounds = flow.GetDataInformation().GetBounds()
+centre = [0.5 * (bounds[2 * i] + bounds[2 * i + 1]) for i in range(3)]
+radius = 0.5 * math.sqrt(math.fsum((bounds[2 * i + 1] - bounds[2 * i]) ** 2 for i in range(3)))
+
+# The true projected direction, per point, for a camera: the derivative of the
+# perspective projection along the unit vector, normalised, in eye space
+# (x right, y up); blue 255 where the vector is not zero and its component
+# across the line of sight is at least 0.3 (17 degrees off it).
+DIRECTION_SCRIPT = """
+import numpy as np
+from vtk.numpy_interface import dataset_adapter as dsa
+eye = np.array(%r); right = np.array(%r); upv = np.array(%r); back = np.array(%r)
+data = dsa.WrapDataObject(inputs[0].VTKObject)
+p = np.asarray(data.Points) - eye
+v = np.asarray(data.PointData["flow"])
+speed = np.linalg.norm(v, axis=1)
+u = v / np.maximum(speed, 1e-30)[:, None]
+x, y, z = p @ right, p @ upv, p @ back
+dx, dy, dz = u @ right, u @ upv, u @ back
+# d/ds of (x / -z, y / -z), times z^2: (dx (-z) + x dz, dy (-z) + y dz)
+sx, sy = dx * (-z) + x * dz, dy * (-z) + y * dz
+n = np.hypot(sx, sy)
+across = n / np.maximum(np.sqrt(x * x + y * y + z * z), 1e-30)
+rgb = np.zeros((len(v), 3), dtype=np.uint8)
+ok = (speed > 0) & (n > 0)
+rgb[:, 0] = np.clip(np.round(127.5 + 127.5 * np.where(ok, sx / np.maximum(n, 1e-30), 0)), 0, 255)
+rgb[:, 1] = np.clip(np.round(127.5 + 127.5 * np.where(ok, sy / np.maximum(n, 1e-30), 0)), 0, 255)
+rgb[:, 2] = np.where(ok & (across >= 0.3), 255, 0)
+output.ShallowCopy(inputs[0].VTKObject)
+out = dsa.WrapDataObject(output)
+out.PointData.append(rgb, "direction")
+"""
+
+view = pv.CreateRenderView()
+view.ViewSize = [w, h]
+view.OrientationAxesVisibility = 0
+view.UseColorPaletteForBackground = 0
+view.Background = [0.32, 0.34, 0.43]
+pv._DisableFirstRenderCameraReset()
+display = pv.Show(flow, view)
+display.ColorArrayName = ["POINTS", ""]
+direction = pv.ProgrammableFilter(Input=flow)
+direction_display = None
+
+
+def place_camera(azimuth, elevation):
+    """The camera about the centre; returns eye, right, up, back (eye space axes)."""
+    upn = [u / math.sqrt(math.fsum(c * c for c in up)) for u in up]
+    # A horizontal reference axis: +X unless up is X.
+    ref = [1.0, 0.0, 0.0] if abs(upn[0]) < 0.9 else [0.0, 1.0, 0.0]
+    dot = math.fsum(a * b for a, b in zip(ref, upn))
+    e1 = [a - dot * b for a, b in zip(ref, upn)]
+    l1 = math.sqrt(math.fsum(a * a for a in e1))
+    e1 = [a / l1 for a in e1]
+    e2 = [upn[1] * e1[2] - upn[2] * e1[1], upn[2] * e1[0] - upn[0] * e1[2],
+          upn[0] * e1[1] - upn[1] * e1[0]]
+    a, e = math.radians(azimuth), math.radians(elevation)
+    to_eye = [math.cos(e) * (math.cos(a) * e1[i] + math.sin(a) * e2[i]) + math.sin(e) * upn[i]
+              for i in range(3)]
+    distance = radius * args.zoom / math.tan(math.radians(15.0))
+    eye = [centre[i] + distance * to_eye[i] for i in range(3)]
+    view.CameraPosition = eye
+    view.CameraFocalPoint = centre
+    view.CameraViewUp = upn
+    view.CameraViewAngle = 30
+    view.CameraParallelProjection = 0
+    back = to_eye
+    right = [upn[1] * back[2] - upn[2] * back[1], upn[2] * back[0] - upn[0] * back[2],
+             upn[0] * back[1] - upn[1] * back[0]]
+    true_up = [back[1] * right[2] - back[2] * right[1], back[2] * right[0] - back[0] * right[2],
+               back[0] * right[1] - back[1] * right[0]]
+    return eye, right, true_up, back
+
+
+def timed(frames):
+    """Milliseconds per Render over `frames` frames, the camera nudged each."""
+    camera = view.GetActiveCamera()
+    start = time.perf_counter()
+    for k in range(frames):
+        camera.Azimuth(0.001 if k % 2 == 0 else -0.001)
+        pv.Render(view)
+    return 1e3 * (time.perf_counter() - start) / frames
+
+
+def shot(name):
+    path = os.path.join(args.out, name + ".png")
+    pv.SaveScreenshot(path, view, ImageResolution=[w, h])
+    return path
+
+
+def measure(picture, truth):
+    text = subprocess.run([args.ibfvs, "quality", "--png", picture, "--direction", truth],
+                          check=True, capture_output=True, text=True).stdout
+    values = {}
+    for line in text.splitlines():
+        if "alignment A" in line:
+            values["A"] = float(line.split()[2])
+        if "streak width W" in line:
+            values["W"] = float(line.split()[3])
+    return values
+
+
+rows = []
+crops = {}
+for spec in args.views:
+    name, angles = spec.split("=")
+    azimuth, elevation = (float(v) for v in angles.split(","))
+    eye, right, true_up, back = place_camera(azimuth, elevation)
+    # The truth first.
+    direction.Script = DIRECTION_SCRIPT % (eye, right, true_up, back)
+    if direction_display is None:
+        direction_display = pv.Show(direction, view)
+    pv.Hide(flow, view)
+    pv.Show(direction, view)
+    pv.ColorBy(direction_display, ("POINTS", "direction"))
+    direction_display.MapScalars = 0
+    direction_display.Ambient, direction_display.Diffuse, direction_display.Specular = 1.0, 0.0, 0.0
+    background = list(view.Background)
+    view.Background = [0.0, 0.0, 0.0]
+    pv.Render(view)
+    truth = shot(name + "-direction")
+    view.Background = background
+    pv.Hide(direction, view)
+    pv.Show(flow, view)
+
+    pictures = []
+    display.Representation = "Surface"
+    pv.Render(view)
+    ms = timed(10)
+    pictures.append(("Surface, no texture", shot(name + "-surface"), ms))
+    display.Representation = "Surface LIC"
+    display.SelectInputVectors = ["POINTS", "flow"]
+    pv.Render(view)
+    ms = timed(3)
+    pictures.append(("Surface LIC, defaults", shot(name + "-lic"), ms))
+    display.Representation = "IBFVS"
+    display.SelectInputVectors = ["POINTS", "flow"]
+    for setting in args.set:
+        key, value = setting.split("=")
+        number = float(value)
+        setattr(display, key, int(number) if number.is_integer() else number)
+    for _ in range(args.frames):
+        pv.Render(view)
+    ms = timed(20)
+    label = "IBFVS, " + (", ".join(args.set) if args.set else "defaults")
+    pictures.append((label, shot(name + "-ibfvs"), ms))
+    for _ in range(100):
+        pv.Render(view)
+    pictures.append((label + ", 100 frames later", shot(name + "-ibfvs-later"), ms))
+    for label, path, ms in pictures:
+        m = measure(path, truth)
+        rows.append((name, label, m.get("A", float("nan")), m.get("W", float("nan")), ms))
+    crops[name] = [p for _, p, _ in pictures[1:3]]
+
+print("\n%s (%s%s), %dx%d, pvbatch, ParaView %s\n" % (
+    os.path.basename(args.data), args.array, ", reversed" if args.reverse else "", w, h,
+    pv.GetParaViewVersion()))
+print("| view | picture | A | W (px) | ms per frame |")
+print("|---|---|---|---|---|")
+for name, label, a, wd, ms in rows:
+    print("| %s | %s | %.3f | %.2f | %.0f |" % (name, label, a, wd, ms))
+
+# Crops: the middle (or --crop) of LIC and IBFVS, 4x, side by side.
+try:
+    from PIL import Image
+    cx, cy = (w // 2, h // 2) if not args.crop else (int(v) for v in args.crop.split(","))
+    for name, paths in crops.items():
+        tiles = [Image.open(p).convert("RGB").crop((cx - 64, cy - 48, cx + 64, cy + 48))
+                 .resize((512, 384), Image.NEAREST) for p in paths]
+        sheet = Image.new("RGB", (512 * len(tiles) + 8 * (len(tiles) - 1), 384), (255, 255, 255))
+        for i, tile in enumerate(tiles):
+            sheet.paste(tile, (i * 520, 0))
+        sheet.save(os.path.join(args.out, "crops-%s.png" % name))
+except ImportError:
+    pass

@@ -57,7 +57,7 @@ int measure_picture(const QualityOptions& o) {
       throw InputError(o.direction + ": must be an RGB picture of " + std::to_string(w) + "x" +
                        std::to_string(h) + " pixels, as " + o.png);
   }
-  ImageF image(w, h, 1);
+  ImageF rgb(w, h, 3);
   std::vector<std::uint8_t> mask(static_cast<std::size_t>(w) * h);
   const auto px = [&](std::size_t i, int c) {
     return picture.pixels[i * picture.channels + std::min(c, picture.channels - 1)];
@@ -65,11 +65,12 @@ int measure_picture(const QualityOptions& o) {
   for (std::size_t i = 0; i < mask.size(); ++i) {
     bool background = true;
     for (int c = 0; c < 3; ++c) background = background && px(i, c) == px(0, c);
-    image.pixels[i] = (0.2126f * px(i, 0) + 0.7152f * px(i, 1) + 0.0722f * px(i, 2)) / 255.0f;
+    for (int c = 0; c < 3; ++c) rgb.pixels[3 * i + c] = static_cast<float>(px(i, c)) / 255.0f;
     mask[i] = direction.pixels.empty()
                   ? (background ? 0 : 1)
                   : (direction.pixels[i * direction.channels + 2] >= 128 ? 1 : 0);
   }
+  const ImageF image = luminance(rgb);
   std::function<glm::vec2(float, float)> flow;
   std::string what;
   if (!direction.pixels.empty()) {

@@ -11,6 +11,16 @@
 
 namespace ibfvs {
 
+ImageF luminance(const ImageF& rgb) {
+  if (rgb.channels < 3) throw InputError("luminance: needs an RGB image");
+  ImageF out(rgb.width, rgb.height, 1);
+  for (std::size_t i = 0; i < out.pixels.size(); ++i) {
+    const float* p = &rgb.pixels[i * static_cast<std::size_t>(rgb.channels)];
+    out.pixels[i] = 0.2126f * p[0] + 0.7152f * p[1] + 0.0722f * p[2];
+  }
+  return out;
+}
+
 ImageF gaussian_blur(const ImageF& image, float sigma) {
   constexpr int r = 2;
   float k[2 * r + 1];

@@ -499,6 +499,9 @@ void IbfvsRenderer::read_output(ImageU8& image) const {
 ImageF IbfvsRenderer::read_texture_raw() const {
   ImageF image(settings_.width, settings_.height, 4);
   texture_[current_].read_float(image.pixels, 4);
+  if (!colour_texture_ && !texture_flow_)  // two channels: no displacement (GL reads 0, 1)
+    for (std::size_t i = 0; i < image.pixels.size(); i += 4)
+      image.pixels[i + 2] = image.pixels[i + 3] = 0.0f;
   return image;
 }
 

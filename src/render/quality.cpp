@@ -59,18 +59,15 @@ QualityReport measure_quality(PreparedScene scene, int warmup, bool shown) {
   report.coverage = static_cast<double>(covered) / static_cast<double>(mask.size());
 
   const ImageF& last = frames.back();
-  ImageF luminance(last.width, last.height, 1);
-  for (std::size_t i = 0; i < luminance.pixels.size(); ++i)
-    luminance.pixels[i] = 0.2126f * last.pixels[3 * i] + 0.7152f * last.pixels[3 * i + 1] +
-                          0.0722f * last.pixels[3 * i + 2];
+  const ImageF grey = luminance(last);
   const auto direction = [&](float x, float y) {
     const int xi = static_cast<int>(x), yi = static_cast<int>(y);
     return glm::vec2(flow.at(xi, yi, 0), flow.at(xi, yi, 1));
   };
   // The texture alone (beta 1): its first channel (the grey texture's
   // channels are equal); as shown: the luminance.
-  report.alignment = flow_alignment(shown ? luminance : last, mask, direction, 4);
-  report.streak_width = streak_width(shown ? luminance : last, mask, direction, 4);
+  report.alignment = flow_alignment(shown ? grey : last, mask, direction, 4);
+  report.streak_width = streak_width(shown ? grey : last, mask, direction, 4);
   report.red_inflow = shown ? std::nan("") : red_tinted_fraction(last, mask);
   report.lag8 = pattern_motion(frames[kMeasured - 9], last, flow, mask, 8);
   report.lag16 = pattern_motion(frames[0], last, flow, mask, 16);

@@ -463,10 +463,32 @@ TEST_F(RenderCommand, QualityOptionsFailCleanly) {
   expect_error("quality --png not-a-png.png", "not-a-png.png");
   expect_error("quality --png x.png --centre 1", "--centre");
   expect_error("quality missing.off", "missing.off");
+  expect_error(m + "--sharpen 5", "--sharpen: must be between 0 (off) and 4");
+  expect_error(m + "--sharpen -1", "--sharpen");
   const Result q = run("quality sq.off --size 48x48 --warmup 3");
   EXPECT_EQ(q.status, 0) << q.err;
   EXPECT_NE(q.out.find("alignment A"), std::string::npos) << q.out;
+  EXPECT_NE(q.out.find("streak width W"), std::string::npos) << q.out;
   EXPECT_NE(q.out.find("red inflow"), std::string::npos) << q.out;
+  // Another tool's picture against a direction-coded picture of the flow:
+  // both must be PNGs of one size; the truth must be RGB.
+  ASSERT_EQ(run("render sq.off --frames 2 --size 32x32 --out a.png -q").status, 0);
+  ASSERT_EQ(run("render sq.off --frames 2 --size 48x48 --out b.png -q").status, 0);
+  expect_error("quality --png a.png --direction b.png", "b.png: must be an RGB picture of 32x32");
+  expect_error("quality --png a.png --direction missing.png", "missing.png");
+  expect_error("quality --png a.png --direction not-a-png.png", "not-a-png.png");
+  const Result d = run("quality --png a.png --direction a.png");
+  EXPECT_EQ(d.status, 0) << d.err;
+  EXPECT_NE(d.out.find("streak width W"), std::string::npos) << d.out;
+  // As shown: no red inflow line (the scene's own background).
+  const Result shown = run("quality sq.off --size 48x48 --warmup 3 --shown");
+  EXPECT_EQ(shown.status, 0) << shown.err;
+  EXPECT_EQ(shown.out.find("red inflow"), std::string::npos) << shown.out;
+  // --no-image-normalize turns the default off: the summary says so.
+  const Result speeds = run(m + "--no-image-normalize");
+  EXPECT_EQ(speeds.status, 0) << speeds.err;
+  EXPECT_EQ(speeds.out.find("image-normalised"), std::string::npos) << speeds.out;
+  EXPECT_NE(speeds.out.find(" (max "), std::string::npos) << speeds.out;
 }
 
 TEST_F(RenderCommand, StylesLockingAndTopology) {

@@ -34,6 +34,9 @@ double flow_alignment(const ImageF& image, const std::vector<std::uint8_t>& mask
 double streak_width(const ImageF& image, const std::vector<std::uint8_t>& mask,
                     const std::function<glm::vec2(float, float)>& flow, int margin);
 
+/// The Rec. 709 luminance of an RGB(A) image, one channel.
+ImageF luminance(const ImageF& rgb);
+
 /// Gaussian blur with a 5-tap kernel of the given sigma, clamped at the borders.
 ImageF gaussian_blur(const ImageF& image, float sigma);
 

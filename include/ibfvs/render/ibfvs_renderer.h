@@ -126,7 +126,7 @@ class IbfvsRenderer {
   [[nodiscard]] ImageF read_texture() const;
   /// F_t as stored, four channels: grey value, eye depth and the pixel's
   /// displacement in its frame (x, y pixels, kept when the display filter is
-  /// on: it follows them; else 0, 1), or RGB and eye depth; the depth is
+  /// on: it follows them; else 0), or RGB and eye depth; the depth is
   /// kNoDepth off the surface.
   [[nodiscard]] ImageF read_texture_raw() const;
   /// Records every pixel's displacement from now on (for measurements: it

@@ -287,8 +287,10 @@ def test_colour_by_a_scalar_through_paraviews_colour_map(data, tmp_path):
     top[rows[0] + third:] = False
     bottom[:rows[-1] - third] = False
     warmth = lambda m: (img[m][:, 0] - img[m][:, 2]).mean()  # noqa: E731
-    assert warmth(top) > 30
-    assert warmth(top) - warmth(bottom) > 40
+    # The colour weighs 1 - Beta in the blend (0.35 at the default 0.65):
+    # measured 33 and 32 there, about 48 and 46 at Beta 0.5.
+    assert warmth(top) > 22
+    assert warmth(top) - warmth(bottom) > 25
     assert local_contrast(img, mask) > 4
 
 

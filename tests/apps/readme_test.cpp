@@ -2,6 +2,7 @@
 // and the commands quoted in its text, with small sizes and frame counts, so
 // that the README cannot drift from the program again.
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -174,6 +175,32 @@ TEST_F(Readme, DocsListEveryKeyAndEveryName) {
   check("--noise-space", enum_name_list<NoiseSpace>());
   check("--advect-view", enum_name_list<AdvectView>());
   check("--resample", enum_name_list<Resample>());
+}
+
+// The ParaView representation starts from the same look as the command line:
+// each property's default_values in the plugin's XML equals the Scene's.
+TEST(ParaViewDefaults, EqualTheScenesDefaults) {
+  const std::string xml =
+      test::read_file(fs::path(IBFVS_SOURCE_DIR) / "paraview/IBFVS/IBFVSRepresentation.xml");
+  const auto value = [&](const std::string& property) {
+    const std::regex re("name=\"" + property + "\"[^>]*default_values=\"([^\"]*)\"");
+    std::smatch m;
+    EXPECT_TRUE(std::regex_search(xml, m, re)) << property << " has no default in the XML";
+    return m.empty() ? std::nan("") : std::stod(m[1].str());
+  };
+  const Scene s;
+  EXPECT_FLOAT_EQ(value("Alpha"), s.alpha);
+  EXPECT_FLOAT_EQ(value("Beta"), s.beta);
+  EXPECT_FLOAT_EQ(value("NoiseScale"), s.scale);
+  EXPECT_FLOAT_EQ(value("StepPixels"), s.step);
+  EXPECT_FLOAT_EQ(value("NoiseRate"), s.vg);
+  EXPECT_EQ(value("TimeProfile"), static_cast<double>(s.profile));
+  EXPECT_EQ(value("ImageNormalize"), s.image_normalize ? 1.0 : 0.0);
+  EXPECT_FLOAT_EQ(value("FilterLength"), s.filter);
+  EXPECT_FLOAT_EQ(value("Contrast"), s.contrast);
+  EXPECT_FLOAT_EQ(value("Sharpen"), s.sharpen);
+  EXPECT_EQ(value("Resample"), s.resample == Resample::Cubic ? 1.0 : 0.0);
+  EXPECT_EQ(value("Seed"), static_cast<double>(s.seed));
 }
 
 }  // namespace

@@ -60,7 +60,7 @@ Scene busy_scene() {
       {"seed", "7"},
       {"step", "2.5"},
       {"dt", "0.125"},
-      {"resample", "cubic"},
+      {"resample", "linear"},
       {"filter", "4.5"},
       {"contrast", "0.15"},
       {"image_normalize", "false"},

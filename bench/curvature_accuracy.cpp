@@ -1,11 +1,11 @@
 // Curvature accuracy on irregular meshes with known curvature, side by side:
 // ibfvs's fit and CGAL's Monge jet fitting on the same meshes. Prints the
-// table of README.md ("ibfvs geometry").
+// table of docs/geometry.md.
 //
 //   build/bench/ibfvs_curvature_accuracy [--all]
 //
 // --all adds the candidate settings that were measured when choosing the
-// defaults (docs: curvature section of README.md).
+// defaults (docs/geometry.md).
 
 #include <chrono>
 #include <cstdio>
@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
-#include "ibfvs/core/curvature.h"
-#include "ibfvs/core/mesh_io.h"
+#include "ibfvs/core/geometry/curvature.h"
+#include "ibfvs/core/mesh/mesh_io.h"
 #include "support/curvature_surfaces.h"
 
 namespace ibfvs {

@@ -12,11 +12,11 @@
 #include <benchmark/benchmark.h>
 #include <omp.h>
 
-#include "ibfvs/core/curvature.h"
-#include "ibfvs/core/gpu_prep.h"
-#include "ibfvs/core/mesh_io.h"
-#include "ibfvs/core/procedural.h"
-#include "ibfvs/core/subdivision.h"
+#include "ibfvs/core/geometry/curvature.h"
+#include "ibfvs/core/mesh/gpu_prep.h"
+#include "ibfvs/core/mesh/mesh_io.h"
+#include "ibfvs/core/mesh/procedural.h"
+#include "ibfvs/core/mesh/subdivision.h"
 
 namespace ibfvs {
 namespace {

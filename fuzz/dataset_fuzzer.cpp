@@ -1,12 +1,12 @@
 // read_dataset on one VTK format (IBFVS_FUZZ_EXTENSION: ".vtk" legacy, ".vtp"
 // and ".vtu" XML): ParaView's VTK readers in their child process
-// (core/isolation.h), our conversion of their surfaces and arrays to a
+// (core/support/isolation.h), our conversion of their surfaces and arrays to a
 // TriMesh, and the way back. A crash inside VTK ends only the child and is
 // an InputError here; what this harness finds is ours.
 #include <cstdlib>
 
 #include "fuzz_support.h"
-#include "ibfvs/core/dataset_io.h"
+#include "ibfvs/core/mesh/dataset_io.h"
 #include "ibfvs/vtk/vtk_io.h"
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {

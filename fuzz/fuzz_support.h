@@ -16,9 +16,9 @@
 #include <string>
 #include <string_view>
 
-#include "ibfvs/core/error.h"
-#include "ibfvs/core/mesh.h"
-#include "ibfvs/core/text.h"
+#include "ibfvs/core/mesh/mesh.h"
+#include "ibfvs/core/support/error.h"
+#include "ibfvs/core/support/text.h"
 
 namespace ibfvs::fuzz {
 

@@ -3,7 +3,7 @@
 // carries the extension, as on the command line.
 
 #include "fuzz_support.h"
-#include "ibfvs/core/mesh_io.h"
+#include "ibfvs/core/mesh/mesh_io.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace ibfvs;

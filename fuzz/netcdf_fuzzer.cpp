@@ -2,7 +2,7 @@
 // netCDF file (the first four), at its first and last time index.
 
 #include "fuzz_support.h"
-#include "ibfvs/core/lonlat_grid.h"
+#include "ibfvs/core/fields/lonlat_grid.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace ibfvs;

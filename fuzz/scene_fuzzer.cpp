@@ -3,7 +3,7 @@
 // give the same text.
 
 #include "fuzz_support.h"
-#include "ibfvs/core/scene.h"
+#include "ibfvs/core/scene/scene.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace ibfvs;

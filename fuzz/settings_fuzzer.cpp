@@ -9,9 +9,9 @@
 #include <string>
 
 #include "fuzz_support.h"
-#include "ibfvs/core/mesh_source.h"
-#include "ibfvs/core/scene.h"
-#include "ibfvs/core/vector_field.h"
+#include "ibfvs/core/fields/vector_field.h"
+#include "ibfvs/core/mesh/mesh_source.h"
+#include "ibfvs/core/scene/scene.h"
 
 namespace {
 

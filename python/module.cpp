@@ -22,11 +22,11 @@
 
 #include <glm/trigonometric.hpp>
 
-#include "ibfvs/core/camera.h"
-#include "ibfvs/core/error.h"
-#include "ibfvs/core/image.h"
-#include "ibfvs/core/scene.h"
-#include "ibfvs/core/scene_prep.h"
+#include "ibfvs/core/image/image.h"
+#include "ibfvs/core/scene/camera.h"
+#include "ibfvs/core/scene/scene.h"
+#include "ibfvs/core/scene/scene_prep.h"
+#include "ibfvs/core/support/error.h"
 #include "ibfvs/gl/context.h"
 #include "ibfvs/render/export.h"
 #include "ibfvs/render/session.h"

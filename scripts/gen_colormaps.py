@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Regenerates src/core/colormap_tables.inc from the colour maps' published
+"""Regenerates src/core/image/colormap_tables.inc from the colour maps' published
 definitions as Debian ships them in matplotlib's data files (downloaded with
 apt-get download, never installed):
 
@@ -9,7 +9,7 @@ apt-get download, never installed):
   Scientific Visualization", 2009) from his CoolWarmFloat33 table, matplotlib's
   _cm.py, resampled linearly to 256 entries.
 
-Usage: scripts/gen_colormaps.py   (writes src/core/colormap_tables.inc)
+Usage: scripts/gen_colormaps.py   (writes src/core/image/colormap_tables.inc)
 """
 import ast
 import glob
@@ -19,7 +19,7 @@ import sys
 import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-OUT = os.path.join(HERE, "..", "src", "core", "colormap_tables.inc")
+OUT = os.path.join(HERE, "..", "src", "core", "image", "colormap_tables.inc")
 
 
 def assignment(path, name):

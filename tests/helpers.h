@@ -1,6 +1,6 @@
 #pragma once
 // Shared test helpers: temporary folders, small files written on the fly, and
-// statistics on images. Procedural meshes live in ibfvs/core/procedural.h.
+// statistics on images. Procedural meshes live in ibfvs/core/mesh/procedural.h.
 
 #include <algorithm>
 #include <cmath>
@@ -12,7 +12,7 @@
 
 #include <gtest/gtest.h>
 
-#include "ibfvs/core/image.h"
+#include "ibfvs/core/image/image.h"
 
 namespace ibfvs::test {
 

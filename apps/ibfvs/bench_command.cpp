@@ -11,12 +11,12 @@
 
 #include <CLI/CLI.hpp>
 
-#include "ibfvs/core/camera.h"
-#include "ibfvs/core/data_paths.h"
-#include "ibfvs/core/displacement.h"
-#include "ibfvs/core/error.h"
-#include "ibfvs/core/scene_prep.h"
-#include "ibfvs/core/vector_field.h"
+#include "ibfvs/core/fields/vector_field.h"
+#include "ibfvs/core/geometry/displacement.h"
+#include "ibfvs/core/scene/camera.h"
+#include "ibfvs/core/scene/scene_prep.h"
+#include "ibfvs/core/support/data_paths.h"
+#include "ibfvs/core/support/error.h"
 #include "ibfvs/gl/context.h"
 #include "ibfvs/render/session.h"
 

@@ -7,12 +7,12 @@
 
 #include <CLI/CLI.hpp>
 
-#include "ibfvs/core/curvature.h"
-#include "ibfvs/core/dataset_io.h"
-#include "ibfvs/core/error.h"
-#include "ibfvs/core/file_names.h"
-#include "ibfvs/core/mesh_io.h"
-#include "ibfvs/core/mesh_source.h"
+#include "ibfvs/core/geometry/curvature.h"
+#include "ibfvs/core/mesh/dataset_io.h"
+#include "ibfvs/core/mesh/mesh_io.h"
+#include "ibfvs/core/mesh/mesh_source.h"
+#include "ibfvs/core/support/error.h"
+#include "ibfvs/core/support/file_names.h"
 
 namespace ibfvs::app {
 namespace fs = std::filesystem;

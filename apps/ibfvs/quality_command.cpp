@@ -10,10 +10,10 @@
 
 #include <CLI/CLI.hpp>
 
-#include "ibfvs/core/error.h"
-#include "ibfvs/core/image.h"
-#include "ibfvs/core/image_analysis.h"
-#include "ibfvs/core/scene_prep.h"
+#include "ibfvs/core/image/image.h"
+#include "ibfvs/core/image/image_analysis.h"
+#include "ibfvs/core/scene/scene_prep.h"
+#include "ibfvs/core/support/error.h"
 #include "ibfvs/gl/context.h"
 #include "ibfvs/render/quality.h"
 #include "ibfvs/render_command.h"

@@ -11,11 +11,11 @@
 
 #include <CLI/CLI.hpp>
 
-#include "ibfvs/core/error.h"
-#include "ibfvs/core/file_names.h"
-#include "ibfvs/core/image.h"
-#include "ibfvs/core/mesh_io.h"
-#include "ibfvs/core/scene_prep.h"
+#include "ibfvs/core/image/image.h"
+#include "ibfvs/core/mesh/mesh_io.h"
+#include "ibfvs/core/scene/scene_prep.h"
+#include "ibfvs/core/support/error.h"
+#include "ibfvs/core/support/file_names.h"
 #include "ibfvs/gl/context.h"
 #include "ibfvs/interrupt.h"
 #include "ibfvs/progress.h"

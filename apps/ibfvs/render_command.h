@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "ibfvs/core/scene.h"
+#include "ibfvs/core/scene/scene.h"
 
 namespace CLI {
 class App;

@@ -3,9 +3,9 @@
 #include <fstream>
 #include <sstream>
 
-#include "ibfvs/core/error.h"
-#include "ibfvs/core/scene.h"
-#include "ibfvs/core/text.h"
+#include "ibfvs/core/scene/scene.h"
+#include "ibfvs/core/support/error.h"
+#include "ibfvs/core/support/text.h"
 
 namespace ibfvs::app {
 namespace {

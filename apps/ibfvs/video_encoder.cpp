@@ -12,8 +12,8 @@ extern "C" {
 #include <libavutil/opt.h>
 }
 
-#include "ibfvs/core/error.h"
-#include "ibfvs/core/file_names.h"
+#include "ibfvs/core/support/error.h"
+#include "ibfvs/core/support/file_names.h"
 
 namespace ibfvs::app {
 

@@ -11,8 +11,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "ibfvs/core/error.h"
-#include "ibfvs/core/file_names.h"
+#include "ibfvs/core/support/error.h"
+#include "ibfvs/core/support/file_names.h"
 
 namespace ibfvs::app {
 namespace {

@@ -16,8 +16,8 @@
 #include <thread>
 #include <vector>
 
-#include "ibfvs/core/file_names.h"
-#include "ibfvs/core/image.h"
+#include "ibfvs/core/image/image.h"
+#include "ibfvs/core/support/file_names.h"
 #include "ibfvs/video_encoder.h"
 
 namespace ibfvs::app {

@@ -19,10 +19,10 @@
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
 
-#include "ibfvs/core/error.h"
-#include "ibfvs/core/image.h"
-#include "ibfvs/core/scene.h"
-#include "ibfvs/core/scene_prep.h"
+#include "ibfvs/core/image/image.h"
+#include "ibfvs/core/scene/scene.h"
+#include "ibfvs/core/scene/scene_prep.h"
+#include "ibfvs/core/support/error.h"
 #include "ibfvs/gl/window.h"
 #include "ibfvs/script_runner.h"
 #include "ibfvs/viewer_panel.h"

@@ -9,8 +9,8 @@
 #include <imgui.h>
 #include <glm/geometric.hpp>
 
-#include "ibfvs/core/names.h"
-#include "ibfvs/core/text.h"
+#include "ibfvs/core/scene/names.h"
+#include "ibfvs/core/support/text.h"
 
 namespace ibfvs::app {
 namespace {

@@ -8,10 +8,10 @@
 #include <glm/matrix.hpp>
 #include <glm/trigonometric.hpp>
 
-#include "ibfvs/core/displacement.h"
-#include "ibfvs/core/error.h"
-#include "ibfvs/core/file_names.h"
-#include "ibfvs/core/image.h"
+#include "ibfvs/core/geometry/displacement.h"
+#include "ibfvs/core/image/image.h"
+#include "ibfvs/core/support/error.h"
+#include "ibfvs/core/support/file_names.h"
 
 namespace ibfvs::app {
 namespace {

@@ -16,8 +16,8 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
-#include "ibfvs/core/scene.h"
-#include "ibfvs/core/scene_prep.h"
+#include "ibfvs/core/scene/scene.h"
+#include "ibfvs/core/scene/scene_prep.h"
 #include "ibfvs/render/session.h"
 #include "ibfvs/video_writer.h"
 #include "ibfvs/viewer_state.h"

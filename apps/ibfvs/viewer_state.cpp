@@ -9,9 +9,9 @@
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
-#include "ibfvs/core/error.h"
-#include "ibfvs/core/scene.h"
-#include "ibfvs/core/text.h"
+#include "ibfvs/core/scene/scene.h"
+#include "ibfvs/core/support/error.h"
+#include "ibfvs/core/support/text.h"
 
 namespace ibfvs::app {
 

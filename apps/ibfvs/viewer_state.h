@@ -9,9 +9,9 @@
 
 #include <glm/vec2.hpp>
 
-#include "ibfvs/core/camera.h"
-#include "ibfvs/core/mesh.h"
-#include "ibfvs/core/names.h"
+#include "ibfvs/core/mesh/mesh.h"
+#include "ibfvs/core/scene/camera.h"
+#include "ibfvs/core/scene/names.h"
 
 namespace ibfvs::app {
 

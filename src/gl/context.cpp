@@ -15,7 +15,7 @@
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>
 
-#include "ibfvs/core/error.h"
+#include "ibfvs/core/support/error.h"
 
 namespace ibfvs::gl {
 namespace {

@@ -9,8 +9,8 @@
 #include <epoxy/gl.h>
 #include <glm/gtc/type_ptr.hpp>
 
-#include "ibfvs/core/error.h"
-#include "ibfvs/core/limits.h"
+#include "ibfvs/core/support/error.h"
+#include "ibfvs/core/support/limits.h"
 #include "ibfvs/gl/context.h"
 
 namespace ibfvs::gl {

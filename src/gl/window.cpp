@@ -8,7 +8,7 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
-#include "ibfvs/core/error.h"
+#include "ibfvs/core/support/error.h"
 #include "ibfvs/gl/context.h"
 
 namespace ibfvs::gl {

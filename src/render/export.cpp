@@ -5,12 +5,12 @@
 
 #include <glm/common.hpp>
 
-#include "ibfvs/core/camera.h"
-#include "ibfvs/core/dataset_io.h"
-#include "ibfvs/core/error.h"
-#include "ibfvs/core/file_names.h"
-#include "ibfvs/core/image.h"
-#include "ibfvs/core/mesh_io.h"
+#include "ibfvs/core/image/image.h"
+#include "ibfvs/core/mesh/dataset_io.h"
+#include "ibfvs/core/mesh/mesh_io.h"
+#include "ibfvs/core/scene/camera.h"
+#include "ibfvs/core/support/error.h"
+#include "ibfvs/core/support/file_names.h"
 
 namespace ibfvs {
 namespace fs = std::filesystem;

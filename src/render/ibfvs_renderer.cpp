@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "ibfvs/core/display.h"
-#include "ibfvs/core/error.h"
+#include "ibfvs/core/support/error.h"
+#include "ibfvs/core/texture/display.h"
 #include "ibfvs/render/shaders.h"
 
 namespace ibfvs {

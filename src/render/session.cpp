@@ -4,7 +4,7 @@
 #include <cmath>
 #include <utility>
 
-#include "ibfvs/core/error.h"
+#include "ibfvs/core/support/error.h"
 #include "ibfvs/gl/objects.h"
 
 namespace ibfvs {

@@ -63,7 +63,7 @@ void main() {
   vec3 v = mix(a_vector, a_vector_next, u_field_mix);
   vec3 step = v * u_dt;
 #ifdef IBFVS_IMAGE_STEP
-  {  // as image_normalized_step() in core/camera.cpp
+  {  // as image_normalized_step() in core/scene/camera.cpp
     step = vec3(0.0);
     float speed = length(v);
     vec4 a = u_advect_view_projection * vec4(a_position, 1.0);

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "ibfvs/core/mesh.h"
+#include "ibfvs/core/mesh/mesh.h"
 
 class vtkDataObject;
 class vtkDataSet;

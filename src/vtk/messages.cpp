@@ -13,8 +13,8 @@
 #include <vtkOutputWindow.h>
 #include <vtkSmartPointer.h>
 
-#include "ibfvs/core/error.h"
-#include "ibfvs/core/isolation.h"
+#include "ibfvs/core/support/error.h"
+#include "ibfvs/core/support/isolation.h"
 
 namespace ibfvs::vtk::detail {
 namespace fs = std::filesystem;

@@ -67,10 +67,10 @@
 #include <vtk_nlohmannjson.h>
 #include VTK_NLOHMANN_JSON(json.hpp)
 
-#include "ibfvs/core/error.h"
-#include "ibfvs/core/file_names.h"
-#include "ibfvs/core/isolation.h"
-#include "ibfvs/core/text.h"
+#include "ibfvs/core/support/error.h"
+#include "ibfvs/core/support/file_names.h"
+#include "ibfvs/core/support/isolation.h"
+#include "ibfvs/core/support/text.h"
 
 namespace ibfvs::vtk::detail {
 namespace fs = std::filesystem;

@@ -1,5 +1,10 @@
 #include "ibfvs/vtk/vtk_io.h"
 
+// Sections: reading one file (VTK's readers by extension, OpenFOAM's times) |
+// series (.pvd, .series) | the source of a request and reading it in a child
+// process | volumes for sampling | public (read, sample, write). Message
+// capture: messages.cpp; surfaces of every dataset kind: surfaces.cpp.
+
 #include "internal.h"
 
 #include <algorithm>
@@ -65,10 +70,10 @@
 #include <vtk_nlohmannjson.h>
 #include VTK_NLOHMANN_JSON(json.hpp)
 
-#include "ibfvs/core/error.h"
-#include "ibfvs/core/file_names.h"
-#include "ibfvs/core/isolation.h"
-#include "ibfvs/core/text.h"
+#include "ibfvs/core/support/error.h"
+#include "ibfvs/core/support/file_names.h"
+#include "ibfvs/core/support/isolation.h"
+#include "ibfvs/core/support/text.h"
 
 namespace ibfvs::vtk {
 namespace fs = std::filesystem;
@@ -389,7 +394,7 @@ auto guarded(const fs::path& path, F&& f) {
 
 // Runs `work` (VTK reading `path`) in a child process: a crash or an
 // allocation past the limit there becomes one error line naming the file
-// (core/isolation.h), so VTK's own parser is the only one, and nothing here
+// (core/support/isolation.h), so VTK's own parser is the only one, and nothing here
 // refuses what it reads.
 IsolatedBytes read_in_child(const fs::path& path, const std::function<void(ByteWriter&)>& work) {
   // A file that holds all its data may take 256 times its size (zlib's best

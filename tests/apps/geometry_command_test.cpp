@@ -9,9 +9,9 @@
 #include <gtest/gtest.h>
 
 #include "command_runner.h"
-#include "ibfvs/core/mesh_io.h"
-#include "ibfvs/core/procedural.h"
-#include "ibfvs/core/subdivision.h"
+#include "ibfvs/core/mesh/mesh_io.h"
+#include "ibfvs/core/mesh/procedural.h"
+#include "ibfvs/core/mesh/subdivision.h"
 
 namespace ibfvs {
 namespace {

@@ -14,9 +14,9 @@
 
 #include "command_runner.h"
 #include "helpers.h"
-#include "ibfvs/core/mesh_io.h"
-#include "ibfvs/core/procedural.h"
-#include "ibfvs/core/scene.h"
+#include "ibfvs/core/mesh/mesh_io.h"
+#include "ibfvs/core/mesh/procedural.h"
+#include "ibfvs/core/scene/scene.h"
 
 namespace ibfvs {
 namespace {

@@ -1,4 +1,8 @@
 // `ibfvs render` run as a user runs it: real process, exit status, stderr.
+// Sections: help and outputs (PNG, videos, interruption, frames against the
+// image) | flows, colour and data (elements, landscapes, scalars, the globe,
+// unsteady fields, relief, topology) | options that fail cleanly | styles and
+// locking | bad input (NaN vectors, malformed meshes, impossible options).
 
 #include <algorithm>
 #include <array>
@@ -15,9 +19,9 @@
 
 #include "command_runner.h"
 #include "helpers.h"
-#include "ibfvs/core/image.h"
-#include "ibfvs/core/mesh_io.h"
-#include "ibfvs/core/procedural.h"
+#include "ibfvs/core/image/image.h"
+#include "ibfvs/core/mesh/mesh_io.h"
+#include "ibfvs/core/mesh/procedural.h"
 
 namespace ibfvs {
 namespace {

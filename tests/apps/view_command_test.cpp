@@ -13,12 +13,12 @@
 #include <CLI/CLI.hpp>
 #include "command_runner.h"
 #include "helpers.h"
-#include "ibfvs/core/error.h"
-#include "ibfvs/core/image.h"
-#include "ibfvs/core/mesh_io.h"
-#include "ibfvs/core/procedural.h"
+#include "ibfvs/core/image/image.h"
+#include "ibfvs/core/mesh/mesh_io.h"
+#include "ibfvs/core/mesh/procedural.h"
+#include "ibfvs/core/support/error.h"
 
-#include "ibfvs/core/scene.h"
+#include "ibfvs/core/scene/scene.h"
 #include "ibfvs/render_command.h"
 #include "ibfvs/script_runner.h"
 #include "ibfvs/viewer_state.h"

@@ -9,9 +9,9 @@
 #include <gtest/gtest.h>
 
 #include "helpers.h"
-#include "ibfvs/core/error.h"
-#include "ibfvs/core/scene.h"
-#include "ibfvs/core/scene_prep.h"
+#include "ibfvs/core/scene/scene.h"
+#include "ibfvs/core/scene/scene_prep.h"
+#include "ibfvs/core/support/error.h"
 #include "ibfvs/gl/context.h"
 #include "ibfvs/script_runner.h"
 #include "ibfvs/viewer_session.h"

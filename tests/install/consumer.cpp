@@ -2,14 +2,14 @@
 // prepared, drawn by a session in a headless context.
 #include <cstdio>
 
-#include "ibfvs/core/scene.h"
-#include "ibfvs/core/scene_prep.h"
+#include "ibfvs/core/scene/scene.h"
+#include "ibfvs/core/scene/scene_prep.h"
 #include "ibfvs/gl/context.h"
 #include "ibfvs/render/session.h"
 #ifdef CONSUMER_WITH_VTK
 #include <fstream>
 
-#include "ibfvs/core/dataset_io.h"
+#include "ibfvs/core/mesh/dataset_io.h"
 #include "ibfvs/vtk/vtk_io.h"
 #endif
 

@@ -1,6 +1,6 @@
 // Distributed rendering without a cluster: two renderers, each with half of a
 // mesh (two processes' pieces), composite F_t after every frame
-// (core/composite.h) and must then show the single renderer's picture, seam
+// (core/image/composite.h) and must then show the single renderer's picture, seam
 // included; without compositing they do not. draw_to_host puts the pieces
 // into one host framebuffer by depth, as ParaView's compositing does.
 
@@ -13,11 +13,11 @@
 #include <gtest/gtest.h>
 
 #include "gl_fixture.h"
-#include "ibfvs/core/camera.h"
-#include "ibfvs/core/composite.h"
-#include "ibfvs/core/error.h"
-#include "ibfvs/core/scene.h"
-#include "ibfvs/core/scene_prep.h"
+#include "ibfvs/core/image/composite.h"
+#include "ibfvs/core/scene/camera.h"
+#include "ibfvs/core/scene/scene.h"
+#include "ibfvs/core/scene/scene_prep.h"
+#include "ibfvs/core/support/error.h"
 #include "ibfvs/gl/objects.h"
 #include "ibfvs/render/ibfvs_renderer.h"
 

@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "gl_fixture.h"
-#include "ibfvs/core/error.h"
+#include "ibfvs/core/support/error.h"
 #include "ibfvs/gl/objects.h"
 
 namespace ibfvs {

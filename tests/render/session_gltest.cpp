@@ -7,9 +7,9 @@
 #include <gtest/gtest.h>
 
 #include "gl_fixture.h"
-#include "ibfvs/core/camera.h"
-#include "ibfvs/core/scene.h"
-#include "ibfvs/core/scene_prep.h"
+#include "ibfvs/core/scene/camera.h"
+#include "ibfvs/core/scene/scene.h"
+#include "ibfvs/core/scene/scene_prep.h"
 #include "ibfvs/gl/objects.h"
 #include "ibfvs/render/ibfvs_renderer.h"
 #include "ibfvs/render/session.h"

@@ -9,8 +9,8 @@
 
 #include <glm/glm.hpp>
 
-#include "ibfvs/core/procedural.h"
-#include "ibfvs/core/subdivision.h"
+#include "ibfvs/core/mesh/procedural.h"
+#include "ibfvs/core/mesh/subdivision.h"
 
 #ifdef IBFVS_TEST_HAVE_CGAL
 #ifndef CGAL_EIGEN3_ENABLED

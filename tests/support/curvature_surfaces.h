@@ -12,8 +12,8 @@
 
 #include <glm/vec3.hpp>
 
-#include "ibfvs/core/curvature.h"
-#include "ibfvs/core/mesh.h"
+#include "ibfvs/core/geometry/curvature.h"
+#include "ibfvs/core/mesh/mesh.h"
 
 namespace ibfvs::test {
 

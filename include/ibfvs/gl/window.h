@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "ibfvs/core/image.h"
+#include "ibfvs/core/image/image.h"
 
 struct GLFWwindow;
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "ibfvs/core/mesh.h"
+#include "ibfvs/core/mesh/mesh.h"
 #include "ibfvs/render/ibfvs_renderer.h"
 
 namespace ibfvs {

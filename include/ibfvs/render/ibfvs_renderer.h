@@ -37,12 +37,12 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
-#include "ibfvs/core/colormap.h"
-#include "ibfvs/core/image.h"
-#include "ibfvs/core/mesh.h"
-#include "ibfvs/core/noise.h"
-#include "ibfvs/core/reference.h"
-#include "ibfvs/core/render_settings.h"
+#include "ibfvs/core/image/colormap.h"
+#include "ibfvs/core/image/image.h"
+#include "ibfvs/core/mesh/mesh.h"
+#include "ibfvs/core/scene/render_settings.h"
+#include "ibfvs/core/texture/noise.h"
+#include "ibfvs/core/texture/reference.h"
 #include "ibfvs/gl/objects.h"
 #include "ibfvs/render/shaders.h"
 
@@ -151,7 +151,7 @@ class IbfvsRenderer {
   /// rest of the host's picture stays. Leaves the host's state as it was.
   void draw_to_host(glm::ivec2 origin) const;
   /// Replaces F_t (as read_texture_raw gives it: same size and channels), for
-  /// the depth compositing of a distributed render (core/composite.h).
+  /// the depth compositing of a distributed render (core/image/composite.h).
   void write_texture_raw(const ImageF& texture);
   /// F as stored, RGBA float: the alpha channel holds D before the contrast
   /// stage, which the contrast statistics read.

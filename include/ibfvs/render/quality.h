@@ -4,8 +4,8 @@
 // the flow's, the flicker along the flow and the RMS contrast, all on the
 // texture as displayed (beta 1).
 
-#include "ibfvs/core/image_analysis.h"
-#include "ibfvs/core/scene_prep.h"
+#include "ibfvs/core/image/image_analysis.h"
+#include "ibfvs/core/scene/scene_prep.h"
 
 namespace ibfvs {
 

@@ -13,9 +13,9 @@
 #include <memory>
 #include <optional>
 
-#include "ibfvs/core/camera.h"
-#include "ibfvs/core/image.h"
-#include "ibfvs/core/scene_prep.h"
+#include "ibfvs/core/image/image.h"
+#include "ibfvs/core/scene/camera.h"
+#include "ibfvs/core/scene/scene_prep.h"
 #include "ibfvs/render/ibfvs_renderer.h"
 
 namespace ibfvs {

@@ -10,7 +10,7 @@
 // .vtu .vts .vtr .vti, their parallel .pvt*, .vtm multiblocks, .vtpd and
 // .vtpc partitioned data), .pvd and .series time series, OpenFOAM cases
 // (.foam or the case folder; boundary patches, time folders). Files are
-// read in a child process (core/isolation.h): VTK's parser is the only one,
+// read in a child process (core/support/isolation.h): VTK's parser is the only one,
 // and a crash or an allocation past the limit there is an error line. Polygons and quads are
 // triangulated, strips unrolled, lines and vertices dropped; a volume shows
 // its outer surface. Cell arrays reach the vertices area-weighted.
@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "ibfvs/core/dataset_io.h"
+#include "ibfvs/core/mesh/dataset_io.h"
 
 class vtkDataObject;
 

@@ -16,11 +16,11 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
-#include "ibfvs/core/composite.h"
-#include "ibfvs/core/error.h"
-#include "ibfvs/core/scene.h"
-#include "ibfvs/core/scene_prep.h"
-#include "ibfvs/core/vector_field.h"
+#include "ibfvs/core/image/composite.h"
+#include "ibfvs/core/support/error.h"
+#include "ibfvs/core/scene/scene.h"
+#include "ibfvs/core/scene/scene_prep.h"
+#include "ibfvs/core/fields/vector_field.h"
 #include "ibfvs/gl/objects.h"
 #include "ibfvs/render/session.h"
 #include "ibfvs/vtk/vtk_io.h"

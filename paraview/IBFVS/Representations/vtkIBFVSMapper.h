@@ -7,7 +7,7 @@
 //
 // Under MPI every rank draws its piece; after each frame the texture image
 // F_t (and F, for the contrast statistics) is composited by nearest depth
-// across the ranks (ibfvs/core/composite.h) through VTK's global controller.
+// across the ranks (ibfvs/core/image/composite.h) through VTK's global controller.
 // The collectives run in every rank's Render(), empty pieces included (the
 // representation asks ParaView to render empty images).
 #ifndef vtkIBFVSMapper_h

@@ -1,0 +1,67 @@
+#pragma once
+// The view transform T of the paper (modelling, viewing and projection):
+// an orbit camera around the centre of the mesh's bounding box.
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "ibfvs/core/mesh/mesh.h"
+
+namespace ibfvs {
+
+/// Camera settings. The default looks at the centre of the bounding box from
+/// +Z with +Y up and fits the whole mesh in the image.
+struct CameraParams {
+  float azimuth_deg = 0.0f;        ///< rotation about +Y; 90 looks from +X
+  float elevation_deg = 0.0f;      ///< above the XZ plane; 90 looks down from +Y
+  float distance = 0.0f;           ///< in bounding-box diagonals; 0 fits the mesh
+  bool orthographic = false;       ///< orthographic instead of perspective
+  float fov_deg = 30.0f;           ///< vertical field of view (perspective)
+  glm::vec3 target{0.0f};          ///< look-at point minus the box centre (panning), world units
+  glm::vec3 up{0.0f, 1.0f, 0.0f};  ///< the vertical: azimuth turns about it, elevation rises
+                                   ///< along it (+Y by default; +Z for a terrain in z = h(x, y))
+};
+
+/// Position and projection for one frame.
+class Camera {
+ public:
+  /// Throws InputError for an impossible field of view or distance.
+  Camera(const Bounds& bounds, const CameraParams& params, float aspect);
+
+  /// Turns the camera about the vertical axis through the centre (the paper's
+  /// "rotating object", seen from the object).
+  void orbit(float degrees) { params_.azimuth_deg += degrees; }
+
+  [[nodiscard]] glm::mat4 view() const;
+  [[nodiscard]] glm::mat4 projection() const;
+  [[nodiscard]] glm::mat4 view_projection() const { return projection() * view(); }
+  [[nodiscard]] glm::vec3 eye() const;
+  [[nodiscard]] const CameraParams& params() const { return params_; }
+  /// Distance from the eye to the centre, in world units.
+  [[nodiscard]] float distance_world() const;
+
+ private:
+  Bounds bounds_;
+  CameraParams params_;
+  float aspect_ = 1.0f;
+};
+
+/// Projects a world point with a view-projection matrix to pixel coordinates
+/// (origin at the lower left, pixel centres at +0.5), as the GPU does.
+glm::vec2 project_to_pixels(const glm::mat4& view_projection, const glm::vec3& p, int width,
+                            int height);
+
+/// Image-space normalisation (paper figure 2, "the flow is normalized in image
+/// space"): the displacement along v, in world units, whose projection moves
+/// the image of r by `pixels` pixels, to first order. The image motion of a
+/// probe step of `probe` world units along v sets the scale. At most
+/// kImageStepLimit probes long (v almost along the line of sight); zero where
+/// v is zero, has no image motion, or r is behind the eye. The GPU's vertex
+/// shader computes the same per vertex.
+inline constexpr float kImageStepLimit = 50.0f;
+glm::vec3 image_normalized_step(const glm::mat4& view_projection, const glm::vec3& r,
+                                const glm::vec3& v, float pixels, int width, int height,
+                                float probe);
+
+}  // namespace ibfvs

@@ -1,0 +1,78 @@
+#pragma once
+// Scene preparation: everything a run needs before a GL context exists, read
+// once. The mesh (read or generated, subdivided, ordered for the GPU), netCDF
+// scalars, normals and curvature when something needs them, displacement, the
+// field (and the steps of an unsteady one), the colour and beta scalars with
+// their ranges, the camera, dt from the step in pixels, the surface image.
+
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "ibfvs/core/fields/vector_field.h"
+#include "ibfvs/core/image/image.h"
+#include "ibfvs/core/mesh/mesh.h"
+#include "ibfvs/core/scene/camera.h"
+#include "ibfvs/core/scene/render_settings.h"
+#include "ibfvs/core/scene/scene.h"
+
+namespace ibfvs {
+
+struct PreparedScene {
+  Scene scene;  ///< as given
+  int width = 512, height = 512;
+  int frames = 150;                 ///< resolved (frames 0: the automatic lock's frame + 60)
+  int lock_at = Scene::kLockNever;  ///< resolved (kLockAuto becomes a frame)
+  RenderSettings settings;
+  std::shared_ptr<const TriMesh> mesh;
+  std::string mesh_name;         ///< what messages call it: the file name, spec or demo
+  bool demo = false;             ///< no mesh given: the built-in demo
+  FieldSpec field_spec;          ///< the field in force (with the elements)
+  std::vector<glm::vec3> field;  ///< per vertex, at the first time step
+  std::size_t step_count = 1;    ///< > 1: an unsteady field with this many steps
+  std::function<std::vector<glm::vec3>(std::size_t)> step_field;  ///< the field at a step
+  std::vector<float> color_scalar, beta_scalar;
+  CameraParams camera;
+  std::optional<CameraParams> lock_camera;
+  float dt = 0.0f;                    ///< world units per frame
+  float max_px = 0.0f;                ///< pixels per frame of the fastest vertex
+  ImageU8 surface_image;              ///< read once; empty: none
+  std::vector<std::string> warnings;  ///< repaired input, slow settings: for the front end to show
+};
+
+/// The scene's texture settings (alpha, beta, noise profile, rate and spike
+/// width, inject, colours, colour map, advect view, noise space, fixed
+/// colour and beta ranges) copied onto `settings`: what a renderer takes
+/// live, without a rebuild. Percentile ranges and the object-noise cell,
+/// which need the mesh and camera, are left as they are.
+void apply_texture_settings(const Scene& scene, RenderSettings& settings);
+
+/// True for a key whose change apply_texture_settings carries to a running
+/// renderer (alpha, beta, vg, profile, colours, filter, contrast, ...).
+bool is_live_texture_key(std::string_view key);
+
+/// Checks the scene and prepares it. Throws InputError naming the file, or
+/// SettingError naming the key whose value is wrong.
+PreparedScene prepare_scene(const Scene& scene);
+
+/// The same for a mesh the caller already has (arrays from Python, a host
+/// application's data), standing in for the scene's mesh key: checked,
+/// normals computed when it has none, subdivided and ordered like a file's.
+/// `name` is what messages call it.
+PreparedScene prepare_scene(const Scene& scene, TriMesh mesh, const std::string& name);
+
+/// The prepared scene for another image size: the same mesh (shared, not read
+/// again), field and scalars, with dt from the step in pixels (unless the
+/// scene gives dt) and the object-noise cell for that size. Throws
+/// SettingError for a size outside 1..16384.
+PreparedScene resized(const PreparedScene& prepared, int width, int height);
+
+/// The mesh's thinnest bounding-box axis (+X, +Y or +Z): the height axis of a
+/// terrain.
+glm::vec3 thinnest_axis(const TriMesh& mesh);
+
+}  // namespace ibfvs

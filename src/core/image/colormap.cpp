@@ -1,0 +1,98 @@
+#include "ibfvs/core/image/colormap.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include "ibfvs/core/geometry/curvature.h"
+#include "ibfvs/core/support/error.h"
+
+namespace ibfvs {
+namespace {
+
+#include "colormap_tables.inc"
+
+}  // namespace
+
+glm::vec3 color_map(ColorMap map, float t) {
+  t = std::isfinite(t) ? std::clamp(t, 0.0f, 1.0f) : 0.0f;
+  if (map == ColorMap::Grey) return glm::vec3(t);
+  if (map == ColorMap::Bronze) {
+    // Patina in the hollows, polished metal on the ridges: piecewise linear.
+    // Most of a surface lies mid-range: keep that a warm bronze, not patina.
+    static constexpr float stops[4][4] = {{0.0f, 0.22f, 0.26f, 0.19f},
+                                          {0.3f, 0.52f, 0.38f, 0.20f},
+                                          {0.65f, 0.78f, 0.57f, 0.30f},
+                                          {1.0f, 0.98f, 0.86f, 0.60f}};
+    int k = 0;
+    while (k < 2 && t > stops[k + 1][0]) ++k;
+    const float f = (t - stops[k][0]) / (stops[k + 1][0] - stops[k][0]);
+    return glm::mix(glm::vec3(stops[k][1], stops[k][2], stops[k][3]),
+                    glm::vec3(stops[k + 1][1], stops[k + 1][2], stops[k + 1][3]), f);
+  }
+  const float(*table)[3] = map == ColorMap::Viridis ? kViridis : kCoolWarm;
+  const float x = t * 255.0f;
+  const int i = std::min(static_cast<int>(x), 254);
+  const float f = x - static_cast<float>(i);
+  const glm::vec3 a(table[i][0], table[i][1], table[i][2]);
+  const glm::vec3 b(table[i + 1][0], table[i + 1][1], table[i + 1][2]);
+  return a + f * (b - a);
+}
+
+std::vector<float> vertex_scalar(const TriMesh& mesh, const std::vector<glm::vec3>& field,
+                                 std::string_view name) {
+  if (!name.empty() && name[0] == '-') {
+    std::vector<float> v = vertex_scalar(mesh, field, name.substr(1));
+    for (float& x : v) x = -x;
+    return v;
+  }
+  const std::string key(name);
+  if (const auto it = mesh.scalars.find(key); it != mesh.scalars.end()) return it->second;
+  std::vector<float> out(mesh.vertex_count());
+  if (key == "speed") {
+    if (field.size() != out.size()) throw InputError("scalar 'speed': no field to measure");
+    for (std::size_t i = 0; i < out.size(); ++i) out[i] = glm::length(field[i]);
+    return out;
+  }
+  if (key == "kmin" || key == "kmax") {
+    const Curvature c = mesh_curvature(mesh);
+    return key == "kmin" ? c.kmin : c.kmax;
+  }
+  if (key == "x" || key == "y" || key == "z") {
+    const int axis = key[0] - 'x';
+    for (std::size_t i = 0; i < out.size(); ++i) out[i] = mesh.positions[i][axis];
+    return out;
+  }
+  // A vector array by name: its magnitude (as ParaView colours by it).
+  if (const auto it = mesh.vector_arrays.find(key); it != mesh.vector_arrays.end()) {
+    for (std::size_t i = 0; i < out.size(); ++i) out[i] = glm::length(it->second[i]);
+    return out;
+  }
+  if (const auto it = mesh.other_arrays.find(key); it != mesh.other_arrays.end())
+    throw InputError("the array '" + key + "' has " + std::to_string(it->second) +
+                     " components; a scalar needs 1 (or 3, for the magnitude)");
+  std::string known = "speed, kmin, kmax, x, y, z";
+  for (const auto& [n, v] : mesh.scalars) known += ", " + n;
+  for (const auto& [n, v] : mesh.vector_arrays) known += ", " + n + " (magnitude)";
+  throw InputError("no per-vertex scalar '" + key + "' (available: " + known + ")");
+}
+
+glm::vec2 quantile_range(const std::vector<float>& values, float lo, float hi) {
+  std::vector<float> v;
+  v.reserve(values.size());
+  for (const float x : values)
+    if (std::isfinite(x)) v.push_back(x);
+  if (v.empty()) return {0.0f, 1.0f};
+  const auto at = [&](float q) {
+    const auto k = static_cast<std::size_t>(q * static_cast<float>(v.size() - 1));
+    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
+    return v[k];
+  };
+  glm::vec2 r(at(lo), at(hi));
+  if (!(r.y > r.x)) r = {r.x - 0.5f, r.x + 0.5f};
+  return r;
+}
+
+}  // namespace ibfvs

@@ -1,0 +1,475 @@
+#include "ibfvs/core/scene/scene_prep.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <set>
+#include <string_view>
+
+#include <glm/trigonometric.hpp>
+
+#include "ibfvs/core/fields/lonlat_grid.h"
+#include "ibfvs/core/geometry/curvature.h"
+#include "ibfvs/core/geometry/displacement.h"
+#include "ibfvs/core/image/colormap.h"
+#include "ibfvs/core/mesh/gpu_prep.h"
+#include "ibfvs/core/mesh/mesh_io.h"
+#include "ibfvs/core/mesh/mesh_source.h"
+#include "ibfvs/core/support/error.h"
+#include "ibfvs/core/support/limits.h"
+#include "ibfvs/core/support/text.h"
+
+namespace ibfvs {
+namespace fs = std::filesystem;
+
+namespace {
+
+// Runs `f`, turning a plain InputError into a SettingError of `key`.
+template <class F>
+auto for_key(const char* key, F&& f) {
+  try {
+    return f();
+  } catch (const SettingError&) {
+    throw;
+  } catch (const InputError& e) {
+    throw SettingError(key, e.what());
+  }
+}
+
+// A step's arrays (in file vertex order) onto the mesh, reordered like it.
+void take_arrays(TriMesh& mesh, const TriMesh& step, const std::vector<unsigned>& order) {
+  const auto put = [&](const auto& values) {
+    return order.empty() ? values : remap_vertex_data(values, order);
+  };
+  if (step.vectors.size() == step.vertex_count() && !step.vectors.empty())
+    mesh.vectors = put(step.vectors);
+  for (const auto& [name, values] : step.vector_arrays) mesh.vector_arrays[name] = put(values);
+  for (const auto& [name, values] : step.scalars) mesh.scalars[name] = put(values);
+  for (const auto& [name, c] : step.other_arrays) mesh.other_arrays[name] = c;
+}
+
+bool wants_curvature(const std::string& name) {
+  const std::string n = !name.empty() && name[0] == '-' ? name.substr(1) : name;
+  return n == "kmin" || n == "kmax";
+}
+
+// Checks that need no file.
+void check(const Scene& s) {
+  if (s.image_normalize && s.dt > 0.0f)
+    throw SettingError("image_normalize", "moves every point step pixels; it takes no dt");
+  if (!s.elements.empty() && s.field && s.field->kind != FieldKind::Elements)
+    throw SettingError("element",
+                       "needs field elements (or no field), got field " + s.field->text());
+  if (!s.field_steps.empty() && s.subdivide > 0)
+    throw SettingError("field_step", "cannot be combined with subdivide");
+  if (!s.field_steps.empty() && s.field && s.field->kind != FieldKind::File)
+    throw SettingError("field_step",
+                       "needs field file[:ARRAY] (or no field), got field " + s.field->text());
+  if (s.frames == 0 && s.lock_at != Scene::kLockAuto)
+    throw SettingError("frames", "0 (automatic) needs lock_at auto");
+}
+
+// Sets the image size and what follows from it with the scene's camera: dt
+// from the step in pixels (unless the scene gives dt), the fastest vertex's
+// pixels per frame, the object-noise cell (s pixels at the mesh centre).
+// Returns the fastest vertex's pixels per unit of dt (0: nothing moves).
+float fit_to_image(PreparedScene& p, int width, int height) {
+  const Scene& s = p.scene;
+  p.width = p.settings.width = width;
+  p.height = p.settings.height = height;
+  const Camera camera(mesh_bounds(*p.mesh), p.camera,
+                      static_cast<float>(width) / static_cast<float>(height));
+  const float speed =
+      max_pixel_speed(p.mesh->positions, p.field, camera.view_projection(), width, height);
+  p.dt = s.dt > 0.0f ? s.dt : (speed > 0.0f ? s.step / speed : 0.0f);
+  p.max_px = s.image_normalize && speed > 0.0f ? s.step : speed * p.dt;
+  if (p.settings.object_noise) {
+    const float world_per_pixel = 2.0f * camera.distance_world() *
+                                  std::tan(glm::radians(p.camera.fov_deg) * 0.5f) /
+                                  static_cast<float>(height);
+    p.settings.object_cell = p.settings.noise.scale * world_per_pixel;
+  }
+  return speed;
+}
+
+}  // namespace
+
+PreparedScene resized(const PreparedScene& prepared, int width, int height) {
+  if (width < 1 || height < 1 || width > kMaxImageSide || height > kMaxImageSide)
+    throw SettingError("size", "width and height must be between 1 and " +
+                                   std::to_string(kMaxImageSide) + " pixels");
+  PreparedScene p = prepared;
+  fit_to_image(p, width, height);
+  return p;
+}
+
+void apply_texture_settings(const Scene& s, RenderSettings& settings) {
+  settings.alpha = s.alpha;
+  settings.beta = s.beta;
+  settings.image_step = s.image_normalize ? s.step : 0.0f;
+  settings.filter_length = s.filter;
+  settings.resample = s.resample;
+  settings.sharpen = s.sharpen;
+  settings.contrast = s.contrast;
+  settings.noise.profile = s.profile;
+  settings.noise.rate = s.vg;
+  settings.noise.spike_width = s.spike_width;
+  settings.inject = s.inject;
+  settings.background = s.background;
+  settings.surface_color = s.surface_color;
+  settings.advect_view = s.advect_view;
+  settings.object_noise = s.noise_space == NoiseSpace::Object;
+  settings.color_map = s.color_map;
+  if (s.color_range && !s.color_range->percentile)
+    settings.color_range = {s.color_range->lo, s.color_range->hi};
+  if (s.beta_range && !s.beta_range->percentile)
+    settings.beta_range = {s.beta_range->lo, s.beta_range->hi};
+}
+
+bool is_live_texture_key(std::string_view key) {
+  static const std::set<std::string_view> live = {
+      "alpha",       "beta",        "vg",         "profile",     "background", "surface_color",
+      "color_map",   "color_range", "beta_range", "advect_view", "inject",     "spike_width",
+      "noise_space", "filter",      "contrast",   "resample",    "sharpen"};
+  return live.count(key) > 0;
+}
+
+glm::vec3 thinnest_axis(const TriMesh& mesh) {
+  const Bounds b = mesh_bounds(mesh);
+  const glm::vec3 e = b.max - b.min;
+  const int axis = e.x <= e.y && e.x <= e.z ? 0 : e.y <= e.z ? 1 : 2;
+  glm::vec3 up(0.0f);
+  up[axis] = 1.0f;
+  return up;
+}
+
+namespace {
+
+PreparedScene prepare(const Scene& s, std::optional<LoadedMesh> given) {
+  check(s);
+  PreparedScene p;
+  p.scene = s;
+  p.width = s.width;
+  p.height = s.height;
+  p.frames = s.frames;
+  p.lock_at = s.lock_at;
+
+  RenderSettings& settings = p.settings;
+  settings.width = s.width;
+  settings.height = s.height;
+  apply_texture_settings(s, settings);
+  settings.noise.scale = s.scale;
+  settings.noise.seed = s.seed;
+  settings.validate();
+
+  std::optional<FieldSpec> field_spec = s.field;
+  if (!field_spec && !s.elements.empty()) field_spec = FieldSpec::parse("elements");
+  const std::size_t time_first = s.time ? s.time->first : 0;
+  if (field_spec) {
+    for (const FlowElement& e : s.elements) field_spec->elements.push_back(e);
+    field_spec->time = time_first;
+  }
+
+  // ---- mesh
+  const bool in_memory = given.has_value();
+  LoadedMesh loaded =
+      in_memory ? std::move(*given)
+                : for_key("mesh", [&] { return load_mesh(s.mesh, s.subdivide, true, s.blocks); });
+  for (const std::string& w : loaded.warnings) p.warnings.push_back(w);
+  auto mesh_ptr = std::make_shared<TriMesh>(std::move(loaded.mesh));
+  TriMesh& mesh = *mesh_ptr;
+  p.demo = loaded.demo;
+  p.mesh_name = loaded.demo || in_memory ? loaded.name : fs::path(s.mesh).filename().string();
+  // Messages about the mesh's data name the file as given.
+  const std::string mesh_label = loaded.demo || in_memory ? p.mesh_name : s.mesh;
+
+  // ---- a series: its steps (all, or the time key's range or step)
+  const bool series = !loaded.step_times.empty();
+  std::size_t series_first = 0, series_last = 0;
+  if (series) {
+    const std::size_t count = loaded.step_times.size();
+    if (s.subdivide > 0)
+      throw SettingError("subdivide", mesh_label + ": a series (" + std::to_string(count) +
+                                          " steps) cannot be subdivided");
+    if (!s.field_steps.empty())
+      throw SettingError("field_step", mesh_label + ": is a series already");
+    series_first = s.time ? s.time->first : 0;
+    series_last = s.time ? s.time->last : count - 1;
+    if (series_last >= count)
+      throw SettingError("time", mesh_label + ": has " + std::to_string(count) + " steps (0.." +
+                                     std::to_string(count - 1) + "), asked for " +
+                                     s.time->to_string());
+    if (series_first == series_last && series_first > 0)
+      take_arrays(mesh, loaded.read_step(series_first), loaded.vertex_order);
+    // A solver's fields that start later than the mesh (OpenFOAM writes
+    // wallShearStress from the first iteration on, not at time 0): with no
+    // time asked for, the series starts at the first step that has the array.
+    const auto has = [](const TriMesh& m, const std::string& name) {
+      return m.vector_arrays.count(name) > 0 || m.scalars.count(name) > 0;
+    };
+    if (!s.time && field_spec && field_spec->kind == FieldKind::File &&
+        !field_spec->array.empty() && !has(mesh, field_spec->array)) {
+      for (std::size_t k = 1; k < count; ++k) {
+        const TriMesh step = loaded.read_step(k);
+        if (!has(step, field_spec->array)) continue;
+        take_arrays(mesh, step, loaded.vertex_order);
+        p.warnings.push_back(
+            mesh_label + ": " +
+            (k == 1 ? "step 0 has" : "steps 0.." + std::to_string(k - 1) + " have") + " no '" +
+            field_spec->array + "'; starting at step " + std::to_string(k));
+        series_first = k;
+        break;
+      }
+    }
+  }
+  const bool field_is_file =
+      (field_spec && field_spec->kind == FieldKind::File) ||
+      (!field_spec && (!mesh.vector_arrays.empty() || mesh.vectors.size() == mesh.vertex_count()));
+  if (s.time && s.time->last > s.time->first && !(series && field_is_file) &&
+      !(field_spec &&
+        (field_spec->kind == FieldKind::Wind || field_spec->kind == FieldKind::Sample)))
+    throw SettingError("time",
+                       "a range A:B needs a series (.pvd, OpenFOAM times, numbered files) with "
+                       "field file[:ARRAY], or field wind:... or sample:...");
+
+  // ---- the height axis
+  const glm::vec3 up = s.up_auto ? thinnest_axis(mesh) : s.up.value_or(glm::vec3(0, 1, 0));
+  p.camera = s.camera;
+  p.camera.up = up;
+  // A flat surface (one wall patch, a plate) seen edge-on from the default
+  // view shows nothing: the default view then looks at its face.
+  if (!s.up_auto && !s.up && s.camera.azimuth_deg == 0.0f && s.camera.elevation_deg == 0.0f &&
+      s.camera.target == glm::vec3(0.0f)) {
+    const Bounds b = mesh_bounds(mesh);
+    const glm::vec3 e = b.max - b.min;
+    const float largest = std::max({e.x, e.y, e.z});
+    if (e.x <= 1e-4f * largest)
+      p.camera.azimuth_deg = 90.0f;  // from +X
+    else if (e.y <= 1e-4f * largest)
+      p.camera.elevation_deg = 90.0f;  // from +Y, down
+  }
+  if (field_spec && field_spec->kind == FieldKind::Gradient && !field_spec->vector_given)
+    field_spec->value = up;
+  std::optional<FieldSpec> default_field = s.default_field;
+  if (default_field && default_field->kind == FieldKind::Gradient && !default_field->vector_given)
+    default_field->value = up;
+  if (s.lock_camera)
+    p.lock_camera = CameraParams{s.lock_camera->x,
+                                 s.lock_camera->y,
+                                 s.lock_camera->z,
+                                 s.camera.orthographic,
+                                 s.camera.fov_deg,
+                                 glm::vec3(0.0f),
+                                 up};
+
+  // ---- scalars sampled from netCDF grids
+  for (const GridScalar& g : s.scalars) {
+    LonLatGrid grid = read_lonlat_grid(g.path, g.variable, 0);
+    if (grid.time_steps > 1) grid = read_lonlat_grid(g.path, g.variable, time_first);
+    mesh.scalars[g.name] = lonlat_scalars(mesh, grid);
+  }
+
+  // ---- curvature, once, when the field or a scalar needs it
+  {
+    const bool principal =
+        (field_spec && field_spec->kind == FieldKind::Principal) ||
+        (!field_spec && default_field && default_field->kind == FieldKind::Principal);
+    if ((principal || wants_curvature(s.color_by) || wants_curvature(s.beta_by) ||
+         (s.displace && wants_curvature(s.displace->scalar))) &&
+        !mesh.scalars.count("kmax"))
+      store_curvature(mesh, compute_curvature(mesh), false);
+  }
+
+  // ---- displacement along the normals (the vertical scale of a relief)
+  if (s.displace) {
+    if (!std::isfinite(s.displace->factor))
+      throw SettingError("displace", "the factor must be a finite number");
+    std::vector<float> amount;
+    try {
+      amount = vertex_scalar(mesh, {}, s.displace->scalar);
+    } catch (const InputError& e) {
+      throw SettingError("displace", mesh_label + ": " + e.what());
+    }
+    for (std::size_t i = 0; i < mesh.vertex_count(); ++i)
+      if (std::isfinite(amount[i]))
+        mesh.positions[i] += s.displace->factor * amount[i] * mesh.normals[i];
+    compute_vertex_normals(mesh);
+  }
+
+  // ---- field
+  if (!field_spec) {
+    field_spec = mesh.vectors.size() == mesh.positions.size() || !mesh.vector_arrays.empty()
+                     ? FieldSpec::parse("file")
+                 : default_field                              ? *default_field
+                 : loaded.generated_landscape ? [&] {
+                     FieldSpec g = FieldSpec::parse("gradient:down");
+                     g.value = up;
+                     return g;
+                   }()
+                                              : FieldSpec::parse("rotate:0,1,0");
+  }
+  const TangentMode tangent = s.tangent;
+  // The field at a step from a mesh file's arrays (file order) on this mesh.
+  const auto arrays_on_mesh = [spec = *field_spec, order = loaded.vertex_order,
+                               mesh_ptr = std::shared_ptr<const TriMesh>(mesh_ptr),
+                               tangent](const TriMesh& step) {
+    TriMesh on_mesh;
+    on_mesh.positions = mesh_ptr->positions;
+    on_mesh.normals = mesh_ptr->normals;
+    on_mesh.triangles = mesh_ptr->triangles;
+    take_arrays(on_mesh, step, order);
+    return evaluate_field(on_mesh, spec, tangent);
+  };
+  if (!s.field_steps.empty()) {
+    // An unsteady field: its steps, evaluated when the animation reaches them.
+    p.step_count = s.field_steps.size();
+    p.step_field = [files = s.field_steps, expected = loaded.file_vertices, blocks = s.blocks,
+                    arrays_on_mesh](std::size_t k) {
+      const std::string& file = files[k];
+      const TriMesh step = read_any_mesh(file, blocks);
+      if (step.vertex_count() != expected)
+        throw SettingError("field_step", file + ": " + std::to_string(step.vertex_count()) +
+                                             " vertices, the mesh has " + std::to_string(expected));
+      try {
+        return arrays_on_mesh(step);
+      } catch (const InputError& e) {
+        throw SettingError("field_step", file + ": " + e.what());
+      }
+    };
+  } else if (series && field_spec->kind == FieldKind::File && series_last > series_first) {
+    p.step_count = series_last - series_first + 1;
+    p.step_field = [read = loaded.read_step, first = series_first, arrays_on_mesh,
+                    label = mesh_label](std::size_t k) {
+      try {
+        return arrays_on_mesh(read(first + k));
+      } catch (const SettingError&) {
+        throw;
+      } catch (const InputError& e) {
+        throw SettingError("field",
+                           label + ": step " + std::to_string(first + k) + ": " + e.what());
+      }
+    };
+  } else if (s.time && s.time->last > s.time->first) {
+    p.step_count = s.time->last - s.time->first + 1;
+    if (field_spec->kind == FieldKind::Wind)
+      read_lonlat_grid(field_spec->path, field_spec->east, s.time->last);  // the range exists
+    p.step_field = [spec = *field_spec, first = s.time->first,
+                    mesh_ptr = std::shared_ptr<const TriMesh>(mesh_ptr), tangent](std::size_t k) {
+      FieldSpec at = spec;
+      at.time = first + k;
+      return evaluate_field(*mesh_ptr, at, tangent);
+    };
+  }
+  if (s.reverse && p.step_field)
+    p.step_field = [inner = std::move(p.step_field)](std::size_t k) {
+      std::vector<glm::vec3> v = inner(k);
+      for (glm::vec3& x : v) x = -x;
+      return v;
+    };
+  FieldReport field_report;
+  try {
+    p.field =
+        p.step_field ? p.step_field(0) : evaluate_field(mesh, *field_spec, tangent, &field_report);
+  } catch (const SettingError&) {
+    throw;
+  } catch (const InputError& e) {
+    throw SettingError("field", mesh_label + ": " + e.what());
+  }
+  if (s.reverse && !p.step_field)
+    for (glm::vec3& x : p.field) x = -x;
+  if (field_report.outside_volume > 0)
+    p.warnings.push_back(field_spec->path + ": " + std::to_string(field_report.outside_volume) +
+                         " of " + std::to_string(mesh.vertex_count()) +
+                         " vertices lie outside the volume (their vectors are zero)");
+  if (field_report.non_finite_zeroed > 0)
+    p.warnings.push_back(mesh_label + ": " + std::to_string(field_report.non_finite_zeroed) +
+                         " vectors were NaN or infinite and are set to zero");
+
+  // ---- camera and dt
+  p.mesh = mesh_ptr;
+  const float speed = fit_to_image(p, s.width, s.height);
+  const Camera camera(mesh_bounds(mesh), p.camera,
+                      static_cast<float>(s.width) / static_cast<float>(s.height));
+  if (speed == 0.0f)
+    p.warnings.push_back(
+        "the field does not move any vertex in the image (zero after projection?); the texture "
+        "will stand still");
+  char text[200];
+  // The display filter bridges gaps up to its length.
+  if (p.max_px > settings.noise.scale && p.max_px > settings.filter_length) {
+    std::snprintf(text, sizeof text,
+                  "the largest displacement is %.1f pixels per frame, more than the noise scale "
+                  "%.1f and the filter length %.1f: expect broken streaks (lower step or dt, or "
+                  "raise filter)",
+                  p.max_px, settings.noise.scale, settings.filter_length);
+    p.warnings.push_back(text);
+  }
+
+  // ---- the automatic lock: once the texture has had time to cross the mesh
+  // as seen (the colours of figure 7 travel from the summits to the basin
+  // borders at max_px pixels per frame at most; a path is at most the
+  // diagonal of the mesh's image), plus a fifth for slower slopes.
+  if (s.lock_at == Scene::kLockAuto) {
+    glm::vec2 lo(1e30f), hi(-1e30f);
+    for (const glm::vec3& r : mesh.positions) {
+      const glm::vec2 px = project_to_pixels(camera.view_projection(), r, s.width, s.height);
+      lo = glm::min(lo, px);
+      hi = glm::max(hi, px);
+    }
+    lo = glm::max(lo, glm::vec2(0.0f));
+    hi = glm::min(hi, glm::vec2(static_cast<float>(s.width), static_cast<float>(s.height)));
+    const float extent = glm::length(glm::max(hi - lo, glm::vec2(0.0f)));
+    p.lock_at = p.max_px > 0.0f ? static_cast<int>(std::ceil(1.2f * extent / p.max_px)) : 0;
+    p.lock_at = std::clamp(p.lock_at, 1, 100000);
+    if (s.frames == 0) p.frames = p.lock_at + 60;
+  }
+
+  // ---- scalars for colour and beta, and their ranges
+  const auto scalar_range = [&](const std::string& name, const char* key,
+                                const std::optional<ScalarRange>& range, const char* range_key,
+                                std::vector<float>& values) {
+    try {
+      values = vertex_scalar(mesh, p.field, name);
+    } catch (const InputError& e) {
+      throw SettingError(key, mesh_label + ": " + e.what());
+    }
+    if (!range) return quantile_range(values);
+    if (range->percentile) return quantile_range(values, range->lo / 100.0f, range->hi / 100.0f);
+    if (!(range->hi > range->lo)) throw SettingError(range_key, "expected LO < HI");
+    return glm::vec2(range->lo, range->hi);
+  };
+  if (!s.color_by.empty()) {
+    settings.use_color = true;
+    settings.color_range =
+        scalar_range(s.color_by, "color_by", s.color_range, "color_range", p.color_scalar);
+  }
+  if (!s.beta_by.empty()) {
+    settings.use_beta = true;
+    settings.beta_range =
+        scalar_range(s.beta_by, "beta_by", s.beta_range, "beta_range", p.beta_scalar);
+  }
+  settings.validate();
+
+  // ---- the surface image, read once
+  if (!s.surface_image.empty())
+    p.surface_image = for_key("surface_image", [&] { return read_png(s.surface_image); });
+
+  p.mesh = std::move(mesh_ptr);
+  p.field_spec = *field_spec;
+  return p;
+}
+
+}  // namespace
+
+PreparedScene prepare_scene(const Scene& scene) {
+  return prepare(scene, std::nullopt);
+}
+
+PreparedScene prepare_scene(const Scene& scene, TriMesh mesh, const std::string& name) {
+  return prepare(scene, for_key("mesh", [&] {
+                   return load_mesh(std::move(mesh), name, scene.subdivide, true);
+                 }));
+}
+
+}  // namespace ibfvs

@@ -1,0 +1,142 @@
+#include "ibfvs/core/texture/reference.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "ibfvs/core/support/error.h"
+#include "ibfvs/core/texture/display.h"
+
+namespace ibfvs {
+
+ReferenceIbfvs::ReferenceIbfvs(int width, int height, float background, const NoiseParams& noise)
+    : background_(background), noise_(width, height, noise) {
+  texture_ = ImageF(width, height, 1, background);
+  shown_ = texture_;
+  moved_ = ImageF(width, height, 2, 0.0f);
+  covered_.assign(static_cast<std::size_t>(width) * height, 0);
+}
+
+float ReferenceIbfvs::sample_cubic(float x, float y) const {
+  const float u = x - 0.5f, v = y - 0.5f;
+  const float fu = std::floor(u), fv = std::floor(v);
+  const int i = static_cast<int>(fu), j = static_cast<int>(fv);
+  const auto weights = [](float f, float w[4]) {
+    w[0] = f * (-0.5f + f * (1.0f - 0.5f * f));
+    w[1] = 1.0f + f * f * (-2.5f + 1.5f * f);
+    w[2] = f * (0.5f + f * (2.0f - 1.5f * f));
+    w[3] = f * f * (-0.5f + 0.5f * f);
+  };
+  float wx[4], wy[4];
+  weights(u - fu, wx);
+  weights(v - fv, wy);
+  const int w = texture_.width, h = texture_.height;
+  float sum = 0.0f;
+  for (int b = 0; b < 4; ++b)
+    for (int a = 0; a < 4; ++a) {
+      const int ti = std::clamp(i - 1 + a, 0, w - 1), tj = std::clamp(j - 1 + b, 0, h - 1);
+      if (!covered_[static_cast<std::size_t>(tj) * w + ti]) return sample(x, y);
+      sum += wx[a] * wy[b] * texture_.at(ti, tj);
+    }
+  return std::clamp(sum, 0.0f, 1.0f);
+}
+
+bool ReferenceIbfvs::on_previous_surface(float x, float y) const {
+  const int w = texture_.width, h = texture_.height;
+  return x >= 0.0f && x <= static_cast<float>(w) && y >= 0.0f && y <= static_cast<float>(h) &&
+         footprint_covered(x, y);
+}
+
+bool ReferenceIbfvs::footprint_covered(float x, float y) const {
+  const int w = texture_.width, h = texture_.height;
+  const float u = x - 0.5f, v = y - 0.5f;
+  const float fu = std::floor(u), fv = std::floor(v);
+  const int i = static_cast<int>(fu), j = static_cast<int>(fv);
+  const float a = u - fu, b = v - fv;
+  for (int dj = 0; dj < 2; ++dj)
+    for (int di = 0; di < 2; ++di) {
+      const float weight = (di ? a : 1 - a) * (dj ? b : 1 - b);
+      const int ti = std::clamp(i + di, 0, w - 1), tj = std::clamp(j + dj, 0, h - 1);
+      if (weight > 0.0f && !covered_[static_cast<std::size_t>(tj) * w + ti]) return false;
+    }
+  return true;
+}
+
+float ReferenceIbfvs::sample(float x, float y) const {
+  return sample_bilinear(texture_, x, y, 0);
+}
+
+float ReferenceIbfvs::display_tap(glm::vec2 p, float value, glm::vec2 along) const {
+  if (!(sharpen_ > 0.0f)) return value;
+  const glm::vec2 across(-along.y, along.x);
+  const glm::vec2 a = p + across, b = p - across;
+  if (!footprint_covered(a.x, a.y) || !footprint_covered(b.x, b.y)) return value;
+  return value + sharpen_ * (value - 0.5f * (sample(a.x, a.y) + sample(b.x, b.y)));
+}
+
+void ReferenceIbfvs::step(const BackwardMap& map, int frame, float alpha, InjectMode mode) {
+  if (map.width != texture_.width || map.height != texture_.height)
+    throw InputError("reference: backward map size differs from the image size");
+  ImageF next = texture_;
+  ImageF shown = texture_;
+  ImageF moved(texture_.width, texture_.height, 2, 0.0f);
+  const int taps = filter_taps(filter_length_);
+  const float spacing = filter_spacing(filter_length_);
+  const bool display = taps > 0 || sharpen_ > 0.0f;
+  const auto blend = [&](float prev, float g) {
+    return mode == InjectMode::Blend ? (1 - alpha) * prev + alpha * g
+                                     : std::min(1.0f, (1 - alpha) * prev + g);
+  };
+  const auto normalised = [](glm::vec2 v) { return v / std::sqrt(v.x * v.x + v.y * v.y); };
+  for (int y = 0; y < texture_.height; ++y)
+    for (int x = 0; x < texture_.width; ++x) {
+      const std::size_t i = static_cast<std::size_t>(y) * texture_.width + x;
+      if (!map.covered[i]) {
+        next.pixels[i] = shown.pixels[i] = background_;
+        continue;
+      }
+      const float g =
+          noise_.sample(static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f, frame);
+      const glm::vec2 s = map.source[i];
+      const bool same = on_previous_surface(s.x, s.y) && (map.occluded.empty() || !map.occluded[i]);
+      const float prev = !same    ? (mode == InjectMode::Blend ? g : 0.0f)
+                         : cubic_ ? sample_cubic(s.x, s.y)
+                                  : sample(s.x, s.y);
+      next.pixels[i] = blend(prev, g);
+      const glm::vec2 here(static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f);
+      const glm::vec2 d = here - s;
+      moved.at(x, y, 0) = d.x;
+      moved.at(x, y, 1) = d.y;
+      shown.pixels[i] = next.pixels[i];
+      const float length = std::sqrt(d.x * d.x + d.y * d.y);
+      if (!display || !same || !(length > 1e-6f)) continue;
+      // The display filter, as the fragment shader: along the streamline
+      // through the source in the last frame's F_t and stored displacements.
+      const glm::vec2 along = d / length;
+      float sum = display_tap(s, prev, along), weights = 1.0f;
+      for (const float side : {-1.0f, 1.0f}) {
+        glm::vec2 p = s, heading = side * along, last = heading;
+        for (int k = 1; k <= taps; ++k) {
+          const glm::vec2 turned = heading + 0.5f * (heading - last);
+          p += spacing *
+               (turned.x * turned.x + turned.y * turned.y > 1e-12f ? normalised(turned) : heading);
+          if (!footprint_covered(p.x, p.y)) break;
+          const glm::vec2 f(sample_bilinear(moved_, p.x, p.y, 0),
+                            sample_bilinear(moved_, p.x, p.y, 1));
+          if (!(std::sqrt(f.x * f.x + f.y * f.y) > 1e-6f)) break;
+          last = heading;
+          heading = side * normalised(f);
+          if (heading.x * last.x + heading.y * last.y < 0.0f) break;
+          const float w = filter_weight(filter_length_, k);
+          sum += w * display_tap(p, sample(p.x, p.y), heading);
+          weights += w;
+        }
+      }
+      shown.pixels[i] = sum / weights;
+    }
+  texture_ = std::move(next);
+  shown_ = std::move(shown);
+  moved_ = std::move(moved);
+  covered_ = map.covered;
+}
+
+}  // namespace ibfvs

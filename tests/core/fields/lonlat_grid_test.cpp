@@ -1,0 +1,273 @@
+// Gridded data on the globe: synthetic netCDF files written here with
+// libnetcdf, and the real monthly winds when fetched.
+
+#include <cmath>
+#include <filesystem>
+
+#include <gtest/gtest.h>
+#include <netcdf.h>
+#include <glm/geometric.hpp>
+
+#include "helpers.h"
+#include "ibfvs/core/fields/lonlat_grid.h"
+#include "ibfvs/core/fields/vector_field.h"
+#include "ibfvs/core/support/error.h"
+
+namespace ibfvs {
+namespace {
+
+constexpr float kMissing = -99.9f;
+
+// A file like monthly_navy_winds.cdf: 2.5 degree grid, lon 0..357.5, lat
+// -90..90, `steps` time steps of U (eastward) and V (northward). U is
+// u(t) everywhere, V zero; the cell at (lon 100, lat 20) is missing.
+void write_winds(const std::filesystem::path& path, int steps, bool v_on_other_grid = false) {
+  int nc = 0, dx = 0, dy = 0, dt = 0, dy2 = 0, vx = 0, vy = 0, vu = 0, vv = 0;
+  ASSERT_EQ(nc_create(path.c_str(), NC_CLOBBER, &nc), NC_NOERR);
+  nc_def_dim(nc, "LON", 144, &dx);
+  nc_def_dim(nc, "LAT", 73, &dy);
+  nc_def_dim(nc, "TIME", NC_UNLIMITED, &dt);
+  nc_def_dim(nc, "LAT2", 37, &dy2);
+  nc_def_var(nc, "LON", NC_DOUBLE, 1, &dx, &vx);
+  nc_def_var(nc, "LAT", NC_DOUBLE, 1, &dy, &vy);
+  const int du[3] = {dt, dy, dx}, dv[3] = {dt, v_on_other_grid ? dy2 : dy, dx};
+  nc_def_var(nc, "U", NC_FLOAT, 3, du, &vu);
+  nc_def_var(nc, "V", NC_FLOAT, 3, dv, &vv);
+  for (const int v : {vu, vv}) {
+    nc_put_att_float(nc, v, "_FillValue", NC_FLOAT, 1, &kMissing);
+    nc_put_att_float(nc, v, "missing_value", NC_FLOAT, 1, &kMissing);
+    nc_put_att_text(nc, v, "units", 3, "M/S");
+  }
+  nc_enddef(nc);
+  std::vector<double> lon(144), lat(73);
+  for (int i = 0; i < 144; ++i) lon[i] = 2.5 * i;
+  for (int j = 0; j < 73; ++j) lat[j] = -90 + 2.5 * j;
+  nc_put_var_double(nc, vx, lon.data());
+  nc_put_var_double(nc, vy, lat.data());
+  for (int t = 0; t < steps; ++t) {
+    std::vector<float> u(144 * 73, 5.0f + t), v(144 * 73, 0.0f);
+    u[44 * 144 + 40] = kMissing;  // lat 20, lon 100
+    const std::size_t start[3] = {static_cast<std::size_t>(t), 0, 0};
+    const std::size_t cu[3] = {1, 73, 144}, cv[3] = {1, v_on_other_grid ? 37u : 73u, 144};
+    nc_put_vara_float(nc, vu, start, cu, u.data());
+    nc_put_vara_float(nc, vv, start, cv, v.data());
+  }
+  nc_close(nc);
+}
+
+TEST(LonLatGrid, EastwardWindRunsAlongTheParallels) {
+  test::TempDir dir;
+  write_winds(dir / "w.nc", 3);
+  const LonLatGrid u = read_lonlat_grid(dir / "w.nc", "U", 2);
+  EXPECT_EQ(u.time_steps, 3u);
+  EXPECT_EQ(u.units, "M/S");
+  EXPECT_FLOAT_EQ(u.sample(10, 10), 7.0f);
+  EXPECT_FLOAT_EQ(u.sample(358.9, 10), 7.0f);  // between the last and first column
+  EXPECT_FLOAT_EQ(u.sample(-1.0, 10), 7.0f);   // negative longitudes wrap
+  EXPECT_TRUE(std::isnan(u.sample(100, 20)));  // missing stays missing
+  const TriMesh globe = make_globe(4);
+  std::vector<float> valid;
+  const auto v = lonlat_vectors(globe, u, read_lonlat_grid(dir / "w.nc", "V", 2), &valid);
+  std::size_t missing = 0;
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    double lon = 0, lat = 0;
+    to_lonlat(globe.positions[i], lon, lat);
+    if (!valid[i]) {
+      ++missing;
+      EXPECT_EQ(v[i], glm::vec3(0));
+      EXPECT_NEAR(lon, 100.0, 5.1);
+      continue;
+    }
+    if (std::abs(lat) > 85) continue;
+    const double l = lon * 3.14159265358979 / 180.0;
+    const glm::vec3 east(std::cos(l), 0, -std::sin(l));
+    EXPECT_NEAR(glm::dot(v[i], east), 7.0f, 1e-3f);
+    EXPECT_NEAR(glm::dot(v[i], globe.normals[i]), 0.0f, 1e-4f);  // tangent
+    EXPECT_NEAR(glm::length(v[i]), 7.0f, 1e-3f);                 // no northward part
+  }
+  EXPECT_GT(missing, 0u);
+  EXPECT_LT(missing, 20u);
+  // Through the field spec, as --field wind:FILE:U:V uses it.
+  FieldSpec spec = FieldSpec::parse("wind:" + (dir / "w.nc").string() + ":U:V");
+  spec.time = 1;
+  const auto f = evaluate_field(globe, spec, TangentMode::Project);
+  EXPECT_NEAR(glm::length(f[0]) + glm::length(f[1]), 12.0f, 0.1f);
+}
+
+TEST(LonLatGrid, BadFilesAndNamesAreClearErrors) {
+  test::TempDir dir;
+  write_winds(dir / "w.nc", 2);
+  const auto expect = [&](auto&& call, const std::string& needle) {
+    try {
+      call();
+      FAIL() << "no error for " << needle;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+    }
+  };
+  expect([&] { read_lonlat_grid(dir / "w.nc", "UWND"); },
+         "no variable 'UWND' (the file has: LON, LAT, U, V)");
+  expect([&] { read_lonlat_grid(dir / "w.nc", "U", 2); },
+         "time index 2 is out of range for 'U' (2 time steps");
+  expect([&] { read_lonlat_grid(dir / "w.nc", "LON"); }, "has 1 dimensions");
+  expect([&] { read_lonlat_grid(dir / "none.nc", "U"); }, "none.nc: no such file");
+  expect([&] { read_lonlat_grid(test::write_file(dir / "t.nc", "not netcdf"), "U"); },
+         "t.nc: not a readable netCDF file");
+  write_winds(dir / "odd.nc", 1, true);
+  const TriMesh globe = make_globe(2);
+  expect(
+      [&] {
+        lonlat_vectors(globe, read_lonlat_grid(dir / "odd.nc", "U"),
+                       read_lonlat_grid(dir / "odd.nc", "V"));
+      },
+      "mismatched dimensions");
+  expect([&] { FieldSpec::parse("wind:"); }, "empty file or variable name in 'wind:'");
+}
+
+// A classic netCDF header written byte by byte (big-endian words).
+struct Header {
+  std::string bytes;
+  explicit Header(char version) : bytes(std::string("CDF") + version) {}
+  Header& word(std::uint32_t v) {
+    for (int shift = 24; shift >= 0; shift -= 8) bytes += static_cast<char>((v >> shift) & 0xFF);
+    return *this;
+  }
+  Header& name(const std::string& n) {
+    word(static_cast<std::uint32_t>(n.size()));
+    bytes += n + std::string((4 - n.size() % 4) % 4, '\0');
+    return *this;
+  }
+};
+
+// Fuzzing found netCDF-C allocating what a header declares (tens of GiB for
+// a few hundred bytes) and spinning for minutes; and a file cut short reads
+// as zeros. The header is walked first: each such file is refused at once,
+// naming the problem; whole files of every classic version pass.
+TEST(LonLatGrid, MalformedAndCutShortFilesAreRefusedBeforeReading) {
+  test::TempDir dir;
+  const auto expect = [&](const std::filesystem::path& file, const std::string& needle) {
+    try {
+      read_lonlat_grid(file, "U");
+      FAIL() << "no error for " << needle;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(file.filename().string() + ": " + needle),
+                std::string::npos)
+          << e.what();
+    }
+  };
+  // Whole files of the three classic versions read; one byte less is cut short.
+  write_winds(dir / "w.nc", 2);
+  const std::string whole = test::read_file(dir / "w.nc");
+  for (const int mode : {0, NC_64BIT_OFFSET, NC_64BIT_DATA}) {
+    int nc = 0, d = 0, v = 0;
+    const auto path = dir / ("v" + std::to_string(mode) + ".nc");
+    ASSERT_EQ(nc_create(path.c_str(), NC_CLOBBER | mode, &nc), NC_NOERR);
+    nc_def_dim(nc, "X", 7, &d);
+    nc_def_var(nc, "X", NC_DOUBLE, 1, &d, &v);
+    nc_enddef(nc);
+    const std::vector<double> x{0, 1, 2, 3, 4, 5, 6};
+    nc_put_var_double(nc, v, x.data());
+    nc_close(nc);
+    const std::string bytes = test::read_file(path);
+    try {
+      read_lonlat_grid(path, "X");
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("has 1 dimensions"), std::string::npos) << e.what();
+    }
+    test::write_file(path, bytes.substr(0, bytes.size() - 1));
+    try {
+      read_lonlat_grid(path, "X");
+      FAIL() << "a cut file read";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("the file is cut short: variable 'X' needs " +
+                                           std::to_string(bytes.size()) + " bytes, the file has " +
+                                           std::to_string(bytes.size() - 1)),
+                std::string::npos)
+          << e.what();
+    }
+  }
+  EXPECT_EQ(read_lonlat_grid(dir / "w.nc", "U", 1).time_steps, 2u);
+  test::write_file(dir / "cut.nc", whole.substr(0, whole.size() - 100));
+  expect(dir / "cut.nc", "the file is cut short: variable 'V' needs " +
+                             std::to_string(whole.size()) + " bytes, the file has " +
+                             std::to_string(whole.size() - 100));
+  // Headers declaring what no file of their size could hold.
+  expect(
+      test::write_file(dir / "dims.nc", Header('\1').word(0).word(0x0A).word(0x7FFFFFFF).bytes),
+      "not a valid netCDF file: it declares 2147483647 dimensions, more than the file could hold");
+  expect(test::write_file(dir / "att.nc", Header('\2')
+                                              .word(0)
+                                              .word(0)
+                                              .word(0)
+                                              .word(0x0C)
+                                              .word(1)
+                                              .name("title")
+                                              .word(2)
+                                              .word(0x7FFFFFF0)
+                                              .bytes),
+         "not a valid netCDF file: attribute 'title' runs past the end of the file");
+  Header rank('\1');
+  rank.word(0).word(0x0A).word(1).name("x").word(4).word(0).word(0).word(0x0B).word(1).name("U");
+  expect(test::write_file(dir / "rank.nc", rank.word(2000).bytes + std::string(64, '\0')),
+         "not a valid netCDF file: variable 'U' has 2000 dimensions (at most 1024)");
+  Header id('\1');
+  id.word(0).word(0x0A).word(1).name("x").word(4).word(0).word(0).word(0x0B).word(1).name("U");
+  expect(test::write_file(dir / "id.nc", id.word(1).word(5).bytes + std::string(64, '\0')),
+         "not a valid netCDF file: variable 'U' names dimension 5 of 1");
+  // Names are the file's bytes: the message stays one line.
+  expect(test::write_file(
+             dir / "name.nc",
+             Header('\1').word(0).word(0).word(0).word(0x0C).word(1).name("a\nb").word(99).bytes +
+                 std::string(64, '\0')),
+         "not a valid netCDF file: attribute 'a?b' has an unknown type");
+  expect(test::write_file(dir / "version.nc", Header('\3').word(0).bytes),
+         "not a valid netCDF file: classic format version 3 (1, 2 and 5 exist)");
+  expect(test::write_file(dir / "short.nc", Header('\1').word(0).word(0x0A).bytes),
+         "not a valid netCDF file: it ends in dimensions");
+}
+
+TEST(LonLatGrid, GlobeIsAUnitGeodesicSphere) {
+  const TriMesh g = make_globe(3);
+  EXPECT_EQ(g.triangle_count(), 20u * 64);
+  for (std::size_t i = 0; i < g.vertex_count(); ++i) {
+    EXPECT_NEAR(glm::length(g.positions[i]), 1.0f, 1e-5f);
+    EXPECT_EQ(g.positions[i], g.normals[i]);
+  }
+  double lon = 0, lat = 0;
+  to_lonlat({0, 1, 0}, lon, lat);
+  EXPECT_NEAR(lat, 90.0, 1e-9);
+  to_lonlat({1, 0, 0}, lon, lat);
+  EXPECT_NEAR(lon, 90.0, 1e-9);  // east of longitude 0 (+Z)
+  EXPECT_THROW(make_globe(9), InputError);
+}
+
+TEST(LonLatGrid, RealMonthlyWindsHaveTheWesterlies) {
+  const std::filesystem::path path =
+      std::filesystem::path(IBFVS_TEST_DATA_DIR) / "earth/monthly_navy_winds.cdf";
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << "fetched data missing: " << path;
+  const LonLatGrid u = read_lonlat_grid(path, "UWND", 0);
+  EXPECT_EQ(u.time_steps, 132u);
+  EXPECT_EQ(u.lon.size(), 144u);
+  EXPECT_EQ(u.lat.size(), 73u);
+  // The roaring forties and fifties blow from the west: u > 0 around -50.
+  double sum = 0, trades = 0;
+  int n = 0, m = 0;
+  float lo = 1e9f, hi = -1e9f;
+  for (double lon = 0; lon < 360; lon += 5) {
+    const float v = u.sample(lon, -50);
+    if (std::isfinite(v)) sum += v, ++n;
+    const float t = u.sample(lon, 12);  // the north-east trades over the oceans: u < 0
+    if (std::isfinite(t)) trades += t, ++m;
+  }
+  for (const float v : u.values)
+    if (std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v);
+  std::printf("January 1980: mean u at -50 %.1f m/s, at 12N %.1f m/s, range %.1f..%.1f\n", sum / n,
+              trades / m, lo, hi);
+  EXPECT_GT(sum / n, 5.0);
+  EXPECT_LT(trades / m, -2.0);
+  EXPECT_GT(lo, -40.0f);
+  EXPECT_LT(hi, 40.0f);
+}
+
+}  // namespace
+}  // namespace ibfvs

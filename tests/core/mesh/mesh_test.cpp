@@ -1,0 +1,103 @@
+#include <gtest/gtest.h>
+#include <glm/geometric.hpp>
+
+#include "ibfvs/core/mesh/mesh.h"
+#include "ibfvs/core/mesh/procedural.h"
+#include "ibfvs/core/support/error.h"
+#include "ibfvs/core/support/text.h"
+
+namespace ibfvs {
+namespace {
+
+TEST(Mesh, ComputedNormalsMatchTheSphere) {
+  TriMesh m = make_sphere(2.0f, 32, 64);
+  const std::vector<glm::vec3> exact = m.normals;
+  compute_vertex_normals(m);
+  float worst = 1.0f;
+  for (std::size_t i = 0; i < exact.size(); ++i) {
+    const float y = exact[i].y;
+    if (std::abs(y) > 0.99f) continue;  // the collapsed pole rows
+    worst = std::min(worst, glm::dot(m.normals[i], exact[i]));
+  }
+  EXPECT_GT(worst, 0.995f);
+}
+
+TEST(Mesh, BoundsAndRadius) {
+  const TriMesh m = make_torus(1.0f, 0.25f, 64, 16);
+  const Bounds b = mesh_bounds(m);
+  EXPECT_NEAR(b.max.x, 1.25f, 1e-5f);
+  EXPECT_NEAR(b.max.y, 0.25f, 1e-5f);
+  EXPECT_NEAR(b.radius, 1.25f, 1e-4f);
+  EXPECT_LT(b.radius, 0.5f * b.diagonal());
+}
+
+TEST(Mesh, ValidateNamesTheProblem) {
+  TriMesh m = make_square(1.0f, 1);
+  m.triangles.push_back({0, 1, 17});
+  try {
+    validate_mesh(m, "in.off");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("in.off: triangle 2 references vertex 17"),
+              std::string::npos)
+        << e.what();
+  }
+  TriMesh empty;
+  EXPECT_THROW(validate_mesh(empty, "x"), InputError);
+  EXPECT_THROW(mesh_bounds(empty), InputError);
+}
+
+TEST(Mesh, DegenerateTrianglesAreRemovedAndNormalsStayFinite) {
+  TriMesh m = make_square(1.0f, 1);
+  m.triangles.push_back({0, 0, 1});
+  m.positions.push_back(m.positions[0]);  // a copy of vertex 0: zero-area triangle
+  m.triangles.push_back({0, 4, 1});
+  compute_vertex_normals(m);
+  for (const glm::vec3& n : m.normals) EXPECT_NEAR(glm::length(n), 1.0f, 1e-5f);
+  EXPECT_EQ(remove_degenerate_triangles(m), 2u);
+  EXPECT_EQ(m.triangle_count(), 2u);
+}
+
+TEST(Mesh, ClosedOrientationSaysWhenBackFacesCanBeCulled) {
+  const TriMesh torus = make_torus(1.0f, 0.4f, 24, 12);
+  EXPECT_EQ(closed_orientation(torus), 1);
+  TriMesh inside_out = torus;
+  for (Triangle& t : inside_out.triangles) std::swap(t[1], t[2]);
+  EXPECT_EQ(closed_orientation(inside_out), -1);
+  EXPECT_EQ(closed_orientation(make_square(1.0f, 4)), 0);             // open
+  EXPECT_EQ(closed_orientation(make_cylinder(1.0f, 1.0f, 8, 2)), 0);  // open ends
+  TriMesh mixed = torus;
+  std::swap(mixed.triangles[5][1], mixed.triangles[5][2]);  // one flipped triangle
+  EXPECT_EQ(closed_orientation(mixed), 0);
+  EXPECT_EQ(closed_orientation(TriMesh{}), 0);
+}
+
+}  // namespace
+}  // namespace ibfvs
+
+namespace ibfvs {
+namespace {
+
+TEST(Mesh, TriangleValuesReachTheVerticesAreaWeighted) {
+  TriMesh m;
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {2, 2, 0}, {9, 9, 9}};
+  m.triangles = {{0, 1, 2}, {1, 3, 2}};  // areas 0.5 and 1.5; vertex 4 of none
+  const std::vector<float> v = triangle_to_vertex(m, std::vector<float>{1, 5});
+  EXPECT_FLOAT_EQ(v[0], 1.0f);
+  EXPECT_FLOAT_EQ(v[1], 4.0f);
+  EXPECT_FLOAT_EQ(v[3], 5.0f);
+  EXPECT_FLOAT_EQ(v[4], 0.0f);
+  EXPECT_THROW(triangle_to_vertex(m, std::vector<float>{1}), InputError);
+}
+
+TEST(Text, GlobMatch) {
+  EXPECT_TRUE(glob_match("motorBike*", "motorBike_frt-fairing:001%1"));
+  EXPECT_TRUE(glob_match("*wing?", "leftwing2"));
+  EXPECT_TRUE(glob_match("*", ""));
+  EXPECT_FALSE(glob_match("wing", "wings"));
+  EXPECT_FALSE(glob_match("a*b*c", "aXbY"));
+  EXPECT_TRUE(glob_match("a*b*c", "aXbYc"));
+}
+
+}  // namespace
+}  // namespace ibfvs

@@ -1,0 +1,44 @@
+#pragma once
+// What the renderer's GL tests share: the fixture, a flat view and a sphere
+// scene with its field and camera.
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "gl_fixture.h"
+#include "ibfvs/core/fields/vector_field.h"
+#include "ibfvs/core/geometry/displacement.h"
+#include "ibfvs/core/mesh/procedural.h"
+#include "ibfvs/core/scene/camera.h"
+#include "ibfvs/render/ibfvs_renderer.h"
+
+namespace ibfvs::rendertest {
+
+class RendererGLTest : public test::GlTest {};
+
+// A unit ortho view of the square [-1, 1]^2 in the plane z = 0.
+inline ViewState flat_view() {
+  return {glm::mat4(1.0f), glm::ortho(-1.0f, 1.0f, -1.0f, 1.0f, -1.0f, 1.0f)};
+}
+
+struct Scene {
+  TriMesh mesh;
+  std::vector<glm::vec3> field;
+  Camera camera;
+};
+
+inline Scene sphere_scene(const std::string& field, TangentMode mode, float aspect = 1.0f) {
+  TriMesh m = make_sphere(1.0f, 96, 192, 0.06f);
+  std::vector<glm::vec3> f = evaluate_field(m, FieldSpec::parse(field), mode);
+  Camera c(mesh_bounds(m), {}, aspect);
+  return {std::move(m), std::move(f), std::move(c)};
+}
+
+inline float step_dt(const Scene& s, int w, int h, float pixels) {
+  return dt_for_pixel_step(s.mesh.positions, s.field, s.camera.view_projection(), w, h, pixels);
+}
+
+}  // namespace ibfvs::rendertest

@@ -12,6 +12,7 @@
 #include "ibfvs/bench_command.h"
 #include "ibfvs/geometry_command.h"
 #include "ibfvs/gl/context.h"
+#include "ibfvs/options_markdown.h"
 #include "ibfvs/quality_command.h"
 #include "ibfvs/render_command.h"
 #include "ibfvs/view_command.h"
@@ -65,6 +66,8 @@ int main(int argc, char** argv) {
   CLI::App* keys = app.add_subcommand(
       "keys", "List every scene key (scene files; the same as render's flags) with its default");
   keys->add_flag("--markdown", keys_markdown, "As the Markdown table of docs/scenes.md");
+  CLI::App* options = app.add_subcommand(
+      "options", "Every command's options with their defaults, as the Markdown of docs/cli.md");
   if (argc < 2) {
     std::fputs(app.help().c_str(), stderr);
     return 1;
@@ -74,18 +77,19 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help
     // One line in the same form as every other error.
-    if (*render || *geometry || *view || *bench || *keys || *quality)
+    if (*render || *geometry || *view || *bench || *keys || *quality || *options)
       std::fprintf(stderr, "ibfvs: error: %s (see ibfvs %s --help)\n", e.what(),
                    *render    ? "render"
                    : *view    ? "view"
                    : *bench   ? "bench"
                    : *keys    ? "keys"
                    : *quality ? "quality"
+                   : *options ? "options"
                               : "geometry");
     else
       std::fprintf(stderr,
                    "ibfvs: error: unknown command '%s' (expected render, view, geometry, bench, "
-                   "quality or keys; see ibfvs "
+                   "quality, keys or options; see ibfvs "
                    "--help)\n",
                    argv[1]);
     return 1;
@@ -101,6 +105,10 @@ int main(int argc, char** argv) {
     if (*quality) return ibfvs::app::run_quality(*quality_scene, *quality_options);
     if (*keys) {
       std::fputs(ibfvs::app::scene_keys_table(keys_markdown).c_str(), stdout);
+      return 0;
+    }
+    if (*options) {
+      std::fputs(ibfvs::app::options_markdown(app).c_str(), stdout);
       return 0;
     }
   } catch (const std::exception& e) {

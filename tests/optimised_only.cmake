@@ -11,7 +11,9 @@ set(ibfvs_optimised_only
     QualityGLTest.MeasuresOnTheBumpySphereCowAndKnot gl
     CurvatureIrregular.ScannedMeshAgainstItsLoopLimitSurface core
     CurvatureIrregular.AtLeastAsAccurateAsCgalJetFitting core
-    Curvature.RealMeshesAreWellFormed core)
+    Curvature.RealMeshesAreWellFormed core
+    SceneCommand.EveryExampleSceneRenders apps
+    QualityGLTest.RedBackgroundDoesNotBleedIntoTheSphere gl)
 while(ibfvs_optimised_only)
   list(POP_FRONT ibfvs_optimised_only test label)
   set_tests_properties(${test} PROPERTIES LABELS "${label};optimised" COST 60)

@@ -9,6 +9,9 @@ packages=(
   libglfw3-dev libimgui-dev libstb-dev xvfb xauth
   libavcodec-dev libavformat-dev libavutil-dev
   libegl-dev libegl-mesa0 libgl1-mesa-dri libgbm1
+  # glslang, the Khronos reference compiler: the tests compile every shader
+  # source as GLSL 4.50 and as GLSL ES 3.00 (WebGL2) with it.
+  glslang-tools
   libgtest-dev googletest libbenchmark-dev
   # The curvature tests and bench: random triangulations (convex hulls) and
   # CGAL's jet fitting as the peer (header-only; the library never links it).

@@ -38,7 +38,8 @@ IbfvsRenderer::IbfvsRenderer(const RenderSettings& settings) : settings_(setting
   stats_framebuffer_.finish(1);
   for (const int mono : {0, 1}) {
     StatsProgram& sp = stats_program_[mono];
-    sp.program = gl::Program(shaders::kGridVertex, shaders::stats_fragment_source(mono == 1));
+    sp.program =
+        gl::Program(shaders::grid_vertex_source(), shaders::stats_fragment_source(mono == 1));
     sp.image_size = sp.program.location("u_image_size");
     sp.stats_size = sp.program.location("u_stats_size");
     sp.offset = sp.program.location("u_offset");
@@ -55,13 +56,13 @@ IbfvsRenderer::IbfvsRenderer(const RenderSettings& settings) : settings_(setting
   grid_framebuffer_ = gl::Framebuffer::create();
   grid_framebuffer_.attach_color(0, grid_);
   grid_framebuffer_.finish(1);
-  grid_program_ = gl::Program(shaders::kGridVertex, shaders::grid_fragment_source());
+  grid_program_ = gl::Program(shaders::grid_vertex_source(), shaders::grid_fragment_source());
   grid_noise_time_ = grid_program_.location("u_noise_time");
   grid_profile_ = grid_program_.location("u_profile");
   grid_spike_width_ = grid_program_.location("u_spike_width");
   grid_seed_ = grid_program_.location("u_seed");
   empty_vao_ = gl::VertexArray::create();
-  host_program_ = gl::Program(shaders::kGridVertex, shaders::kHostFragment);
+  host_program_ = gl::Program(shaders::grid_vertex_source(), shaders::kHostFragment);
   host_origin_ = host_program_.location("u_origin");
   apply_settings();
   static_cast<void>(current_variant());  // compile now: a shader error shows at construction

@@ -42,7 +42,7 @@ out vec3 v_position_object;  // for the spherical image map and the solid noise
 #ifdef IBFVS_CONTRAST
 // The contrast stage's mean and gain from the last frame's statistics, read
 // per vertex (the same for all) rather than per pixel.
-layout(binding = 4) uniform sampler2D u_stats;  // 1 x 1: (sum l, sum l^2, count)
+BINDING(4) uniform sampler2D u_stats;  // 1 x 1: (sum l, sum l^2, count)
 uniform float u_contrast;
 flat out vec2 v_contrast;
 #endif
@@ -86,17 +86,13 @@ void main() {
 }
 )";
 
-}  // namespace
-
 // The grid pass's vertex shader: one triangle that covers the viewport.
-const char* const kGridVertex = R"(#version 450 core
+const char* const kGridVertexBody = R"(
 void main() {
   vec2 p = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);
   gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);
 }
 )";
-
-namespace {
 
 // The noise time profile w(t), period 1 (equation 8): shared by the grid pass
 // and the object-space noise of the IBFVS pass.
@@ -163,8 +159,8 @@ uniform float u_sharpen;  // k: each tap plus k (its value - the mean of its nei
 #ifdef IBFVS_CONTRAST
 flat in vec2 v_contrast;  // (mean, gain) of the contrast stage
 #endif
-layout(binding = 0) uniform sampler2D u_previous;  // F_t of the last frame
-layout(binding = 1) uniform sampler2D u_grid;      // w(v_g k + phi_ij), this frame's grid values
+BINDING(0) uniform sampler2D u_previous;  // F_t of the last frame
+BINDING(1) uniform sampler2D u_grid;      // w(v_g k + phi_ij), this frame's grid values
 
 uniform float u_alpha;
 uniform vec2 u_texture_shift;  // pixels: F_t moved with the mouse for this frame (3.7)
@@ -177,11 +173,11 @@ uniform vec2 u_inverse_size;  // 1 / image size in pixels
 uniform vec3 u_surface_color;
 uniform int u_locked;        // section 3.7: map F_t, do not update it
 #ifdef IBFVS_SURFACE_IMAGE
-layout(binding = 3) uniform sampler2D u_surface_image;  // equirectangular, lon -180..180
+BINDING(3) uniform sampler2D u_surface_image;  // equirectangular, lon -180..180
 uniform vec3 u_image_centre; // centre of the spherical mapping
 #endif
 #ifdef IBFVS_COLOR_SCALAR
-layout(binding = 2) uniform sampler2D u_color_map;  // 256 x 1
+BINDING(2) uniform sampler2D u_color_map;  // 256 x 1
 uniform vec2 u_color_range;  // scalar values at the ends of the map
 #endif
 #ifdef IBFVS_BETA_SCALAR
@@ -428,7 +424,7 @@ void main() {
 // (equation 8), once per frame instead of four times per pixel.
 const char* const kGridFragmentBody = R"(
 layout(location = 0) out float o_value;
-layout(binding = 0) uniform sampler2D u_phases;  // phi_ij
+BINDING(0) uniform sampler2D u_phases;  // phi_ij
 uniform float u_noise_time;  // v_g k
 
 void main() {
@@ -444,8 +440,8 @@ void main() {
 // reads (no read-back to the CPU).
 const char* const kStatsFragmentBody = R"(
 layout(location = 0) out vec4 o_stats;
-layout(binding = 0) uniform sampler2D u_texture;  // F_t, depth in the last channel
-layout(binding = 1) uniform sampler2D u_shown;    // F, D(F_t) before the contrast stage in alpha
+BINDING(0) uniform sampler2D u_texture;  // F_t, depth in the last channel
+BINDING(1) uniform sampler2D u_shown;    // F, D(F_t) before the contrast stage in alpha
 uniform vec2 u_image_size;
 uniform int u_stats_size;
 uniform vec2 u_offset;  // in grid cells, in [0, 1): a different sample grid each frame
@@ -473,8 +469,21 @@ void main() {
 
 namespace {
 
-std::string with_defines(const ShaderFeatures& features, const char* body, bool profile) {
-  std::string source = "#version 450 core\n";
+// What differs between the dialects, in this one place: the version line,
+// WebGL2's required precisions, and sampler units, which GLSL ES 3.00 cannot
+// declare in the shader (layout(binding) is ES 3.10): an ES runtime sets
+// them by name (glUniform1i) to the numbers BINDING(n) gives here.
+std::string prelude(Dialect dialect) {
+  if (dialect == Dialect::Es300)
+    return "#version 300 es\n"
+           "precision highp float;\nprecision highp int;\nprecision highp sampler2D;\n"
+           "#define BINDING(n)\n";
+  return "#version 450 core\n#define BINDING(n) layout(binding = n)\n";
+}
+
+std::string with_defines(const ShaderFeatures& features, const char* body, bool profile,
+                         Dialect dialect) {
+  std::string source = prelude(dialect);
   const auto define = [&](bool on, const char* name) {
     if (on) source += std::string("#define ") + name + "\n";
   };
@@ -505,12 +514,16 @@ unsigned ShaderFeatures::key() const {
          (static_cast<unsigned>(filter_taps) << 11u);
 }
 
-std::string ibfvs_vertex_source(const ShaderFeatures& features) {
-  return with_defines(features, kIbfvsVertexBody, false);
+std::string ibfvs_vertex_source(const ShaderFeatures& features, Dialect dialect) {
+  return with_defines(features, kIbfvsVertexBody, false, dialect);
 }
 
-std::string ibfvs_fragment_source(const ShaderFeatures& features) {
-  return with_defines(features, kIbfvsFragmentBody, features.object_noise);
+std::string ibfvs_fragment_source(const ShaderFeatures& features, Dialect dialect) {
+  return with_defines(features, kIbfvsFragmentBody, features.object_noise, dialect);
+}
+
+std::string grid_vertex_source(Dialect dialect) {
+  return prelude(dialect) + kGridVertexBody;
 }
 
 const char* const kHostFragment = R"(#version 450 core
@@ -527,13 +540,13 @@ void main() {
 }
 )";
 
-std::string stats_fragment_source(bool mono_texture) {
-  return std::string("#version 450 core\n") + (mono_texture ? "#define IBFVS_MONO_TEXTURE\n" : "") +
+std::string stats_fragment_source(bool mono_texture, Dialect dialect) {
+  return prelude(dialect) + (mono_texture ? "#define IBFVS_MONO_TEXTURE\n" : "") +
          kStatsFragmentBody;
 }
 
-std::string grid_fragment_source() {
-  return std::string("#version 450 core\n") + kProfile + kGridFragmentBody;
+std::string grid_fragment_source(Dialect dialect) {
+  return prelude(dialect) + kProfile + kGridFragmentBody;
 }
 
 }  // namespace ibfvs::shaders

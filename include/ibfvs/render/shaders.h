@@ -1,5 +1,7 @@
 #pragma once
-// GLSL sources of the IBFVS pass, the noise grid pass and the statistics pass.
+// GLSL sources of the IBFVS pass, the noise grid pass and the statistics
+// pass, from one generator for every place the pass runs: desktop OpenGL 4.5
+// and GLSL ES 3.00 (WebGL2).
 
 #include <string>
 
@@ -25,12 +27,19 @@ struct ShaderFeatures {
   [[nodiscard]] unsigned key() const;
 };
 
-std::string ibfvs_vertex_source(const ShaderFeatures& features);
-std::string ibfvs_fragment_source(const ShaderFeatures& features);
-extern const char* const kGridVertex;
-std::string grid_fragment_source();
+/// The shading language a source is emitted in. The bodies are the same;
+/// only the prelude differs (the version, ES's precisions, and sampler units:
+/// declared with layout(binding) in GL 4.5, set by name at run time in ES,
+/// to the same numbers).
+enum class Dialect { Gl45, Es300 };
+
+std::string ibfvs_vertex_source(const ShaderFeatures& features, Dialect dialect = Dialect::Gl45);
+std::string ibfvs_fragment_source(const ShaderFeatures& features, Dialect dialect = Dialect::Gl45);
+/// One triangle that covers the viewport (the grid and statistics passes).
+std::string grid_vertex_source(Dialect dialect = Dialect::Gl45);
+std::string grid_fragment_source(Dialect dialect = Dialect::Gl45);
 /// The statistics pass of the contrast stage (grey F_t in two channels, or colour).
-std::string stats_fragment_source(bool mono_texture);
+std::string stats_fragment_source(bool mono_texture, Dialect dialect = Dialect::Gl45);
 /// Copies F and the surface's depth into a host's framebuffer (ParaView's),
 /// the background left as the host drew it.
 extern const char* const kHostFragment;

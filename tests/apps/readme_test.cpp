@@ -206,6 +206,18 @@ TEST_F(Readme, DocsListEveryKeyAndEveryName) {
   check("--resample", enum_name_list<Resample>());
 }
 
+// `ibfvs options` takes no argument: anything else is one error line.
+TEST_F(Readme, OptionsCommandRefusesArgumentsInOneLine) {
+  for (const char* args : {"options --markdown", "options cow.off"}) {
+    const test::Result r = run(args);
+    EXPECT_EQ(r.status, 1) << args;
+    EXPECT_TRUE(r.out.empty()) << args;
+    EXPECT_EQ(r.err.rfind("ibfvs: error: ", 0), 0u) << r.err;
+    EXPECT_NE(r.err.find("ibfvs options --help"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << r.err;
+  }
+}
+
 // The ParaView representation starts from the same look as the command line:
 // each property's default_values in the plugin's XML equals the Scene's.
 TEST(ParaViewDefaults, EqualTheScenesDefaults) {

@@ -165,9 +165,7 @@ Attachment orbit_attachment(AdvectView view) {
       const float d = depth.at(x, y);
       if (!(d < 1.0f)) continue;
       // Unproject the pixel to its surface point, then project it with the old view.
-      const glm::vec4 p =
-          inv * glm::vec4(2.0f * (x + 0.5f) / w - 1, 2.0f * (y + 0.5f) / h - 1, 2 * d - 1, 1);
-      const glm::vec2 src = project_to_pixels(vp0, glm::vec3(p) / p.w, w, h);
+      const glm::vec2 src = project_to_pixels(vp0, unproject_pixel(inv, x, y, d, w, h), w, h);
       const int sx = static_cast<int>(src.x), sy = static_cast<int>(src.y);
       if (sx < 0 || sy < 0 || sx >= w || sy >= h) continue;
       final_values.push_back(after.at(x, y));
@@ -392,9 +390,7 @@ TEST_F(RendererGLTest, LockedTextureStaysOnTheSurface) {
       if (std::hypot(x + 0.5f - w / 2.0f, y + 0.5f - h / 2.0f) > 0.3f * w) continue;
       const float d = depth.at(x, y);
       if (!(d < 1.0f)) continue;
-      const glm::vec4 p =
-          inv * glm::vec4(2.0f * (x + 0.5f) / w - 1, 2.0f * (y + 0.5f) / h - 1, 2 * d - 1, 1);
-      const glm::vec2 src = project_to_pixels(vp0, glm::vec3(p) / p.w, w, h);
+      const glm::vec2 src = project_to_pixels(vp0, unproject_pixel(inv, x, y, d, w, h), w, h);
       seen.push_back(out.at(x, y, 0) / 255.0f);
       expected.push_back(locked.at(static_cast<int>(src.x), static_cast<int>(src.y)));
     }
@@ -463,9 +459,8 @@ TEST_F(RendererGLTest, TopologicalDecompositionMatchesTheAscentBasins) {
   const glm::mat4 inv = glm::inverse(cam.view_projection());
   const ImageF depth = r.read_depth();
   const auto surface_point = [&](int x, int y) {
-    const glm::vec4 p = inv * glm::vec4(2.0f * (x + 0.5f) / w - 1, 2.0f * (y + 0.5f) / h - 1,
-                                        2 * depth.at(x, y) - 1, 1);
-    return glm::vec2(p.x / p.w, p.y / p.w);
+    const glm::vec3 p = unproject_pixel(inv, x, y, depth.at(x, y), w, h);
+    return glm::vec2(p.x, p.y);
   };
   std::size_t agree = 0, counted = 0;
   for (int y = 6; y < h - 6; y += 2)

@@ -41,4 +41,14 @@ inline float step_dt(const Scene& s, int w, int h, float pixels) {
   return dt_for_pixel_step(s.mesh.positions, s.field, s.camera.view_projection(), w, h, pixels);
 }
 
+/// The surface point under pixel (x, y) of a w x h image at window depth d,
+/// given the inverse of the view-projection that drew it.
+inline glm::vec3 unproject_pixel(const glm::mat4& inverse, int x, int y, float d, int w, int h) {
+  const glm::vec4 p =
+      inverse * glm::vec4(2.0f * (static_cast<float>(x) + 0.5f) / static_cast<float>(w) - 1.0f,
+                          2.0f * (static_cast<float>(y) + 0.5f) / static_cast<float>(h) - 1.0f,
+                          2.0f * d - 1.0f, 1.0f);
+  return glm::vec3(p) / p.w;
+}
+
 }  // namespace ibfvs::rendertest

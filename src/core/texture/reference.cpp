@@ -30,14 +30,17 @@ float ReferenceIbfvs::sample_cubic(float x, float y) const {
   weights(u - fu, wx);
   weights(v - fv, wy);
   const int w = texture_.width, h = texture_.height;
-  float sum = 0.0f;
+  // As the shader: the 4 x 4 texels but the four corners, renormalised.
+  float sum = 0.0f, total = 0.0f;
   for (int b = 0; b < 4; ++b)
     for (int a = 0; a < 4; ++a) {
+      if ((a == 0 || a == 3) && (b == 0 || b == 3)) continue;
       const int ti = std::clamp(i - 1 + a, 0, w - 1), tj = std::clamp(j - 1 + b, 0, h - 1);
       if (!covered_[static_cast<std::size_t>(tj) * w + ti]) return sample(x, y);
       sum += wx[a] * wy[b] * texture_.at(ti, tj);
+      total += wx[a] * wy[b];
     }
-  return std::clamp(sum, 0.0f, 1.0f);
+  return std::clamp(sum / total, 0.0f, 1.0f);
 }
 
 bool ReferenceIbfvs::on_previous_surface(float x, float y) const {

@@ -9,6 +9,7 @@
 
 #include "ibfvs/core/support/error.h"
 #include "ibfvs/core/texture/display.h"
+#include "ibfvs/render/pass_settings.h"
 #include "ibfvs/render/shaders.h"
 
 namespace ibfvs {
@@ -21,6 +22,30 @@ std::span<const std::byte> bytes_of(std::span<const T> v) {
 
 bool grey(const glm::vec3& c) {
   return c.r == c.g && c.g == c.b;
+}
+
+void set_uniform(const gl::Program& p, const shaders::UniformValue& u) {
+  const int location = p.location(u.name.c_str());
+  const auto f = [&](std::size_t i) { return static_cast<float>(u.values[i]); };
+  const auto n = [&](std::size_t i) { return static_cast<int>(u.values[i]); };
+  using T = shaders::UniformValue::Type;
+  if (u.array) {
+    std::vector<float> values(u.values.begin(), u.values.end());
+    p.set(location, std::span<const float>(values));
+  } else if (u.type == T::Uint) {
+    p.set(location, static_cast<std::uint32_t>(u.values[0]));
+  } else if (u.type == T::Int) {
+    if (u.values.size() == 1)
+      p.set(location, n(0));
+    else
+      p.set(location, glm::ivec2(n(0), n(1)));
+  } else if (u.values.size() == 1) {
+    p.set(location, f(0));
+  } else if (u.values.size() == 2) {
+    p.set(location, glm::vec2(f(0), f(1)));
+  } else {
+    p.set(location, glm::vec3(f(0), f(1), f(2)));
+  }
 }
 
 }  // namespace
@@ -115,20 +140,8 @@ void IbfvsRenderer::use_colour_texture() {
 }
 
 shaders::ShaderFeatures IbfvsRenderer::features() const {
-  shaders::ShaderFeatures f;
-  f.object_noise = settings_.object_noise;
-  f.surface_image = static_cast<bool>(surface_image_);
-  f.color_scalar = settings_.use_color;
-  f.beta_scalar = settings_.use_beta;
-  f.image_step = settings_.image_step > 0.0f;
-  f.inject_add = settings_.inject == InjectMode::Add;
-  f.mono_texture = !colour_texture_;
-  f.cubic = settings_.resample == Resample::Cubic;
-  f.filter_taps = ibfvs::filter_taps(settings_.filter_length);
-  f.contrast = settings_.contrast > 0.0f;
-  f.record_flow = record_flow_;
-  f.sharpen = settings_.sharpen > 0.0f;
-  return f;
+  return shaders::features_for(settings_, colour_texture_, static_cast<bool>(surface_image_),
+                               record_flow_);
 }
 
 IbfvsRenderer::Variant& IbfvsRenderer::current_variant() {
@@ -142,60 +155,18 @@ IbfvsRenderer::Variant& IbfvsRenderer::current_variant() {
     v.u.view = p.location("u_view");
     v.u.clip_to_depth = p.location("u_clip_to_depth");
     v.u.dt = p.location("u_dt");
-    v.u.alpha = p.location("u_alpha");
-    v.u.beta = p.location("u_beta");
     v.u.noise_time = p.location("u_noise_time");
-    v.u.noise_scale = p.location("u_noise_scale");
-    v.u.profile = p.location("u_profile");
-    v.u.spike_width = p.location("u_spike_width");
-    v.u.surface_color = p.location("u_surface_color");
-    v.u.color_range = p.location("u_color_range");
-    v.u.beta_range = p.location("u_beta_range");
     v.u.field_mix = p.location("u_field_mix");
     v.u.locked = p.location("u_locked");
-    v.u.object_cell = p.location("u_object_cell");
-    v.u.seed = p.location("u_seed");
-    v.u.image_step = p.location("u_image_step");
     v.u.probe = p.location("u_probe");
-    v.u.size = p.location("u_size");
     v.u.texture_shift = p.location("u_texture_shift");
     v.u.noise_shift = p.location("u_noise_shift");
-    v.u.image_centre = p.location("u_image_centre");
-    v.u.phase_size = p.location("u_phase_size");
-    v.u.inverse_size = p.location("u_inverse_size");
-    v.u.filter_spacing = p.location("u_filter_spacing");
-    v.u.filter_weights = p.location("u_filter_weights");
-    v.u.contrast = p.location("u_contrast");
-    v.u.sharpen = p.location("u_sharpen");
   }
   if (v.applied != settings_version_) {  // the settings changed since it was last used
     const gl::Program& p = v.program;
-    p.set(v.u.alpha, settings_.alpha);
-    p.set(v.u.beta, settings_.beta);
-    p.set(v.u.profile, static_cast<int>(settings_.noise.profile));
-    p.set(v.u.spike_width, settings_.noise.spike_width);
-    p.set(v.u.surface_color, settings_.surface_color);
-    p.set(v.u.object_cell, settings_.object_cell);
-    p.set(v.u.seed, settings_.noise.seed);
-    p.set(v.u.image_step, settings_.image_step);
-    p.set(v.u.size,
-          glm::vec2(static_cast<float>(settings_.width), static_cast<float>(settings_.height)));
-    p.set(v.u.color_range, settings_.color_range);
-    p.set(v.u.beta_range, settings_.beta_range);
-    p.set(v.u.noise_scale, settings_.noise.scale);
-    p.set(v.u.phase_size, phase_size_);
-    p.set(v.u.inverse_size, glm::vec2(1.0f / static_cast<float>(settings_.width),
-                                      1.0f / static_cast<float>(settings_.height)));
-    p.set(v.u.image_centre, image_centre_);
-    if (f.filter_taps > 0) {
-      std::vector<float> weights(static_cast<std::size_t>(f.filter_taps));
-      for (int k = 0; k < f.filter_taps; ++k)
-        weights[static_cast<std::size_t>(k)] = filter_weight(settings_.filter_length, k + 1);
-      p.set(v.u.filter_spacing, filter_spacing(settings_.filter_length));
-      p.set(v.u.filter_weights, std::span<const float>(weights));
-    }
-    p.set(v.u.contrast, settings_.contrast);
-    p.set(v.u.sharpen, settings_.sharpen);
+    for (const shaders::UniformValue& u :
+         shaders::settings_uniforms(settings_, f, phase_size_, image_centre_))
+      set_uniform(p, u);
     v.applied = settings_version_;
   }
   return v;

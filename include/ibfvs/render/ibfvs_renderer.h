@@ -179,10 +179,9 @@ class IbfvsRenderer {
   // shaders::ShaderFeatures), made on first use; settings_version_ tells
   // which ones still need the current settings as uniforms.
   struct Uniforms {
-    int view_projection, advect_view_projection, view, clip_to_depth, dt, alpha, beta, noise_time,
-        noise_scale, profile, spike_width, surface_color, phase_size, inverse_size, color_range,
-        beta_range, field_mix, image_centre, locked, object_cell, seed, image_step, probe, size,
-        texture_shift, noise_shift, filter_spacing, filter_weights, contrast, sharpen;
+    // Those set each frame; the settings' own go by name (shaders::settings_uniforms).
+    int view_projection, advect_view_projection, view, clip_to_depth, dt, noise_time, field_mix,
+        locked, probe, texture_shift, noise_shift;
   };
   struct Variant {
     gl::Program program;

@@ -34,6 +34,9 @@ packages=(
   # tests, mpiexec for the distributed ones.
   python3-paraview libutfcpp-dev mpi-default-dev mpi-default-bin qtbase5-dev
   libqt5opengl5-dev qttools5-dev libqt5svg5-dev libglew-dev
+  # Web pages (docs/web.md): node runs npm and the browser test, chromium is
+  # the browser (headless, WebGL2 on SwiftShader).
+  nodejs chromium
 )
 sudo=""
 if [[ $(id -u) -ne 0 ]]; then sudo="sudo"; fi
@@ -45,4 +48,11 @@ done
 if ((${#missing[@]})); then
   $sudo apt-get update -qq
   $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+# The browser runtime's tools (esbuild, TypeScript) and the browser test's
+# client (puppeteer-core), exactly as web/package-lock.json pins them.
+web="$(cd "$(dirname "${BASH_SOURCE[0]}")/../web" && pwd)"
+if [[ ! -d "$web/node_modules" || "$web/package-lock.json" -nt "$web/node_modules/.package-lock.json" ]]; then
+  (cd "$web" && npm ci --no-audit --no-fund --loglevel=error)
 fi

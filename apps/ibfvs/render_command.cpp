@@ -21,6 +21,7 @@
 #include "ibfvs/progress.h"
 #include "ibfvs/render/export.h"
 #include "ibfvs/render/session.h"
+#include "ibfvs/render/web_page.h"
 #include "ibfvs/video_writer.h"
 
 namespace ibfvs::app {
@@ -150,13 +151,19 @@ std::string default_output_stem(const std::string& mesh) {
   return stem;
 }
 
-enum class OutputKind { Video, Png, PngSequence };
+enum class OutputKind { Video, Png, PngSequence, Page };
+
+bool is_page_path(const fs::path& out) {
+  const std::string ext = lower_extension(out);
+  return ext == ".html" || ext == ".htm";
+}
 
 OutputKind output_kind(const fs::path& out, const char* option) {
   if (is_video_path(out)) return OutputKind::Video;
+  if (is_page_path(out)) return OutputKind::Page;
   if (lower_extension(out) != ".png")
     throw InputError(std::string(option) + ": unknown output type '" + out.string() +
-                     "' (expected .mp4, .mkv, .webm, .mov, .avi, .gif or .png)");
+                     "' (expected .mp4, .mkv, .webm, .mov, .avi, .gif, .png or .html)");
   return out.string().find('%') != std::string::npos ? OutputKind::PngSequence : OutputKind::Png;
 }
 
@@ -217,8 +224,15 @@ int run_render(const Scene& o, const std::string& scene_file) {
   ensure_parent(out, "--out");
   const std::vector<std::string> inputs = scene_inputs(o, scene_file);
   if (kind != OutputKind::PngSequence) check_not_input(out, inputs, "--out");
+  const bool export_page = !o.export_model.empty() && is_page_path(o.export_model);
+  if (kind == OutputKind::Page || export_page) {
+    if (!has_web_runtime())
+      throw InputError(std::string(export_page ? "--export" : "--out") +
+                       ": this ibfvs was built without the browser runtime for pages (it needs "
+                       "npm and web/node_modules: scripts/install-deps.sh)");
+  }
   if (!o.export_model.empty()) {
-    check_export_path(o.export_model, "--export");
+    if (!export_page) check_export_path(o.export_model, "--export");
     ensure_parent(o.export_model, "--export");
     check_not_input(o.export_model, inputs, "--export");
   }
@@ -239,6 +253,19 @@ int run_render(const Scene& o, const std::string& scene_file) {
   const std::string mesh_name = prepared.mesh_name;
   const float dt = prepared.dt, max_px = prepared.max_px;
   const FieldSpec field_spec = prepared.field_spec;
+
+  // ---- a web page: the browser renders it; nothing to render here
+  if (kind == OutputKind::Page) {
+    const WebPageReport report = write_web_page(prepared, out);
+    if (!o.quiet)
+      std::printf(
+          "ibfvs: wrote %s (%zu bytes: the scene %zu, the runtime %zu) from %s: %zu "
+          "vertices, %zu triangles, field %s\n",
+          out.c_str(), report.page, report.scene, report.runtime, mesh_name.c_str(),
+          prepared.mesh->vertex_count(), prepared.mesh->triangle_count(),
+          field_spec.to_string().c_str());
+    return 0;
+  }
 
   // ---- render
   gl::HeadlessContext context;
@@ -292,7 +319,11 @@ int run_render(const Scene& o, const std::string& scene_file) {
   if (!o.texture_out.empty()) {
     write_png16(renderer.read_texture().select_channels(0, 3), o.texture_out);
   }
-  if (!o.export_model.empty()) {
+  if (export_page) {
+    const WebPageReport report = write_web_page(session.scene(), o.export_model);
+    if (!o.quiet)
+      std::printf("ibfvs: exported %s (%zu bytes)\n", o.export_model.c_str(), report.page);
+  } else if (!o.export_model.empty()) {
     // F_t as an 8-bit RGB image and each vertex's position in it (section 3.7).
     const ExportReport report = export_textured_model(renderer, mesh, o.export_model);
     if (report.outside > 0)

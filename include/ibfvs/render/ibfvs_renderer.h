@@ -57,6 +57,8 @@ struct ViewState {
 /// The IBFVS engine. Needs a current OpenGL 4.5 context for its whole life.
 class IbfvsRenderer {
  public:
+  static constexpr int kStatsEvery = 4;         ///< frames between statistics passes
+  static constexpr float kStatsWeight = 0.25f;  ///< of each pass in the running average
   /// The depth F_t stores where no surface was drawn.
   static constexpr float kNoDepth = -65504.0f;
   /// The depth of a texture put in from outside (fill_texture_with_cell_colors):
@@ -220,11 +222,9 @@ class IbfvsRenderer {
   struct StatsProgram {
     gl::Program program;
     int image_size = -1, stats_size = -1, offset = -1;
-  } stats_program_[2];                          // [mono]
-  static constexpr int kStatsEvery = 4;         // frames between statistics passes
-  static constexpr float kStatsWeight = 0.25f;  // of each pass in the running average
-  gl::Texture2D phases_;                        // phi_ij
-  gl::Texture2D grid_;                          // this frame's grid values G_ij (the grid pass)
+  } stats_program_[2];    // [mono]
+  gl::Texture2D phases_;  // phi_ij
+  gl::Texture2D grid_;    // this frame's grid values G_ij (the grid pass)
   gl::Framebuffer grid_framebuffer_;
   gl::Program grid_program_;
   gl::VertexArray empty_vao_;  // for the attributeless grid pass

@@ -344,14 +344,16 @@ std::vector<SceneKey> make_keys() {
        },
        [](const Scene& s) { return one(format_number(s.fps)); }},
       {"out", KeyKind::String,
-       "output: .mp4 .mkv .mov .avi .webm .gif, .png (last frame) or a %04d .png pattern",
+       "output: .mp4 .mkv .mov .avi .webm .gif, .png (last frame), a %04d .png pattern, or "
+       ".html (a web page that animates the scene in the browser: docs/web.md)",
        [](Scene& s, std::string_view t) { s.out = t; },
        [](const Scene& s) { return s.out.empty() ? none() : one(s.out); }},
       {"texture_out", KeyKind::String, "the texture F_t of the last frame, 16-bit PNG",
        [](Scene& s, std::string_view t) { s.texture_out = t; },
        [](const Scene& s) { return s.texture_out.empty() ? none() : one(s.texture_out); }},
       {"export", KeyKind::String,
-       "FILE.obj|.gltf|.glb|.vtp: the mesh with the final texture (3.7); .vtp for ParaView",
+       "FILE.obj|.gltf|.glb|.vtp: the mesh with the final texture (3.7); .vtp for ParaView; "
+       "FILE.html: the scene's web page beside the other output",
        [](Scene& s, std::string_view t) { s.export_model = t; },
        [](const Scene& s) { return s.export_model.empty() ? none() : one(s.export_model); }},
       {"quiet", KeyKind::Flag, "no progress bar, no summary",

@@ -1,0 +1,39 @@
+#pragma once
+// A self-contained web page of a prepared scene (docs/web.md): one HTML file
+// holding the scene (a JSON header and one base64 block of compact binary
+// arrays), the GLSL ES 3.00 sources that the shader generator emits for its
+// features, the uniforms the settings give (shaders::settings_uniforms), and
+// the browser runtime (web/src/runtime.ts, bundled at build time). It opens
+// from disk: no server, no network.
+
+#include <cstddef>
+#include <filesystem>
+#include <string>
+
+#include "ibfvs/core/scene/scene_prep.h"
+
+namespace ibfvs {
+
+/// Whether this build holds the browser runtime (it needs node and npm at
+/// build time, and web/node_modules from scripts/install-deps.sh).
+[[nodiscard]] bool has_web_runtime();
+
+/// Sizes of a written page, in bytes.
+struct WebPageReport {
+  std::size_t page = 0;     ///< the whole file
+  std::size_t scene = 0;    ///< the binary arrays before base64
+  std::size_t runtime = 0;  ///< the embedded script
+};
+
+/// The page as text. Throws InputError for what a page cannot hold (an
+/// unsteady field, a surface image, random-cell colours: not yet; more than
+/// kMaxPageTriangles triangles) or when this build has no runtime.
+[[nodiscard]] std::string web_page(const PreparedScene& scene, WebPageReport* report = nullptr);
+/// Writes web_page() to `path` (which must end in .html). Throws InputError.
+WebPageReport write_web_page(const PreparedScene& scene, const std::filesystem::path& path);
+
+/// The most triangles a page takes: beyond, the file passes 100 MB and a
+/// browser's memory for one tab.
+inline constexpr std::size_t kMaxPageTriangles = 4'000'000;
+
+}  // namespace ibfvs

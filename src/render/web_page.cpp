@@ -1,0 +1,332 @@
+#include "ibfvs/render/web_page.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <vector>
+
+#include <glm/gtc/packing.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "ibfvs/core/image/colormap.h"
+#include "ibfvs/core/mesh/mesh.h"
+#include "ibfvs/core/scene/camera.h"
+#include "ibfvs/core/support/error.h"
+#include "ibfvs/core/texture/display.h"
+#include "ibfvs/core/texture/noise.h"
+#include "ibfvs/render/ibfvs_renderer.h"
+#include "ibfvs/render/pass_settings.h"
+
+namespace ibfvs {
+
+// The bundled runtime, generated at build time (web_runtime.cpp), or null.
+extern const char* const kWebRuntime;
+
+namespace {
+
+std::string json_string(std::string_view s) {
+  std::string out = "\"";
+  for (const char c : s) {
+    switch (c) {
+      case '"':
+        out += "\\\"";
+        break;
+      case '\\':
+        out += "\\\\";
+        break;
+      case '\n':
+        out += "\\n";
+        break;
+      case '\t':
+        out += "\\t";
+        break;
+      case '<':
+        out += "\\u003c";
+        break;  // no "</script>" inside the page's script element
+      default:
+        if (static_cast<unsigned char>(c) < 0x20) {
+          char buf[8];
+          std::snprintf(buf, sizeof buf, "\\u%04x", c);
+          out += buf;
+        } else {
+          out += c;
+        }
+    }
+  }
+  return out + "\"";
+}
+
+std::string json_number(double v) {
+  if (!std::isfinite(v)) return "null";
+  std::ostringstream s;
+  s.precision(9);
+  s << v;
+  return s.str();
+}
+
+template <typename Range>
+std::string json_numbers(const Range& values) {
+  std::string out = "[";
+  for (const auto v : values) {
+    if (out.size() > 1) out += ",";
+    out += json_number(static_cast<double>(v));
+  }
+  return out + "]";
+}
+
+std::string json_uniforms(const std::vector<shaders::UniformValue>& uniforms) {
+  std::string out = "[";
+  for (const auto& u : uniforms) {
+    if (out.size() > 1) out += ",";
+    const char* type = u.type == shaders::UniformValue::Type::Float ? "float"
+                       : u.type == shaders::UniformValue::Type::Int ? "int"
+                                                                    : "uint";
+    out += "{\"name\":" + json_string(u.name) + ",\"type\":\"" + type +
+           "\",\"values\":" + json_numbers(u.values) + (u.array ? ",\"array\":true}" : "}");
+  }
+  return out + "]";
+}
+
+std::string base64(const std::vector<std::uint8_t>& bytes) {
+  static const char* const table =
+      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  out.reserve((bytes.size() + 2) / 3 * 4 + bytes.size() / 57 + 1);
+  for (std::size_t i = 0; i < bytes.size(); i += 3) {
+    const std::uint32_t a = bytes[i], b = i + 1 < bytes.size() ? bytes[i + 1] : 0,
+                        c = i + 2 < bytes.size() ? bytes[i + 2] : 0;
+    const std::uint32_t n = (a << 16) | (b << 8) | c;
+    out += table[(n >> 18) & 63];
+    out += table[(n >> 12) & 63];
+    out += i + 1 < bytes.size() ? table[(n >> 6) & 63] : '=';
+    out += i + 2 < bytes.size() ? table[n & 63] : '=';
+    if ((i / 3 + 1) % 19 == 0) out += '\n';  // lines of 76 characters
+  }
+  return out;
+}
+
+// The binary block: arrays appended at 4-byte boundaries, each named in the
+// header with its offset and length in elements.
+class Block {
+ public:
+  template <typename T>
+  std::string add(const std::vector<T>& values, const std::string& extra = "") {
+    while (bytes_.size() % 4 != 0) bytes_.push_back(0);
+    const std::size_t offset = bytes_.size();
+    bytes_.resize(offset + values.size() * sizeof(T));
+    if (!values.empty())
+      std::memcpy(bytes_.data() + offset, values.data(), values.size() * sizeof(T));
+    return "{\"offset\":" + std::to_string(offset) +
+           ",\"length\":" + std::to_string(values.size()) + extra + "}";
+  }
+  [[nodiscard]] const std::vector<std::uint8_t>& bytes() const { return bytes_; }
+
+ private:
+  std::vector<std::uint8_t> bytes_;
+};
+
+std::int8_t snorm8(float v) {
+  return static_cast<std::int8_t>(std::lround(std::clamp(v, -1.0f, 1.0f) * 127.0f));
+}
+
+std::string html_escape(const std::string& s) {
+  std::string out;
+  for (const char c : s) {
+    if (c == '<')
+      out += "&lt;";
+    else if (c == '>')
+      out += "&gt;";
+    else if (c == '&')
+      out += "&amp;";
+    else
+      out += c;
+  }
+  return out;
+}
+
+bool grey(const glm::vec3& c) {
+  return c.r == c.g && c.g == c.b;
+}
+
+}  // namespace
+
+bool has_web_runtime() {
+  return kWebRuntime != nullptr;
+}
+
+std::string web_page(const PreparedScene& p, WebPageReport* report) {
+  const std::string what = "page of " + p.mesh_name;
+  if (!has_web_runtime())
+    throw InputError(what +
+                     ": this ibfvs was built without the browser runtime (it needs node "
+                     "and npm at build time, and web/node_modules from "
+                     "scripts/install-deps.sh)");
+  if (p.step_count > 1)
+    throw InputError(what + ": unsteady fields (" + std::to_string(p.step_count) +
+                     " steps) are not in pages yet; export one step (e.g. --set step=N)");
+  if (!p.surface_image.pixels.empty())
+    throw InputError(what + ": a surface image is not in pages yet");
+  if (p.scene.init == InitMode::RandomCells)
+    throw InputError(what + ": random-cell colours are not in pages yet");
+  const TriMesh& mesh = *p.mesh;
+  if (mesh.triangle_count() > kMaxPageTriangles)
+    throw InputError(what + ": " + std::to_string(mesh.triangle_count()) +
+                     " triangles, more than a page takes (" + std::to_string(kMaxPageTriangles) +
+                     "); subdivide less or decimate the mesh");
+
+  const RenderSettings& s = p.settings;
+  const bool colour_texture = !grey(s.background);
+  const shaders::ShaderFeatures f = shaders::features_for(s, colour_texture, false, false);
+  const NoiseGrid grid(p.width, p.height, s.noise);
+  const Bounds bounds = mesh_bounds(mesh);
+  const Camera camera(bounds, p.camera, static_cast<float>(p.width) / static_cast<float>(p.height));
+
+  Block block;
+  // Positions in 16 bits within the box; normals in 8-bit snorm; vectors in
+  // half floats (they span decades: a fixed-point code would lose the slow).
+  std::vector<std::uint16_t> positions;
+  std::vector<std::int8_t> normals;
+  std::vector<std::uint16_t> vectors;
+  positions.reserve(mesh.positions.size() * 3);
+  const glm::vec3 lo = bounds.min, extent = bounds.max - bounds.min;
+  for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+    for (int c = 0; c < 3; ++c) {
+      const float t = extent[c] > 0.0f ? (mesh.positions[i][c] - lo[c]) / extent[c] : 0.0f;
+      positions.push_back(
+          static_cast<std::uint16_t>(std::lround(std::clamp(t, 0.0f, 1.0f) * 65535.0f)));
+      normals.push_back(snorm8(mesh.normals[i][c]));
+      vectors.push_back(glm::packHalf1x16(p.field[i][c]));
+    }
+    normals.push_back(0);
+    vectors.push_back(0);
+  }
+  std::vector<std::uint32_t> indices;
+  indices.reserve(mesh.triangles.size() * 3);
+  for (const auto& t : mesh.triangles)
+    for (int c = 0; c < 3; ++c) indices.push_back(static_cast<std::uint32_t>(t[c]));
+  std::vector<std::uint16_t> phases;
+  for (const float phi : grid.phases())
+    phases.push_back(
+        static_cast<std::uint16_t>(std::lround(std::clamp(phi, 0.0f, 1.0f) * 65535.0f)));
+  std::vector<std::uint8_t> colours;
+  for (int i = 0; i < 256; ++i) {
+    const glm::vec3 c = s.color_table.size() == 256
+                            ? s.color_table[static_cast<std::size_t>(i)]
+                            : color_map(s.color_map, static_cast<float>(i) / 255.0f);
+    for (int k = 0; k < 3; ++k)
+      colours.push_back(
+          static_cast<std::uint8_t>(std::lround(std::clamp(c[k], 0.0f, 1.0f) * 255.0f)));
+    colours.push_back(255);
+  }
+  std::string arrays =
+      "{\"positions\":" +
+      block.add(positions,
+                ",\"min\":" + json_numbers(std::vector<float>{lo.x, lo.y, lo.z}) + ",\"max\":" +
+                    json_numbers(std::vector<float>{bounds.max.x, bounds.max.y, bounds.max.z})) +
+      ",\"normals\":" + block.add(normals) + ",\"vectors\":" + block.add(vectors) +
+      ",\"indices\":" + block.add(indices) + ",\"phases\":" + block.add(phases) +
+      ",\"color_map\":" + block.add(colours);
+  if (s.use_color || s.use_beta) {
+    std::vector<float> scalars;
+    for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+      scalars.push_back(p.color_scalar.empty() ? 0.0f : p.color_scalar[i]);
+      scalars.push_back(p.beta_scalar.empty() ? 0.0f : p.beta_scalar[i]);
+    }
+    arrays += ",\"scalars\":" + block.add(scalars);
+  }
+  arrays += "}";
+
+  using T = shaders::UniformValue::Type;
+  const std::vector<shaders::UniformValue> grid_uniforms = {
+      {"u_profile", T::Int, {static_cast<double>(static_cast<int>(s.noise.profile))}},
+      {"u_spike_width", T::Float, {s.noise.spike_width}},
+      {"u_seed", T::Uint, {static_cast<double>(s.noise.seed)}}};
+  const auto matrix = [](const glm::mat4& m) {
+    return json_numbers(std::vector<float>(glm::value_ptr(m), glm::value_ptr(m) + 16));
+  };
+  const float diagonal = bounds.diagonal();
+  const glm::vec3 centre = bounds.centre();
+  const std::string name = std::filesystem::path(p.mesh_name).stem().string();
+  const std::string header =
+      "{\"format\":\"ibfvs-page\",\"version\":1,\"name\":" +
+      json_string(name.empty() ? "ibfvs" : name) + ",\"width\":" + std::to_string(p.width) +
+      ",\"height\":" + std::to_string(p.height) + ",\"background\":" +
+      json_numbers(std::vector<float>{s.background.r, s.background.g, s.background.b}) +
+      ",\"no_depth\":" + json_number(IbfvsRenderer::kNoDepth) + ",\"dt\":" + json_number(p.dt) +
+      ",\"probe\":" + json_number(diagonal > 0.0f ? 1e-3 * diagonal : 1e-3) +
+      ",\"noise_rate\":" + json_number(s.noise.rate) +
+      ",\"colour_texture\":" + (colour_texture ? "true" : "false") +
+      ",\"advect_previous\":" + (s.advect_view == AdvectView::Previous ? "true" : "false") +
+      ",\"cull\":" + std::to_string(closed_orientation(mesh)) +
+      ",\"stats\":{\"size\":" + std::to_string(display_stats_size(p.width, p.height)) +
+      ",\"every\":" + std::to_string(IbfvsRenderer::kStatsEvery) +
+      ",\"weight\":" + json_number(IbfvsRenderer::kStatsWeight) + "}" +
+      ",\"view\":" + matrix(camera.view()) + ",\"projection\":" + matrix(camera.projection()) +
+      ",\"centre\":" + json_numbers(std::vector<float>{centre.x, centre.y, centre.z}) +
+      ",\"shaders\":{\"vertex\":" +
+      json_string(shaders::ibfvs_vertex_source(f, shaders::Dialect::Es300)) +
+      ",\"fragment\":" + json_string(shaders::ibfvs_fragment_source(f, shaders::Dialect::Es300)) +
+      ",\"grid_vertex\":" + json_string(shaders::grid_vertex_source(shaders::Dialect::Es300)) +
+      ",\"grid_fragment\":" + json_string(shaders::grid_fragment_source(shaders::Dialect::Es300)) +
+      ",\"stats_fragment\":" +
+      json_string(shaders::stats_fragment_source(!colour_texture, shaders::Dialect::Es300)) +
+      "},\"uniforms\":" +
+      json_uniforms(
+          shaders::settings_uniforms(s, f, glm::ivec2(grid.columns(), grid.rows()), centre)) +
+      ",\"grid_uniforms\":" + json_uniforms(grid_uniforms) +
+      ",\"vertex_count\":" + std::to_string(mesh.positions.size()) +
+      ",\"index_count\":" + std::to_string(indices.size()) + ",\"phase_size\":[" +
+      std::to_string(grid.columns()) + "," + std::to_string(grid.rows()) + "]" +
+      ",\"arrays\":" + arrays + "}";
+
+  const std::string runtime = kWebRuntime;
+  std::string page =
+      "<!doctype html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+      "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
+      "<title>" +
+      html_escape(name) +
+      " - ibfvs</title>\n"
+      "<style>body{font:14px system-ui,sans-serif;margin:1em;background:#fafafa;color:#222}"
+      ".ibfvs-canvas{display:block;touch-action:none;cursor:grab;max-width:100%}"
+      ".ibfvs-panel{margin:.5em 0;display:flex;gap:1em;flex-wrap:wrap;align-items:center}"
+      ".ibfvs-message{padding:1em;border:1px solid #c33;background:#fee;max-width:40em}</style>\n"
+      "</head>\n<body>\n<div id=\"ibfvs\"><p class=\"ibfvs-message\">This page shows an animated "
+      "flow texture with WebGL2 and JavaScript; it needs both switched on.</p></div>\n"
+      "<p>" +
+      html_escape(name) +
+      ": drag to turn, shift-drag to move, wheel to zoom, space to "
+      "pause. Made by ibfvs.</p>\n"
+      "<script type=\"application/json\" id=\"ibfvs-scene\">" +
+      header +
+      "</script>\n"
+      "<script type=\"application/octet-stream\" id=\"ibfvs-data\">\n" +
+      base64(block.bytes()) + "\n</script>\n<script>\n" + runtime +
+      "\n</script>\n</body>\n</html>\n";
+  if (report) {
+    report->page = page.size();
+    report->scene = block.bytes().size();
+    report->runtime = runtime.size();
+  }
+  return page;
+}
+
+WebPageReport write_web_page(const PreparedScene& scene, const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
+  if (ext != ".html" && ext != ".htm")
+    throw InputError(path.string() + ": a page must be named NAME.html");
+  WebPageReport report;
+  const std::string page = web_page(scene, &report);
+  std::ofstream out(path, std::ios::binary);
+  if (!out) throw InputError(path.string() + ": cannot write");
+  out.write(page.data(), static_cast<std::streamsize>(page.size()));
+  if (!out) throw InputError(path.string() + ": cannot write (disk full?)");
+  return report;
+}
+
+}  // namespace ibfvs

@@ -1,0 +1,486 @@
+// The runtime of an ibfvs page (docs/web.md). The page holds the prepared
+// scene (a JSON header and one base64 block of binary arrays) and the GLSL
+// ES 3.00 sources that ibfvs's one shader generator emitted for it; this
+// script runs the same passes as the OpenGL renderer (src/render/
+// ibfvs_renderer.cpp): the noise grid, the IBFVS pass into F_t and F, the
+// contrast statistics, and shows F. Only what WebGL2 needs differently is
+// here: sampler units set by name, extension checks, the canvas.
+//
+// Sections: the scene format; the page's elements; WebGL objects; the
+// renderer; the camera and input; start.
+import { mat4, vec3 } from "gl-matrix";
+
+// ---------------------------------------------------------------- the scene format
+
+interface Uniform {
+  name: string;
+  type: "float" | "int" | "uint";
+  values: number[];
+  array?: boolean;
+}
+
+interface ArrayRef {
+  offset: number; // bytes into the binary block
+  length: number; // elements
+}
+
+export interface SceneHeader {
+  format: "ibfvs-page";
+  version: 1;
+  name: string;
+  width: number;
+  height: number;
+  background: [number, number, number];
+  no_depth: number;
+  dt: number;
+  probe: number;
+  noise_rate: number;
+  colour_texture: boolean;
+  advect_previous: boolean;
+  cull: number;
+  stats: { size: number; every: number; weight: number };
+  view: number[]; // column-major 4x4
+  projection: number[];
+  centre: [number, number, number];
+  shaders: { vertex: string; fragment: string; grid_vertex: string; grid_fragment: string; stats_fragment: string };
+  uniforms: Uniform[];
+  grid_uniforms: Uniform[];
+  vertex_count: number;
+  index_count: number;
+  phase_size: [number, number];
+  arrays: {
+    positions: ArrayRef & { min: number[]; max: number[] }; // uint16 x 3, in the box
+    normals: ArrayRef; // int8 x 4 (snorm)
+    vectors: ArrayRef; // float16 x 4
+    scalars?: ArrayRef; // float32 x 2 (colour, beta)
+    indices: ArrayRef; // uint32
+    phases: ArrayRef; // uint16, phi * 65535
+    color_map: ArrayRef; // uint8 RGBA x 256
+  };
+}
+
+function decodeBase64(text: string): ArrayBuffer {
+  const binary = atob(text.replace(/\s+/g, ""));
+  const bytes = new Uint8Array(binary.length);
+  for (let i = 0; i < binary.length; ++i) bytes[i] = binary.charCodeAt(i);
+  return bytes.buffer;
+}
+
+// ---------------------------------------------------------------- the page's elements
+
+function say(root: HTMLElement, text: string): void {
+  const p = document.createElement("p");
+  p.className = "ibfvs-message";
+  p.textContent = text;
+  root.replaceChildren(p);
+  console.warn("ibfvs: " + text);
+}
+
+function slider(panel: HTMLElement, label: string, min: number, max: number, value: number,
+                change: (v: number) => void): HTMLInputElement {
+  const wrap = document.createElement("label");
+  wrap.textContent = label + " ";
+  const input = document.createElement("input");
+  input.type = "range";
+  input.min = String(min);
+  input.max = String(max);
+  input.step = String((max - min) / 100);
+  input.value = String(value);
+  input.dataset.name = label;
+  input.addEventListener("input", () => change(parseFloat(input.value)));
+  wrap.appendChild(input);
+  panel.appendChild(wrap);
+  return input;
+}
+
+// ---------------------------------------------------------------- WebGL objects
+
+function compile(gl: WebGL2RenderingContext, vertex: string, fragment: string): WebGLProgram {
+  const program = gl.createProgram()!;
+  for (const [type, source] of [[gl.VERTEX_SHADER, vertex], [gl.FRAGMENT_SHADER, fragment]] as const) {
+    const shader = gl.createShader(type)!;
+    gl.shaderSource(shader, source);
+    gl.compileShader(shader);
+    if (!gl.getShaderParameter(shader, gl.COMPILE_STATUS))
+      throw new Error("shader: " + gl.getShaderInfoLog(shader));
+    gl.attachShader(program, shader);
+  }
+  gl.linkProgram(program);
+  if (!gl.getProgramParameter(program, gl.LINK_STATUS)) throw new Error("link: " + gl.getProgramInfoLog(program));
+  // Sampler units: GLSL ES has no layout(binding); the sources keep the
+  // generator's BINDING(n) marks, and the units are set from them by name.
+  gl.useProgram(program);
+  for (const source of [vertex, fragment])
+    for (const m of source.matchAll(/BINDING\((\d+)\)\s+uniform\s+\w+\s+(\w+)/g))
+      gl.uniform1i(gl.getUniformLocation(program, m[2]), parseInt(m[1], 10));
+  return program;
+}
+
+function setUniform(gl: WebGL2RenderingContext, program: WebGLProgram, u: Uniform): void {
+  const at = gl.getUniformLocation(program, u.name);
+  if (at === null) return; // compiled out
+  const v = u.values;
+  if (u.array) gl.uniform1fv(at, new Float32Array(v));
+  else if (u.type === "uint") gl.uniform1ui(at, v[0]);
+  else if (u.type === "int") v.length === 1 ? gl.uniform1i(at, v[0]) : gl.uniform2i(at, v[0], v[1]);
+  else if (v.length === 1) gl.uniform1f(at, v[0]);
+  else if (v.length === 2) gl.uniform2f(at, v[0], v[1]);
+  else gl.uniform3f(at, v[0], v[1], v[2]);
+}
+
+function texture(gl: WebGL2RenderingContext, w: number, h: number, internal: number, format: number,
+                 type: number, linear: boolean, data: ArrayBufferView | null = null): WebGLTexture {
+  const t = gl.createTexture()!;
+  gl.bindTexture(gl.TEXTURE_2D, t);
+  gl.texImage2D(gl.TEXTURE_2D, 0, internal, w, h, 0, format, type, data);
+  const filter = linear ? gl.LINEAR : gl.NEAREST;
+  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, filter);
+  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, filter);
+  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_S, gl.CLAMP_TO_EDGE);
+  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_T, gl.CLAMP_TO_EDGE);
+  return t;
+}
+
+function framebuffer(gl: WebGL2RenderingContext, colours: WebGLTexture[], depth: WebGLTexture | null): WebGLFramebuffer {
+  const fb = gl.createFramebuffer()!;
+  gl.bindFramebuffer(gl.FRAMEBUFFER, fb);
+  colours.forEach((t, i) => gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0 + i, gl.TEXTURE_2D, t, 0));
+  if (depth) gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.DEPTH_ATTACHMENT, gl.TEXTURE_2D, depth, 0);
+  gl.drawBuffers(colours.map((_, i) => gl.COLOR_ATTACHMENT0 + i));
+  if (gl.checkFramebufferStatus(gl.FRAMEBUFFER) !== gl.FRAMEBUFFER_COMPLETE)
+    throw new Error("this browser cannot render into float textures (framebuffer incomplete)");
+  return fb;
+}
+
+// ---------------------------------------------------------------- the renderer
+
+export class PageRenderer {
+  readonly gl: WebGL2RenderingContext;
+  readonly scene: SceneHeader;
+  frame = 0;
+  private main: WebGLProgram;
+  private grid: WebGLProgram;
+  private stats: WebGLProgram;
+  private vao: WebGLVertexArrayObject;
+  private empty: WebGLVertexArrayObject;
+  private textures: WebGLTexture[];
+  private output: WebGLTexture;
+  private fbs: WebGLFramebuffer[];
+  private gridTexture: WebGLTexture;
+  private gridFb: WebGLFramebuffer;
+  private phases: WebGLTexture;
+  private statsTexture: WebGLTexture;
+  private statsFb: WebGLFramebuffer;
+  private colorMap: WebGLTexture;
+  private current = 0;
+  private previousViewProjection: mat4 | null = null;
+
+  constructor(gl: WebGL2RenderingContext, scene: SceneHeader, data: ArrayBuffer) {
+    this.gl = gl;
+    this.scene = scene;
+    const s = scene, w = s.width, h = s.height;
+    this.main = compile(gl, s.shaders.vertex, s.shaders.fragment);
+    this.grid = compile(gl, s.shaders.grid_vertex, s.shaders.grid_fragment);
+    this.stats = compile(gl, s.shaders.grid_vertex, s.shaders.stats_fragment);
+    this.applySettings(s.uniforms);
+    gl.useProgram(this.grid);
+    for (const u of s.grid_uniforms) setUniform(gl, this.grid, u);
+
+    // The mesh: positions from 16 bits in the box, the rest as stored.
+    const a = s.arrays;
+    const q = new Uint16Array(data, a.positions.offset, a.positions.length);
+    const positions = new Float32Array(q.length);
+    for (let i = 0; i < q.length; ++i) {
+      const c = i % 3, lo = a.positions.min[c], hi = a.positions.max[c];
+      positions[i] = lo + (hi - lo) * (q[i] / 65535);
+    }
+    this.vao = gl.createVertexArray()!;
+    gl.bindVertexArray(this.vao);
+    const attribute = (location: number, bytes: ArrayBufferView, size: number, type: number, normalized: boolean) => {
+      const b = gl.createBuffer()!;
+      gl.bindBuffer(gl.ARRAY_BUFFER, b);
+      gl.bufferData(gl.ARRAY_BUFFER, bytes, gl.STATIC_DRAW);
+      gl.enableVertexAttribArray(location);
+      gl.vertexAttribPointer(location, size, type, normalized, 0, 0);
+    };
+    attribute(0, positions, 3, gl.FLOAT, false);
+    attribute(1, new Int8Array(data, a.normals.offset, a.normals.length), 4, gl.BYTE, true);
+    const vectors = new Uint16Array(data, a.vectors.offset, a.vectors.length);
+    attribute(2, vectors, 4, gl.HALF_FLOAT, false);
+    attribute(4, vectors, 4, gl.HALF_FLOAT, false); // a steady field: the next step is this one
+    if (a.scalars) attribute(3, new Float32Array(data, a.scalars.offset, a.scalars.length), 2, gl.FLOAT, false);
+    else gl.vertexAttrib2f(3, 0, 0);
+    const indices = gl.createBuffer()!;
+    gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, indices);
+    gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, new Uint32Array(data, a.indices.offset, a.indices.length), gl.STATIC_DRAW);
+    gl.bindVertexArray(null);
+    this.empty = gl.createVertexArray()!;
+
+    // F_t ping-pong, F, the depth, the grid, the statistics.
+    const [internal, format] = s.colour_texture ? [gl.RGBA16F, gl.RGBA] : [gl.RG16F, gl.RG];
+    this.textures = [0, 1].map(() => texture(gl, w, h, internal, format, gl.HALF_FLOAT, true));
+    this.output = texture(gl, w, h, gl.RGBA8, gl.RGBA, gl.UNSIGNED_BYTE, false);
+    const depth = texture(gl, w, h, gl.DEPTH_COMPONENT24, gl.DEPTH_COMPONENT, gl.UNSIGNED_INT, false);
+    this.fbs = this.textures.map((t) => framebuffer(gl, [t, this.output], depth));
+    const [cols, rows] = s.phase_size;
+    const p16 = new Uint16Array(data, a.phases.offset, a.phases.length);
+    const p32 = new Float32Array(p16.length);
+    for (let i = 0; i < p16.length; ++i) p32[i] = p16[i] / 65535;
+    this.phases = texture(gl, cols, rows, gl.R32F, gl.RED, gl.FLOAT, false, p32);
+    this.gridTexture = texture(gl, cols, rows, gl.R32F, gl.RED, gl.FLOAT, true);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_S, gl.REPEAT);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_T, gl.REPEAT);
+    this.gridFb = framebuffer(gl, [this.gridTexture], null);
+    this.statsTexture = texture(gl, 1, 1, gl.RGBA32F, gl.RGBA, gl.FLOAT, false);
+    this.statsFb = framebuffer(gl, [this.statsTexture], null);
+    this.colorMap = texture(gl, 256, 1, gl.RGBA8, gl.RGBA, gl.UNSIGNED_BYTE, true,
+                            new Uint8Array(data, a.color_map.offset, a.color_map.length));
+    this.reset();
+  }
+
+  applySettings(uniforms: Uniform[]): void {
+    this.gl.useProgram(this.main);
+    for (const u of uniforms) setUniform(this.gl, this.main, u);
+  }
+
+  reset(): void {
+    const gl = this.gl, s = this.scene;
+    for (const fb of this.fbs) this.clear(fb);
+    gl.bindFramebuffer(gl.FRAMEBUFFER, this.statsFb);
+    gl.clearBufferfv(gl.COLOR, 0, [0, 0, 0, 0]);
+    this.current = 0;
+    this.frame = 0;
+    this.previousViewProjection = null;
+    void s;
+  }
+
+  private clear(fb: WebGLFramebuffer): void {
+    const gl = this.gl, b = this.scene.background, d = this.scene.no_depth;
+    gl.bindFramebuffer(gl.FRAMEBUFFER, fb);
+    gl.clearBufferfv(gl.COLOR, 0, this.scene.colour_texture ? [b[0], b[1], b[2], d] : [b[0], d, 0, 0]);
+    gl.clearBufferfv(gl.COLOR, 1, [b[0], b[1], b[2], 1]);
+    gl.clearBufferfi(gl.DEPTH_STENCIL, 0, 1, 0);
+  }
+
+  /// One frame seen through `view` and `projection`; dt 0 stands still.
+  render(view: mat4, projection: mat4, dt: number): void {
+    const gl = this.gl, s = this.scene;
+    const vp = mat4.multiply(mat4.create(), projection, view);
+    const next = 1 - this.current;
+    const noiseTime = s.noise_rate * this.frame;
+    gl.disable(gl.BLEND);
+    // The grid pass: G_ij of this frame.
+    gl.bindFramebuffer(gl.FRAMEBUFFER, this.gridFb);
+    gl.viewport(0, 0, s.phase_size[0], s.phase_size[1]);
+    gl.disable(gl.DEPTH_TEST);
+    gl.disable(gl.CULL_FACE);
+    gl.useProgram(this.grid);
+    gl.uniform1f(gl.getUniformLocation(this.grid, "u_noise_time"), noiseTime);
+    gl.activeTexture(gl.TEXTURE0);
+    gl.bindTexture(gl.TEXTURE_2D, this.phases);
+    gl.bindVertexArray(this.empty);
+    gl.drawArrays(gl.TRIANGLES, 0, 3);
+    // The IBFVS pass into F_t (next) and F.
+    this.clear(this.fbs[next]);
+    gl.viewport(0, 0, s.width, s.height);
+    gl.enable(gl.DEPTH_TEST);
+    gl.depthFunc(gl.LESS);
+    if (s.cull !== 0) {
+      gl.enable(gl.CULL_FACE);
+      gl.cullFace(s.cull > 0 ? gl.BACK : gl.FRONT);
+    }
+    const p = this.main;
+    gl.useProgram(p);
+    const at = (n: string) => gl.getUniformLocation(p, n);
+    gl.uniformMatrix4fv(at("u_view_projection"), false, vp);
+    const advect = s.advect_previous && this.previousViewProjection ? this.previousViewProjection : vp;
+    gl.uniformMatrix4fv(at("u_advect_view_projection"), false, advect);
+    gl.uniformMatrix4fv(at("u_view"), false, view);
+    const pr = projection;
+    if (pr[15] === 0) gl.uniform2f(at("u_clip_to_depth"), 0, 1);
+    else gl.uniform2f(at("u_clip_to_depth"), -1 / pr[10], pr[14] / pr[10]);
+    gl.uniform1f(at("u_dt"), dt);
+    gl.uniform1f(at("u_probe"), s.probe);
+    gl.uniform1f(at("u_field_mix"), 0);
+    gl.uniform2f(at("u_texture_shift"), 0, 0);
+    gl.uniform2f(at("u_noise_shift"), 0, 0);
+    gl.uniform1i(at("u_locked"), 0);
+    gl.uniform1f(at("u_noise_time"), noiseTime);
+    const bind = (unit: number, t: WebGLTexture) => {
+      gl.activeTexture(gl.TEXTURE0 + unit);
+      gl.bindTexture(gl.TEXTURE_2D, t);
+    };
+    bind(0, this.textures[this.current]);
+    bind(1, this.gridTexture);
+    bind(2, this.colorMap);
+    bind(4, this.statsTexture);
+    gl.bindFramebuffer(gl.FRAMEBUFFER, this.fbs[next]);
+    gl.bindVertexArray(this.vao);
+    gl.drawElements(gl.TRIANGLES, s.index_count, gl.UNSIGNED_INT, 0);
+    gl.disable(gl.CULL_FACE);
+    gl.disable(gl.DEPTH_TEST);
+    // The statistics of the contrast stage, every few frames, blended into a running average.
+    if (this.frame % s.stats.every === 0) {
+      gl.bindFramebuffer(gl.FRAMEBUFFER, this.statsFb);
+      gl.viewport(0, 0, 1, 1);
+      gl.useProgram(this.stats);
+      gl.uniform2f(gl.getUniformLocation(this.stats, "u_image_size"), s.width, s.height);
+      gl.uniform1i(gl.getUniformLocation(this.stats, "u_stats_size"), s.stats.size);
+      const f = this.frame;
+      gl.uniform2f(gl.getUniformLocation(this.stats, "u_offset"), (f * 0.618034) % 1, (f * 0.381966) % 1);
+      bind(0, this.textures[next]);
+      bind(1, this.output);
+      gl.enable(gl.BLEND);
+      gl.blendColor(0, 0, 0, s.stats.weight);
+      gl.blendFunc(gl.CONSTANT_ALPHA, gl.ONE_MINUS_CONSTANT_ALPHA);
+      gl.bindVertexArray(this.empty);
+      gl.drawArrays(gl.TRIANGLES, 0, 3);
+      gl.disable(gl.BLEND);
+    }
+    this.current = next;
+    this.previousViewProjection = vp;
+    ++this.frame;
+  }
+
+  /// F onto the canvas (same size).
+  present(): void {
+    const gl = this.gl;
+    gl.bindFramebuffer(gl.READ_FRAMEBUFFER, this.fbs[this.current]);
+    gl.readBuffer(gl.COLOR_ATTACHMENT1);
+    gl.bindFramebuffer(gl.DRAW_FRAMEBUFFER, null);
+    const w = this.scene.width, h = this.scene.height;
+    gl.blitFramebuffer(0, 0, w, h, 0, 0, w, h, gl.COLOR_BUFFER_BIT, gl.NEAREST);
+    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+  }
+}
+
+// ---------------------------------------------------------------- the camera and input
+
+/// Turns, pans and zooms about the scene's centre: the view turned in eye
+/// space about the centre, the image scaled and moved in clip space (the
+/// projection's depth, and so the depth test, unchanged).
+class Navigation {
+  turn = mat4.create();
+  zoom = 1;
+  pan = [0, 0];
+  constructor(private scene: SceneHeader) {}
+  view(): mat4 {
+    const v0 = mat4.clone(this.scene.view as unknown as mat4);
+    const c = vec3.transformMat4(vec3.create(), this.scene.centre as unknown as vec3, v0);
+    const m = mat4.fromTranslation(mat4.create(), c);
+    mat4.multiply(m, m, this.turn);
+    mat4.translate(m, m, vec3.negate(vec3.create(), c));
+    return mat4.multiply(m, m, v0);
+  }
+  projection(): mat4 {
+    const m = mat4.fromTranslation(mat4.create(), [this.pan[0], this.pan[1], 0]);
+    mat4.scale(m, m, [this.zoom, this.zoom, 1]);
+    return mat4.multiply(m, m, this.scene.projection as unknown as mat4);
+  }
+  drag(dx: number, dy: number): void {
+    // Degrees per pixel as ibfvs view's.
+    const r = mat4.create();
+    mat4.rotateY(r, r, dx * 0.005);
+    mat4.rotateX(r, r, dy * 0.005);
+    mat4.multiply(this.turn, r, this.turn);
+  }
+}
+
+// ---------------------------------------------------------------- start
+
+export function start(root: HTMLElement, scene: SceneHeader, data: ArrayBuffer): PageRenderer | null {
+  const canvas = document.createElement("canvas");
+  canvas.width = scene.width;
+  canvas.height = scene.height;
+  canvas.className = "ibfvs-canvas";
+  // No alpha: F's alpha holds the statistics input, not coverage.
+  const gl = canvas.getContext("webgl2", { alpha: false, antialias: false, preserveDrawingBuffer: true });
+  if (!gl) {
+    say(root, "This page needs WebGL2, which this browser does not offer (or has switched off): " +
+              "the animated texture cannot be shown.");
+    return null;
+  }
+  const missing = ["EXT_color_buffer_float", "OES_texture_float_linear", "EXT_float_blend"]
+    .filter((name) => !gl.getExtension(name));
+  if (missing.length) {
+    say(root, "This page needs float render targets, which this browser's WebGL2 lacks (" +
+              missing.join(", ") + "): the animated texture cannot be shown.");
+    return null;
+  }
+  let renderer: PageRenderer;
+  try {
+    renderer = new PageRenderer(gl, scene, data);
+  } catch (e) {
+    say(root, "The page could not start its renderer: " + (e as Error).message);
+    return null;
+  }
+  root.replaceChildren(canvas);
+  const panel = document.createElement("div");
+  panel.className = "ibfvs-panel";
+  root.appendChild(panel);
+  const nav = new Navigation(scene);
+  let playing = true;
+  const play = document.createElement("button");
+  play.textContent = "Pause";
+  play.addEventListener("click", () => {
+    playing = !playing;
+    play.textContent = playing ? "Pause" : "Play";
+  });
+  panel.appendChild(play);
+  const uniform = (name: string) => scene.uniforms.find((u) => u.name === name);
+  for (const [name, label] of [["u_alpha", "alpha"], ["u_beta", "beta"]] as const) {
+    const u = uniform(name);
+    if (!u) continue;
+    slider(panel, label, 0, 1, u.values[0], (v) => {
+      u.values[0] = v;
+      renderer.applySettings([u]);
+    });
+  }
+  const save = document.createElement("button");
+  save.textContent = "Save PNG";
+  save.addEventListener("click", () => {
+    const a = document.createElement("a");
+    a.download = scene.name + ".png";
+    a.href = canvas.toDataURL("image/png");
+    a.click();
+  });
+  panel.appendChild(save);
+
+  let last: [number, number] | null = null;
+  canvas.addEventListener("pointerdown", (e) => {
+    last = [e.clientX, e.clientY];
+    canvas.setPointerCapture(e.pointerId);
+  });
+  canvas.addEventListener("pointermove", (e) => {
+    if (!last) return;
+    if (e.shiftKey) {
+      nav.pan[0] += (2 * (e.clientX - last[0])) / scene.width;
+      nav.pan[1] -= (2 * (e.clientY - last[1])) / scene.height;
+    } else {
+      nav.drag(e.clientX - last[0], e.clientY - last[1]);
+    }
+    last = [e.clientX, e.clientY];
+  });
+  canvas.addEventListener("pointerup", () => (last = null));
+  canvas.addEventListener("wheel", (e) => {
+    e.preventDefault();
+    nav.zoom = Math.min(Math.max(nav.zoom * Math.exp(-e.deltaY * 0.001), 0.1), 20);
+  }, { passive: false });
+  document.addEventListener("keydown", (e) => {
+    if (e.key === " ") play.click();
+  });
+
+  const tick = () => {
+    if (playing) renderer.render(nav.view(), nav.projection(), scene.dt);
+    renderer.present();
+    (window as unknown as { ibfvsFrames: number }).ibfvsFrames = renderer.frame;
+    requestAnimationFrame(tick);
+  };
+  requestAnimationFrame(tick);
+  return renderer;
+}
+
+const root = document.getElementById("ibfvs");
+const header = document.getElementById("ibfvs-scene");
+const block = document.getElementById("ibfvs-data");
+if (root && header && block) start(root, JSON.parse(header.textContent!) as SceneHeader, decodeBase64(block.textContent!));

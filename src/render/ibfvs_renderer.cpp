@@ -100,7 +100,10 @@ void IbfvsRenderer::allocate_texture(bool colour) {
   // follows it (the paper's look, without the filter, reads and writes half
   // the bytes).
   texture_flow_ = !colour && ibfvs::filter_taps(settings_.filter_length) > 0;
-  const gl::Format format = colour || texture_flow_ ? gl::Format::RGBA16F : gl::Format::RG16F;
+  const gl::Format format =
+      shaders::texture_channels(shaders::features_for(settings_, colour, false, false)) == 4
+          ? gl::Format::RGBA16F
+          : gl::Format::RG16F;
   for (int i = 0; i < 2; ++i)
     texture_[i] = gl::Texture2D(settings_.width, settings_.height, format, true);
   build_framebuffers();

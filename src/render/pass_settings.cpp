@@ -22,6 +22,10 @@ ShaderFeatures features_for(const RenderSettings& settings, bool colour_texture,
   return f;
 }
 
+int texture_channels(const ShaderFeatures& f) {
+  return !f.mono_texture || f.filter_taps > 0 ? 4 : 2;
+}
+
 std::vector<UniformValue> settings_uniforms(const RenderSettings& s, const ShaderFeatures& f,
                                             glm::ivec2 phase_size, glm::vec3 image_centre) {
   using T = UniformValue::Type;

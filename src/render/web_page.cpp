@@ -260,6 +260,7 @@ std::string web_page(const PreparedScene& p, WebPageReport* report) {
       ",\"probe\":" + json_number(diagonal > 0.0f ? 1e-3 * diagonal : 1e-3) +
       ",\"noise_rate\":" + json_number(s.noise.rate) +
       ",\"colour_texture\":" + (colour_texture ? "true" : "false") +
+      ",\"texture_channels\":" + std::to_string(shaders::texture_channels(f)) +
       ",\"advect_previous\":" + (s.advect_view == AdvectView::Previous ? "true" : "false") +
       ",\"cull\":" + std::to_string(closed_orientation(mesh)) +
       ",\"stats\":{\"size\":" + std::to_string(display_stats_size(p.width, p.height)) +

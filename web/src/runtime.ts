@@ -36,6 +36,7 @@ export interface SceneHeader {
   probe: number;
   noise_rate: number;
   colour_texture: boolean;
+  texture_channels: 2 | 4; // F_t: RG16F (grey value, depth) or RGBA16F (RGB or grey and displacement, depth)
   advect_previous: boolean;
   cull: number;
   stats: { size: number; every: number; weight: number };
@@ -217,7 +218,7 @@ export class PageRenderer {
     this.empty = gl.createVertexArray()!;
 
     // F_t ping-pong, F, the depth, the grid, the statistics.
-    const [internal, format] = s.colour_texture ? [gl.RGBA16F, gl.RGBA] : [gl.RG16F, gl.RG];
+    const [internal, format] = s.texture_channels === 4 ? [gl.RGBA16F, gl.RGBA] : [gl.RG16F, gl.RG];
     this.textures = [0, 1].map(() => texture(gl, w, h, internal, format, gl.HALF_FLOAT, true));
     this.output = texture(gl, w, h, gl.RGBA8, gl.RGBA, gl.UNSIGNED_BYTE, false);
     const depth = texture(gl, w, h, gl.DEPTH_COMPONENT24, gl.DEPTH_COMPONENT, gl.UNSIGNED_INT, false);

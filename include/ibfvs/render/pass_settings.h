@@ -22,6 +22,11 @@ namespace ibfvs::shaders {
 [[nodiscard]] ShaderFeatures features_for(const RenderSettings& settings, bool colour_texture,
                                           bool surface_image, bool record_flow);
 
+/// Channels of F_t: a colour F_t holds RGB and the eye depth; a grey one the
+/// value and the depth, plus each pixel's displacement when the display
+/// filter follows it (2 channels are cheaper to read on llvmpipe).
+[[nodiscard]] int texture_channels(const ShaderFeatures& features);
+
 /// One uniform's value: 1-4 components of a float, int or uint uniform, or
 /// (array) a float array.
 struct UniformValue {

@@ -30,6 +30,7 @@
 #include "ibfvs/gl/context.h"
 #include "ibfvs/render/export.h"
 #include "ibfvs/render/session.h"
+#include "ibfvs/render/web_page.h"
 #include "ibfvs/video_writer.h"
 #ifdef IBFVS_HAVE_VTK
 #include "ibfvs/vtk/vtk_io.h"
@@ -200,6 +201,10 @@ class Animation {
     for (const auto& f : report.files) files.push_back(f.string());
     return files;
   }
+
+  // The scene as a self-contained web page (docs/web.md): the browser
+  // animates it from the first frame, with the settings in force now.
+  [[nodiscard]] py::bytes page() const { return web_page(session_->scene()); }
 
   void save_png(const std::string& path) {
     const Current current(*this);
@@ -380,6 +385,8 @@ PYBIND11_MODULE(_ibfvs, m) {
            "The surface with the current texture as .obj, .gltf, .glb or .vtp (and the PNG);\n"
            "returns the files written.")
       .def("save_png", &Animation::save_png, py::arg("path"))
+      .def("_page", &Animation::page, "The scene as a self-contained web page (bytes, UTF-8).")
+      .def_static("_has_page", &ibfvs::has_web_runtime)
       .def_property_readonly("frame", &Animation::frame)
       .def_property_readonly("size", &Animation::size)
       .def_property_readonly("step_count", &Animation::step_count)

@@ -16,6 +16,7 @@ image_normalize, style, ... with the same defaults.
 from __future__ import annotations
 
 import base64
+import html
 import os
 import tempfile
 from collections.abc import Mapping
@@ -198,6 +199,25 @@ class Animation(_ibfvs.Animation):
             self.save_png(path)
             with open(path, "rb") as f:
                 return f.read()
+
+    def to_html(self, path):
+        """Write the scene as one self-contained web page that animates it in
+        the browser with WebGL2 (docs/web.md): turn, zoom, pause, sliders."""
+        if not str(path).lower().endswith((".html", ".htm")):
+            raise ValueError(f"{path}: a page must be named NAME.html")
+        with open(path, "wb") as f:
+            f.write(self._page())
+
+    def _repr_html_(self):
+        """Jupyter: the live page inline (an iframe holding it), no server
+        extension needed; None (the PNG instead) in a build without the
+        browser runtime."""
+        if not self._has_page():
+            return None
+        page = self._page().decode("utf-8")
+        width, height = self.size
+        return (f'<iframe srcdoc="{html.escape(page, quote=True)}" width="{max(width + 40, 480)}" '
+                f'height="{height + 160}" style="border:0"></iframe>')
 
     def video(self, frames=90, fps=30.0):
         """The next FRAMES frames as an MP4 Video, shown in Jupyter as an

@@ -146,6 +146,29 @@ def test_lock_iterate_and_video(tmp_path):
     assert video.data[4:8] == b"ftyp" and "<video" in video._repr_html_()
 
 
+@pytest.mark.skipif(not ibfvs.Animation._has_page(), reason="built without the browser runtime")
+def test_web_page_of_the_animation(tmp_path):
+    import html
+    import json
+    import re
+
+    p, t, v = torus()
+    anim = ibfvs.Animation(p, t, v, size=SIZE, alpha=0.15)
+    path = tmp_path / "torus.html"
+    anim.to_html(path)
+    page = path.read_text()
+    header = json.loads(re.search(r'id="ibfvs-scene">(.*?)</script>', page).group(1))
+    assert header["vertex_count"] == len(p) and header["index_count"] == 3 * len(t)
+    assert [header["width"], header["height"]] == list(SIZE)
+    alpha = next(u for u in header["uniforms"] if u["name"] == "u_alpha")
+    assert abs(alpha["values"][0] - 0.15) < 1e-6  # the settings in force
+    assert "#version 300 es" in header["shaders"]["fragment"]
+    inline = anim._repr_html_()
+    assert inline.startswith("<iframe srcdoc=") and html.unescape(inline).count('id="ibfvs-scene"') == 1
+    with pytest.raises(ValueError, match="must be named NAME.html"):
+        anim.to_html(tmp_path / "torus.png")
+
+
 def test_errors_are_exceptions_with_a_reason():
     p, t, v = torus()
     bad = p.copy()

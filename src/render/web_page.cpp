@@ -165,9 +165,6 @@ std::string web_page(const PreparedScene& p, WebPageReport* report) {
                      ": this ibfvs was built without the browser runtime (it needs node "
                      "and npm at build time, and web/node_modules from "
                      "scripts/install-deps.sh)");
-  if (p.step_count > 1)
-    throw InputError(what + ": unsteady fields (" + std::to_string(p.step_count) +
-                     " steps) are not in pages yet; export one step (e.g. --set step=N)");
   if (!p.surface_image.pixels.empty())
     throw InputError(what + ": a surface image is not in pages yet");
   if (p.scene.init == InitMode::RandomCells)
@@ -177,6 +174,11 @@ std::string web_page(const PreparedScene& p, WebPageReport* report) {
     throw InputError(what + ": " + std::to_string(mesh.triangle_count()) +
                      " triangles, more than a page takes (" + std::to_string(kMaxPageTriangles) +
                      "); subdivide less or decimate the mesh");
+  const std::size_t steps = std::max<std::size_t>(p.step_count, 1);
+  if (steps * mesh.vertex_count() > kMaxPageVectors)
+    throw InputError(what + ": " + std::to_string(steps) + " time steps of " +
+                     std::to_string(mesh.vertex_count()) + " vectors, more than a page takes (" +
+                     std::to_string(kMaxPageVectors) + " vectors); export fewer steps");
 
   const RenderSettings& s = p.settings;
   const bool colour_texture = !grey(s.background);
@@ -199,10 +201,17 @@ std::string web_page(const PreparedScene& p, WebPageReport* report) {
       positions.push_back(
           static_cast<std::uint16_t>(std::lround(std::clamp(t, 0.0f, 1.0f) * 65535.0f)));
       normals.push_back(snorm8(mesh.normals[i][c]));
-      vectors.push_back(glm::packHalf1x16(p.field[i][c]));
     }
     normals.push_back(0);
-    vectors.push_back(0);
+  }
+  // Every time step of an unsteady field, one after the other.
+  vectors.reserve(steps * mesh.positions.size() * 4);
+  for (std::size_t step = 0; step < steps; ++step) {
+    const std::vector<glm::vec3> field = step == 0 ? p.field : p.step_field(step);
+    for (const glm::vec3& v : field) {
+      for (int c = 0; c < 3; ++c) vectors.push_back(glm::packHalf1x16(v[c]));
+      vectors.push_back(0);
+    }
   }
   std::vector<std::uint32_t> indices;
   indices.reserve(mesh.triangles.size() * 3);
@@ -280,6 +289,8 @@ std::string web_page(const PreparedScene& p, WebPageReport* report) {
           shaders::settings_uniforms(s, f, glm::ivec2(grid.columns(), grid.rows()), centre)) +
       ",\"grid_uniforms\":" + json_uniforms(grid_uniforms) +
       ",\"vertex_count\":" + std::to_string(mesh.positions.size()) +
+      ",\"steps\":" + std::to_string(steps) +
+      ",\"frames_per_step\":" + std::to_string(p.scene.frames_per_step) +
       ",\"index_count\":" + std::to_string(indices.size()) + ",\"phase_size\":[" +
       std::to_string(grid.columns()) + "," + std::to_string(grid.rows()) + "]" +
       ",\"arrays\":" + arrays + "}";

@@ -47,12 +47,14 @@ export interface SceneHeader {
   uniforms: Uniform[];
   grid_uniforms: Uniform[];
   vertex_count: number;
+  steps: number; // time steps of the field (1: steady)
+  frames_per_step: number;
   index_count: number;
   phase_size: [number, number];
   arrays: {
     positions: ArrayRef & { min: number[]; max: number[] }; // uint16 x 3, in the box
     normals: ArrayRef; // int8 x 4 (snorm)
-    vectors: ArrayRef; // float16 x 4
+    vectors: ArrayRef; // float16 x 4, every time step one after the other
     scalars?: ArrayRef; // float32 x 2 (colour, beta)
     indices: ArrayRef; // uint32
     phases: ArrayRef; // uint16, phi * 65535
@@ -174,6 +176,9 @@ export class PageRenderer {
   private statsFb: WebGLFramebuffer;
   private colorMap: WebGLTexture;
   private current = 0;
+  private vectorBuffer: WebGLBuffer | null = null;
+  private step = -1;
+  private fieldMix = 0;
   private previousViewProjection: mat4 | null = null;
 
   constructor(gl: WebGL2RenderingContext, scene: SceneHeader, data: ArrayBuffer) {
@@ -206,15 +211,20 @@ export class PageRenderer {
     };
     attribute(0, positions, 3, gl.FLOAT, false);
     attribute(1, new Int8Array(data, a.normals.offset, a.normals.length), 4, gl.BYTE, true);
-    const vectors = new Uint16Array(data, a.vectors.offset, a.vectors.length);
-    attribute(2, vectors, 4, gl.HALF_FLOAT, false);
-    attribute(4, vectors, 4, gl.HALF_FLOAT, false); // a steady field: the next step is this one
+    // The field: attributes 2 and 4 read the current and the next time step
+    // from one buffer (setTime moves them).
+    this.vectorBuffer = gl.createBuffer()!;
+    gl.bindBuffer(gl.ARRAY_BUFFER, this.vectorBuffer);
+    gl.bufferData(gl.ARRAY_BUFFER, new Uint16Array(data, a.vectors.offset, a.vectors.length), gl.STATIC_DRAW);
+    gl.enableVertexAttribArray(2);
+    gl.enableVertexAttribArray(4);
     if (a.scalars) attribute(3, new Float32Array(data, a.scalars.offset, a.scalars.length), 2, gl.FLOAT, false);
     else gl.vertexAttrib2f(3, 0, 0);
     const indices = gl.createBuffer()!;
     gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, indices);
     gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, new Uint32Array(data, a.indices.offset, a.indices.length), gl.STATIC_DRAW);
     gl.bindVertexArray(null);
+    this.setTime(0);
     this.empty = gl.createVertexArray()!;
 
     // F_t ping-pong, F, the depth, the grid, the statistics.
@@ -237,6 +247,23 @@ export class PageRenderer {
     this.colorMap = texture(gl, 256, 1, gl.RGBA8, gl.RGBA, gl.UNSIGNED_BYTE, true,
                             new Uint8Array(data, a.color_map.offset, a.color_map.length));
     this.reset();
+  }
+
+  /// Time t in steps (looping), as Session::seek: the field between step
+  /// floor(t) and the next.
+  setTime(t: number): void {
+    const gl = this.gl, n = this.scene.steps;
+    t = ((t % n) + n) % n;
+    const step = Math.floor(t) % n;
+    this.fieldMix = n > 1 ? t - Math.floor(t) : 0;
+    if (step === this.step) return;
+    this.step = step;
+    const bytes = this.scene.vertex_count * 8; // four half floats per vector
+    gl.bindVertexArray(this.vao);
+    gl.bindBuffer(gl.ARRAY_BUFFER, this.vectorBuffer);
+    gl.vertexAttribPointer(2, 4, gl.HALF_FLOAT, false, 0, step * bytes);
+    gl.vertexAttribPointer(4, 4, gl.HALF_FLOAT, false, 0, ((step + 1) % n) * bytes);
+    gl.bindVertexArray(null);
   }
 
   applySettings(uniforms: Uniform[]): void {
@@ -302,7 +329,7 @@ export class PageRenderer {
     else gl.uniform2f(at("u_clip_to_depth"), -1 / pr[10], pr[14] / pr[10]);
     gl.uniform1f(at("u_dt"), dt);
     gl.uniform1f(at("u_probe"), s.probe);
-    gl.uniform1f(at("u_field_mix"), 0);
+    gl.uniform1f(at("u_field_mix"), this.fieldMix);
     gl.uniform2f(at("u_texture_shift"), 0, 0);
     gl.uniform2f(at("u_noise_shift"), 0, 0);
     gl.uniform1i(at("u_locked"), 0);
@@ -437,6 +464,16 @@ export function start(root: HTMLElement, scene: SceneHeader, data: ArrayBuffer):
       renderer.applySettings([u]);
     });
   }
+  // Time steps: a slider over the steps, moving while playing.
+  let time = 0;
+  let timeSlider: HTMLInputElement | null = null;
+  if (scene.steps > 1) {
+    timeSlider = slider(panel, "time step", 0, scene.steps, 0, (v) => {
+      time = v;
+      renderer.setTime(time);
+    });
+    timeSlider.step = "0.01";
+  }
   const save = document.createElement("button");
   save.textContent = "Save PNG";
   save.addEventListener("click", () => {
@@ -446,13 +483,60 @@ export function start(root: HTMLElement, scene: SceneHeader, data: ArrayBuffer):
     a.click();
   });
   panel.appendChild(save);
+  // A WebM of the canvas while recording (MediaRecorder), saved on stop.
+  if (typeof MediaRecorder !== "undefined" && "captureStream" in canvas) {
+    const record = document.createElement("button");
+    record.textContent = "Record WebM";
+    let recorder: MediaRecorder | null = null;
+    record.addEventListener("click", () => {
+      if (recorder) {
+        recorder.stop();
+        return;
+      }
+      const chunks: Blob[] = [];
+      recorder = new MediaRecorder(canvas.captureStream(30), { mimeType: "video/webm" });
+      recorder.ondataavailable = (e) => chunks.push(e.data);
+      recorder.onstop = () => {
+        const blob = new Blob(chunks, { type: "video/webm" });
+        (window as unknown as { ibfvsRecording: number }).ibfvsRecording = blob.size;
+        const a = document.createElement("a");
+        a.download = scene.name + ".webm";
+        a.href = URL.createObjectURL(blob);
+        a.click();
+        recorder = null;
+        record.textContent = "Record WebM";
+      };
+      recorder.start(250);
+      record.textContent = "Stop recording";
+    });
+    panel.appendChild(record);
+  }
 
+  // Mouse, pen and touch: one pointer turns (or pans with shift), two pinch to zoom.
   let last: [number, number] | null = null;
+  const pointers = new Map<number, [number, number]>();
+  const spread = () => {
+    const [a, b] = [...pointers.values()];
+    return Math.hypot(a[0] - b[0], a[1] - b[1]);
+  };
   canvas.addEventListener("pointerdown", (e) => {
+    pointers.set(e.pointerId, [e.clientX, e.clientY]);
     last = [e.clientX, e.clientY];
     canvas.setPointerCapture(e.pointerId);
   });
+  const lift = (e: PointerEvent) => {
+    pointers.delete(e.pointerId);
+    last = null;
+  };
+  canvas.addEventListener("pointercancel", lift);
   canvas.addEventListener("pointermove", (e) => {
+    if (pointers.size === 2 && pointers.has(e.pointerId)) {
+      const before = spread();
+      pointers.set(e.pointerId, [e.clientX, e.clientY]);
+      if (before > 0) nav.zoom = Math.min(Math.max((nav.zoom * spread()) / before, 0.1), 20);
+      return;
+    }
+    if (pointers.has(e.pointerId)) pointers.set(e.pointerId, [e.clientX, e.clientY]);
     if (!last) return;
     if (e.shiftKey) {
       nav.pan[0] += (2 * (e.clientX - last[0])) / scene.width;
@@ -462,7 +546,7 @@ export function start(root: HTMLElement, scene: SceneHeader, data: ArrayBuffer):
     }
     last = [e.clientX, e.clientY];
   });
-  canvas.addEventListener("pointerup", () => (last = null));
+  canvas.addEventListener("pointerup", lift);
   canvas.addEventListener("wheel", (e) => {
     e.preventDefault();
     nav.zoom = Math.min(Math.max(nav.zoom * Math.exp(-e.deltaY * 0.001), 0.1), 20);
@@ -472,9 +556,18 @@ export function start(root: HTMLElement, scene: SceneHeader, data: ArrayBuffer):
   });
 
   const tick = () => {
-    if (playing) renderer.render(nav.view(), nav.projection(), scene.dt);
+    if (playing) {
+      if (scene.steps > 1) {
+        time = (time + 1 / scene.frames_per_step) % scene.steps;
+        renderer.setTime(time);
+        if (timeSlider) timeSlider.value = String(time);
+      }
+      renderer.render(nav.view(), nav.projection(), scene.dt);
+    }
     renderer.present();
-    (window as unknown as { ibfvsFrames: number }).ibfvsFrames = renderer.frame;
+    const w = window as unknown as { ibfvsFrames: number; ibfvsTime: number };
+    w.ibfvsFrames = renderer.frame;
+    w.ibfvsTime = time;
     requestAnimationFrame(tick);
   };
   requestAnimationFrame(tick);

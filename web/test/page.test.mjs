@@ -114,6 +114,32 @@ test("a drag turns the mesh; the animation alone does not move it", async () => 
   await page.close();
 });
 
+test("the page records a WebM of its canvas", async () => {
+  const { page, messages } = await open(writePage("cow-record"));
+  await frames(page, 5);
+  const [record] = await page.$$("xpath/.//button[contains(., 'Record WebM')]");
+  await record.click();
+  await frames(page, (await frameNow(page)) + 10);
+  await record.click();
+  await page.waitForFunction("(window.ibfvsRecording || 0) > 1000", { timeout: 60000 });
+  assert.deepEqual(messages, []);
+  await page.close();
+});
+
+test("the earth plays its months, with a time slider", async () => {
+  const file = path.join(out, "earth.html");
+  execFileSync(ibfvs, ["render", "scenes/figure6-earth-wind.toml", "--size", "128x128",
+                       "--time", "0:2", "--frames-per-step", "4", "--out", file, "-q"]);
+  const { page, messages } = await open(file);
+  const slider = await page.waitForSelector('input[data-name="time step"]');
+  assert.equal(await slider.evaluate((e) => e.max), "3");
+  await page.waitForFunction("(window.ibfvsTime || 0) >= 1.5", { timeout: 120000 });
+  const shown = parseFloat(await slider.evaluate((e) => e.value));
+  assert.ok(shown >= 1.5 && shown <= 3, `the slider shows ${shown}`);
+  assert.deepEqual(messages, []);
+  await page.close();
+});
+
 test("without float render targets the page says so in words", async () => {
   const { page } = await open(writePage("cow-nofloat"), () => {
     const original = WebGL2RenderingContext.prototype.getExtension;

@@ -25,9 +25,11 @@ struct WebPageReport {
   std::size_t runtime = 0;  ///< the embedded script
 };
 
-/// The page as text. Throws InputError for what a page cannot hold (an
-/// unsteady field, a surface image, random-cell colours: not yet; more than
-/// kMaxPageTriangles triangles) or when this build has no runtime.
+/// The page as text; an unsteady field's steps all go in (the page plays
+/// them, with a time slider). Throws InputError for what a page cannot hold
+/// (a surface image, random-cell colours: not yet; more than
+/// kMaxPageTriangles triangles or kMaxPageVectors vectors over all steps) or
+/// when this build has no runtime.
 [[nodiscard]] std::string web_page(const PreparedScene& scene, WebPageReport* report = nullptr);
 /// Writes web_page() to `path` (which must end in .html). Throws InputError.
 WebPageReport write_web_page(const PreparedScene& scene, const std::filesystem::path& path);
@@ -35,5 +37,7 @@ WebPageReport write_web_page(const PreparedScene& scene, const std::filesystem::
 /// The most triangles a page takes: beyond, the file passes 100 MB and a
 /// browser's memory for one tab.
 inline constexpr std::size_t kMaxPageTriangles = 4'000'000;
+/// The most vectors over all time steps (8 bytes each in the page).
+inline constexpr std::size_t kMaxPageVectors = 16'000'000;
 
 }  // namespace ibfvs

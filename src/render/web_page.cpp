@@ -9,6 +9,7 @@
 #include <sstream>
 #include <vector>
 
+#include <meshoptimizer.h>
 #include <glm/gtc/packing.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
@@ -123,6 +124,25 @@ class Block {
     return "{\"offset\":" + std::to_string(offset) +
            ",\"length\":" + std::to_string(values.size()) + extra + "}";
   }
+  // Per-vertex arrays (components values a vertex, 4..256 bytes in all) and
+  // triangle indices through meshoptimizer's codecs, which the page's
+  // runtime decodes with the same library's decoder (npm meshoptimizer).
+  template <typename T>
+  std::string add_vertices(const std::vector<T>& values, std::size_t components,
+                           const std::string& extra = "") {
+    const std::size_t stride = components * sizeof(T), count = values.size() / components;
+    std::vector<unsigned char> encoded(meshopt_encodeVertexBufferBound(count, stride));
+    encoded.resize(
+        meshopt_encodeVertexBuffer(encoded.data(), encoded.size(), values.data(), count, stride));
+    return add(encoded, ",\"codec\":\"vertex\",\"stride\":" + std::to_string(stride) +
+                            ",\"elements\":" + std::to_string(values.size()) + extra);
+  }
+  std::string add_indices(const std::vector<std::uint32_t>& indices, std::size_t vertices) {
+    std::vector<unsigned char> encoded(meshopt_encodeIndexBufferBound(indices.size(), vertices));
+    encoded.resize(
+        meshopt_encodeIndexBuffer(encoded.data(), encoded.size(), indices.data(), indices.size()));
+    return add(encoded, ",\"codec\":\"index\",\"elements\":" + std::to_string(indices.size()));
+  }
   [[nodiscard]] const std::vector<std::uint8_t>& bytes() const { return bytes_; }
 
  private:
@@ -202,6 +222,7 @@ std::string web_page(const PreparedScene& p, WebPageReport* report) {
           static_cast<std::uint16_t>(std::lround(std::clamp(t, 0.0f, 1.0f) * 65535.0f)));
       normals.push_back(snorm8(mesh.normals[i][c]));
     }
+    positions.push_back(0);  // four per vertex: the codec's stride is a multiple of 4 bytes
     normals.push_back(0);
   }
   // Every time step of an unsteady field, one after the other.
@@ -233,19 +254,21 @@ std::string web_page(const PreparedScene& p, WebPageReport* report) {
   }
   std::string arrays =
       "{\"positions\":" +
-      block.add(positions,
-                ",\"min\":" + json_numbers(std::vector<float>{lo.x, lo.y, lo.z}) + ",\"max\":" +
-                    json_numbers(std::vector<float>{bounds.max.x, bounds.max.y, bounds.max.z})) +
-      ",\"normals\":" + block.add(normals) + ",\"vectors\":" + block.add(vectors) +
-      ",\"indices\":" + block.add(indices) + ",\"phases\":" + block.add(phases) +
-      ",\"color_map\":" + block.add(colours);
+      block.add_vertices(
+          positions, 4,
+          ",\"min\":" + json_numbers(std::vector<float>{lo.x, lo.y, lo.z}) + ",\"max\":" +
+              json_numbers(std::vector<float>{bounds.max.x, bounds.max.y, bounds.max.z})) +
+      ",\"normals\":" + block.add_vertices(normals, 4) +
+      ",\"vectors\":" + block.add_vertices(vectors, 4) +
+      ",\"indices\":" + block.add_indices(indices, mesh.positions.size()) +
+      ",\"phases\":" + block.add(phases) + ",\"color_map\":" + block.add(colours);
   if (s.use_color || s.use_beta) {
     std::vector<float> scalars;
     for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
       scalars.push_back(p.color_scalar.empty() ? 0.0f : p.color_scalar[i]);
       scalars.push_back(p.beta_scalar.empty() ? 0.0f : p.beta_scalar[i]);
     }
-    arrays += ",\"scalars\":" + block.add(scalars);
+    arrays += ",\"scalars\":" + block.add_vertices(scalars, 2);
   }
   arrays += "}";
 

@@ -9,6 +9,7 @@
 // Sections: the scene format; the page's elements; WebGL objects; the
 // renderer; the camera and input; start.
 import { mat4, vec3 } from "gl-matrix";
+import { MeshoptDecoder } from "meshoptimizer/decoder";
 
 // ---------------------------------------------------------------- the scene format
 
@@ -21,8 +22,28 @@ interface Uniform {
 
 interface ArrayRef {
   offset: number; // bytes into the binary block
-  length: number; // elements
+  length: number; // elements, or with a codec its encoded bytes
+  codec?: "vertex" | "index"; // meshoptimizer's codecs (per-vertex arrays, triangle indices)
+  stride?: number; // bytes a vertex (the vertex codec)
+  elements?: number; // elements once decoded
 }
+
+/// An array of the block as `T` (Uint16Array, Float32Array, ...), decoded
+/// where the page wrote it through a meshoptimizer codec.
+function view<T>(data: ArrayBuffer, ref: ArrayRef,
+                 make: (buffer: ArrayBuffer, offset: number, length: number) => T, bytesEach: number): T {
+  if (!ref.codec) return make(data, ref.offset, ref.length);
+  const source = new Uint8Array(data, ref.offset, ref.length);
+  const target = new Uint8Array(ref.elements! * bytesEach);
+  if (ref.codec === "vertex")
+    MeshoptDecoder.decodeVertexBuffer(target, target.length / ref.stride!, ref.stride!, source);
+  else MeshoptDecoder.decodeIndexBuffer(target, ref.elements!, 4, source);
+  return make(target.buffer, 0, ref.elements!);
+}
+const u16 = (b: ArrayBuffer, o: number, n: number) => new Uint16Array(b, o, n);
+const i8 = (b: ArrayBuffer, o: number, n: number) => new Int8Array(b, o, n);
+const u32 = (b: ArrayBuffer, o: number, n: number) => new Uint32Array(b, o, n);
+const f32 = (b: ArrayBuffer, o: number, n: number) => new Float32Array(b, o, n);
 
 export interface SceneHeader {
   format: "ibfvs-page";
@@ -52,7 +73,7 @@ export interface SceneHeader {
   index_count: number;
   phase_size: [number, number];
   arrays: {
-    positions: ArrayRef & { min: number[]; max: number[] }; // uint16 x 3, in the box
+    positions: ArrayRef & { min: number[]; max: number[] }; // uint16 x 4 (the last 0), in the box
     normals: ArrayRef; // int8 x 4 (snorm)
     vectors: ArrayRef; // float16 x 4, every time step one after the other
     scalars?: ArrayRef; // float32 x 2 (colour, beta)
@@ -194,11 +215,11 @@ export class PageRenderer {
 
     // The mesh: positions from 16 bits in the box, the rest as stored.
     const a = s.arrays;
-    const q = new Uint16Array(data, a.positions.offset, a.positions.length);
-    const positions = new Float32Array(q.length);
+    const q = view(data, a.positions, u16, 2);
+    const positions = new Float32Array((q.length / 4) * 3);
     for (let i = 0; i < q.length; ++i) {
-      const c = i % 3, lo = a.positions.min[c], hi = a.positions.max[c];
-      positions[i] = lo + (hi - lo) * (q[i] / 65535);
+      const c = i % 4, lo = a.positions.min[c], hi = a.positions.max[c];
+      if (c < 3) positions[(i >> 2) * 3 + c] = lo + (hi - lo) * (q[i] / 65535);
     }
     this.vao = gl.createVertexArray()!;
     gl.bindVertexArray(this.vao);
@@ -210,19 +231,19 @@ export class PageRenderer {
       gl.vertexAttribPointer(location, size, type, normalized, 0, 0);
     };
     attribute(0, positions, 3, gl.FLOAT, false);
-    attribute(1, new Int8Array(data, a.normals.offset, a.normals.length), 4, gl.BYTE, true);
+    attribute(1, view(data, a.normals, i8, 1), 4, gl.BYTE, true);
     // The field: attributes 2 and 4 read the current and the next time step
     // from one buffer (setTime moves them).
     this.vectorBuffer = gl.createBuffer()!;
     gl.bindBuffer(gl.ARRAY_BUFFER, this.vectorBuffer);
-    gl.bufferData(gl.ARRAY_BUFFER, new Uint16Array(data, a.vectors.offset, a.vectors.length), gl.STATIC_DRAW);
+    gl.bufferData(gl.ARRAY_BUFFER, view(data, a.vectors, u16, 2), gl.STATIC_DRAW);
     gl.enableVertexAttribArray(2);
     gl.enableVertexAttribArray(4);
-    if (a.scalars) attribute(3, new Float32Array(data, a.scalars.offset, a.scalars.length), 2, gl.FLOAT, false);
+    if (a.scalars) attribute(3, view(data, a.scalars, f32, 4), 2, gl.FLOAT, false);
     else gl.vertexAttrib2f(3, 0, 0);
     const indices = gl.createBuffer()!;
     gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, indices);
-    gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, new Uint32Array(data, a.indices.offset, a.indices.length), gl.STATIC_DRAW);
+    gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, view(data, a.indices, u32, 4), gl.STATIC_DRAW);
     gl.bindVertexArray(null);
     this.setTime(0);
     this.empty = gl.createVertexArray()!;
@@ -577,4 +598,10 @@ export function start(root: HTMLElement, scene: SceneHeader, data: ArrayBuffer):
 const root = document.getElementById("ibfvs");
 const header = document.getElementById("ibfvs-scene");
 const block = document.getElementById("ibfvs-data");
-if (root && header && block) start(root, JSON.parse(header.textContent!) as SceneHeader, decodeBase64(block.textContent!));
+if (root && header && block) {
+  const scene = JSON.parse(header.textContent!) as SceneHeader;
+  const data = decodeBase64(block.textContent!);
+  MeshoptDecoder.ready.then(
+    () => start(root, scene, data),
+    (e: Error) => say(root, "This page needs WebAssembly to unpack its mesh: " + e.message));
+}

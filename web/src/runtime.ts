@@ -193,6 +193,7 @@ export class PageRenderer {
   private gridTexture: WebGLTexture;
   private gridFb: WebGLFramebuffer;
   private phases: WebGLTexture;
+  private phaseSize: [number, number];
   private statsTexture: WebGLTexture;
   private statsFb: WebGLFramebuffer;
   private colorMap: WebGLTexture;
@@ -259,15 +260,39 @@ export class PageRenderer {
     const p32 = new Float32Array(p16.length);
     for (let i = 0; i < p16.length; ++i) p32[i] = p16[i] / 65535;
     this.phases = texture(gl, cols, rows, gl.R32F, gl.RED, gl.FLOAT, false, p32);
-    this.gridTexture = texture(gl, cols, rows, gl.R32F, gl.RED, gl.FLOAT, true);
-    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_S, gl.REPEAT);
-    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_T, gl.REPEAT);
-    this.gridFb = framebuffer(gl, [this.gridTexture], null);
+    this.phaseSize = [cols, rows];
+    [this.gridTexture, this.gridFb] = this.makeGrid(cols, rows);
     this.statsTexture = texture(gl, 1, 1, gl.RGBA32F, gl.RGBA, gl.FLOAT, false);
     this.statsFb = framebuffer(gl, [this.statsTexture], null);
     this.colorMap = texture(gl, 256, 1, gl.RGBA8, gl.RGBA, gl.UNSIGNED_BYTE, true,
                             new Uint8Array(data, a.color_map.offset, a.color_map.length));
     this.reset();
+  }
+
+  // The grid pass's target: G_ij, sampled bilinearly and repeating (eq. 7).
+  private makeGrid(cols: number, rows: number): [WebGLTexture, WebGLFramebuffer] {
+    const gl = this.gl;
+    const t = texture(gl, cols, rows, gl.R32F, gl.RED, gl.FLOAT, true);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_S, gl.REPEAT);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_T, gl.REPEAT);
+    return [t, framebuffer(gl, [t], null)];
+  }
+
+  /// The noise scale s in pixels, at least the page's own: the grid of
+  /// floor(size / s) + 2 points a side (as NoiseGrid) takes the first of the
+  /// page's phases.
+  setNoiseScale(scale: number): void {
+    const gl = this.gl, s = this.scene;
+    const cols = Math.min(Math.floor(s.width / scale) + 2, s.phase_size[0]);
+    const rows = Math.min(Math.floor(s.height / scale) + 2, s.phase_size[1]);
+    gl.deleteTexture(this.gridTexture);
+    gl.deleteFramebuffer(this.gridFb);
+    [this.gridTexture, this.gridFb] = this.makeGrid(cols, rows);
+    this.phaseSize = [cols, rows];
+    this.applySettings([
+      { name: "u_noise_scale", type: "float", values: [scale] },
+      { name: "u_phase_size", type: "int", values: [cols, rows] },
+    ]);
   }
 
   /// Time t in steps (looping), as Session::seek: the field between step
@@ -320,7 +345,7 @@ export class PageRenderer {
     gl.disable(gl.BLEND);
     // The grid pass: G_ij of this frame.
     gl.bindFramebuffer(gl.FRAMEBUFFER, this.gridFb);
-    gl.viewport(0, 0, s.phase_size[0], s.phase_size[1]);
+    gl.viewport(0, 0, this.phaseSize[0], this.phaseSize[1]);
     gl.disable(gl.DEPTH_TEST);
     gl.disable(gl.CULL_FACE);
     gl.useProgram(this.grid);
@@ -485,6 +510,24 @@ export function start(root: HTMLElement, scene: SceneHeader, data: ArrayBuffer):
       renderer.applySettings([u]);
     });
   }
+  // The step: pixels per frame of every point (image-space normalisation),
+  // else a factor on the scene's dt.
+  let dtFactor = 1;
+  const imageStep = uniform("u_image_step");
+  if (imageStep && imageStep.values[0] > 0) {
+    slider(panel, "step (px)", 0.25, 8, imageStep.values[0], (v) => {
+      imageStep.values[0] = v;
+      renderer.applySettings([imageStep]);
+    });
+  } else {
+    slider(panel, "speed", 0, 4, 1, (v) => (dtFactor = v));
+  }
+  // The noise scale, from the page's own up (its phases cover finer grids only).
+  const noiseScale = uniform("u_noise_scale");
+  if (noiseScale) {
+    const base = noiseScale.values[0];
+    slider(panel, "noise scale (px)", base, 6 * base, base, (v) => renderer.setNoiseScale(v));
+  }
   // Time steps: a slider over the steps, moving while playing.
   let time = 0;
   let timeSlider: HTMLInputElement | null = null;
@@ -583,7 +626,7 @@ export function start(root: HTMLElement, scene: SceneHeader, data: ArrayBuffer):
         renderer.setTime(time);
         if (timeSlider) timeSlider.value = String(time);
       }
-      renderer.render(nav.view(), nav.projection(), scene.dt);
+      renderer.render(nav.view(), nav.projection(), scene.dt * dtFactor);
     }
     renderer.present();
     const w = window as unknown as { ibfvsFrames: number; ibfvsTime: number };

@@ -114,6 +114,42 @@ test("a drag turns the mesh; the animation alone does not move it", async () => 
   await page.close();
 });
 
+// Mean difference between horizontal neighbours on the surface: fine noise
+// is rough, coarse noise smooth.
+const roughness = (page) => page.evaluate(() => {
+  const c = document.querySelector("canvas");
+  const t = document.createElement("canvas");
+  t.width = c.width;
+  t.height = c.height;
+  const x = t.getContext("2d");
+  x.drawImage(c, 0, 0);
+  const d = x.getImageData(0, 0, c.width, c.height).data;
+  const grey = (i) => d[i] === d[i + 1] && d[i + 1] === d[i + 2] && Math.abs(d[i] - 127.5) < 1;
+  let sum = 0, n = 0;
+  for (let i = 0; i + 4 < d.length; i += 4)
+    if (!grey(i) && !grey(i + 4)) { sum += Math.abs(d[i] - d[i + 4]); ++n; }
+  return sum / n;
+});
+
+async function setSlider(page, name, value) {
+  await page.$eval(`input[data-name="${name}"]`, (e, v) => {
+    e.value = String(v);
+    e.dispatchEvent(new Event("input"));
+  }, value);
+}
+
+test("the noise scale slider coarsens the texture", async () => {
+  const { page, messages } = await open(writePage("cow-scale"));
+  await frames(page, 40);
+  const fine = await roughness(page);
+  await setSlider(page, "noise scale (px)", 5);
+  await frames(page, (await frameNow(page)) + 40);
+  const coarse = await roughness(page);
+  assert.deepEqual(messages, []);
+  assert.ok(coarse < 0.8 * fine, `roughness ${fine} at the page's scale, ${coarse} at 5 px`);
+  await page.close();
+});
+
 test("the page records a WebM of its canvas", async () => {
   const { page, messages } = await open(writePage("cow-record"));
   await frames(page, 5);

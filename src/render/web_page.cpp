@@ -178,7 +178,7 @@ bool has_web_runtime() {
   return kWebRuntime != nullptr;
 }
 
-std::string web_page(const PreparedScene& p, WebPageReport* report) {
+std::string web_page(const PreparedScene& p, WebPageReport* report, const WebPageLimits& limits) {
   const std::string what = "page of " + p.mesh_name;
   if (!has_web_runtime())
     throw InputError(what +
@@ -190,15 +190,15 @@ std::string web_page(const PreparedScene& p, WebPageReport* report) {
   if (p.scene.init == InitMode::RandomCells)
     throw InputError(what + ": random-cell colours are not in pages yet");
   const TriMesh& mesh = *p.mesh;
-  if (mesh.triangle_count() > kMaxPageTriangles)
+  if (mesh.triangle_count() > limits.triangles)
     throw InputError(what + ": " + std::to_string(mesh.triangle_count()) +
-                     " triangles, more than a page takes (" + std::to_string(kMaxPageTriangles) +
+                     " triangles, more than a page takes (" + std::to_string(limits.triangles) +
                      "); subdivide less or decimate the mesh");
   const std::size_t steps = std::max<std::size_t>(p.step_count, 1);
-  if (steps * mesh.vertex_count() > kMaxPageVectors)
+  if (steps * mesh.vertex_count() > limits.vectors)
     throw InputError(what + ": " + std::to_string(steps) + " time steps of " +
                      std::to_string(mesh.vertex_count()) + " vectors, more than a page takes (" +
-                     std::to_string(kMaxPageVectors) + " vectors); export fewer steps");
+                     std::to_string(limits.vectors) + " vectors); export fewer steps");
 
   const RenderSettings& s = p.settings;
   const bool colour_texture = !grey(s.background);
@@ -349,14 +349,15 @@ std::string web_page(const PreparedScene& p, WebPageReport* report) {
   return page;
 }
 
-WebPageReport write_web_page(const PreparedScene& scene, const std::filesystem::path& path) {
+WebPageReport write_web_page(const PreparedScene& scene, const std::filesystem::path& path,
+                             const WebPageLimits& limits) {
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return std::tolower(c); });
   if (ext != ".html" && ext != ".htm")
     throw InputError(path.string() + ": a page must be named NAME.html");
   WebPageReport report;
-  const std::string page = web_page(scene, &report);
+  const std::string page = web_page(scene, &report, limits);
   std::ofstream out(path, std::ios::binary);
   if (!out) throw InputError(path.string() + ": cannot write");
   out.write(page.data(), static_cast<std::streamsize>(page.size()));

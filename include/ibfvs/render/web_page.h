@@ -18,6 +18,13 @@ namespace ibfvs {
 /// build time, and web/node_modules from scripts/install-deps.sh).
 [[nodiscard]] bool has_web_runtime();
 
+/// The most a page takes: beyond, the file passes 100 MB and a browser's
+/// memory for one tab.
+struct WebPageLimits {
+  std::size_t triangles = 4'000'000;
+  std::size_t vectors = 16'000'000;  ///< over all time steps (8 bytes each in the page)
+};
+
 /// Sizes of a written page, in bytes.
 struct WebPageReport {
   std::size_t page = 0;     ///< the whole file
@@ -27,17 +34,12 @@ struct WebPageReport {
 
 /// The page as text; an unsteady field's steps all go in (the page plays
 /// them, with a time slider). Throws InputError for what a page cannot hold
-/// (a surface image, random-cell colours: not yet; more than
-/// kMaxPageTriangles triangles or kMaxPageVectors vectors over all steps) or
-/// when this build has no runtime.
-[[nodiscard]] std::string web_page(const PreparedScene& scene, WebPageReport* report = nullptr);
+/// (a surface image, random-cell colours: not yet; more than `limits`) or when this build has no
+/// runtime.
+[[nodiscard]] std::string web_page(const PreparedScene& scene, WebPageReport* report = nullptr,
+                                   const WebPageLimits& limits = {});
 /// Writes web_page() to `path` (which must end in .html). Throws InputError.
-WebPageReport write_web_page(const PreparedScene& scene, const std::filesystem::path& path);
-
-/// The most triangles a page takes: beyond, the file passes 100 MB and a
-/// browser's memory for one tab.
-inline constexpr std::size_t kMaxPageTriangles = 4'000'000;
-/// The most vectors over all time steps (8 bytes each in the page).
-inline constexpr std::size_t kMaxPageVectors = 16'000'000;
+WebPageReport write_web_page(const PreparedScene& scene, const std::filesystem::path& path,
+                             const WebPageLimits& limits = {});
 
 }  // namespace ibfvs

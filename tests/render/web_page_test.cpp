@@ -1,0 +1,86 @@
+// The web page writer (docs/web.md) without a browser: what the page holds
+// and what it refuses, in one line each. The browser test (web/test,
+// Web.page) runs the pages.
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <functional>
+#include <string>
+
+#include "ibfvs/core/scene/scene.h"
+#include "ibfvs/core/scene/scene_prep.h"
+#include "ibfvs/core/support/error.h"
+#include "ibfvs/render/web_page.h"
+
+namespace ibfvs {
+namespace {
+
+PreparedScene torus_scene() {
+  Scene s;
+  s.mesh = "torus";
+  s.width = 64;
+  s.height = 48;
+  return prepare_scene(s);
+}
+
+std::string what_throws(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(nothing thrown)";
+}
+
+TEST(WebPage, HoldsTheSceneTheShadersAndTheRuntime) {
+  const PreparedScene scene = torus_scene();
+  if (!has_web_runtime()) {
+    EXPECT_NE(what_throws([&] { (void)web_page(scene); }).find("without the browser runtime"),
+              std::string::npos);
+    GTEST_SKIP() << "built without the browser runtime";
+  }
+  WebPageReport report;
+  const std::string page = web_page(scene, &report);
+  EXPECT_EQ(report.page, page.size());
+  EXPECT_GT(report.scene, 0u);
+  EXPECT_GT(report.runtime, 1000u);
+  EXPECT_NE(page.find("\"vertex_count\":" + std::to_string(scene.mesh->vertex_count())),
+            std::string::npos);
+  EXPECT_NE(page.find("\"index_count\":" + std::to_string(3 * scene.mesh->triangle_count())),
+            std::string::npos);
+  EXPECT_NE(page.find("\"width\":64,\"height\":48"), std::string::npos);
+  EXPECT_NE(page.find("#version 300 es"), std::string::npos);
+  EXPECT_NE(page.find("\"name\":\"u_alpha\""), std::string::npos);
+  // One script element each for the header, the data and the runtime: no
+  // "</script" inside any of them.
+  std::size_t closings = 0;
+  for (std::size_t at = page.find("</script"); at != std::string::npos;
+       at = page.find("</script", at + 1))
+    ++closings;
+  EXPECT_EQ(closings, 3u);
+}
+
+TEST(WebPage, RefusesWhatIsTooBigAndNamesWithoutHtml) {
+  const PreparedScene scene = torus_scene();
+  if (!has_web_runtime()) GTEST_SKIP() << "built without the browser runtime";
+  WebPageLimits few_triangles;
+  few_triangles.triangles = 10;
+  EXPECT_NE(what_throws([&] {
+              (void)web_page(scene, nullptr, few_triangles);
+            }).find("triangles, more than a page takes (10)"),
+            std::string::npos);
+  WebPageLimits few_vectors;
+  few_vectors.vectors = 10;
+  EXPECT_NE(what_throws([&] {
+              (void)web_page(scene, nullptr, few_vectors);
+            }).find("vectors, more than a page takes (10 vectors)"),
+            std::string::npos);
+  const std::filesystem::path png = std::filesystem::temp_directory_path() / "ibfvs-page.png";
+  EXPECT_NE(what_throws([&] { (void)write_web_page(scene, png); }).find("must be named NAME.html"),
+            std::string::npos);
+  EXPECT_FALSE(std::filesystem::exists(png));
+}
+
+}  // namespace
+}  // namespace ibfvs

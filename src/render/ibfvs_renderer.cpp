@@ -20,10 +20,6 @@ std::span<const std::byte> bytes_of(std::span<const T> v) {
   return std::as_bytes(v);
 }
 
-bool grey(const glm::vec3& c) {
-  return c.r == c.g && c.g == c.b;
-}
-
 void set_uniform(const gl::Program& p, const shaders::UniformValue& u) {
   const int location = p.location(u.name.c_str());
   const auto f = [&](std::size_t i) { return static_cast<float>(u.values[i]); };
@@ -69,7 +65,7 @@ IbfvsRenderer::IbfvsRenderer(const RenderSettings& settings) : settings_(setting
     sp.stats_size = sp.program.location("u_stats_size");
     sp.offset = sp.program.location("u_offset");
   }
-  allocate_texture(!grey(settings_.background));
+  allocate_texture(shaders::colour_background(settings_));
 
   const NoiseGrid grid(w, h, settings_.noise);
   phase_size_ = glm::ivec2(grid.columns(), grid.rows());
@@ -196,7 +192,8 @@ void IbfvsRenderer::update_settings(const RenderSettings& settings) {
       settings.noise.scale != settings_.noise.scale || settings.noise.seed != settings_.noise.seed)
     throw InputError("renderer: size, noise scale and seed need a new renderer");
   settings_ = settings;
-  if (!grey(settings_.background)) use_colour_texture();  // a grey texture stays until reset()
+  if (shaders::colour_background(settings_))
+    use_colour_texture();  // a grey texture stays until reset()
   if (!colour_texture_ && texture_flow_ != (ibfvs::filter_taps(settings_.filter_length) > 0)) {
     const ImageF raw = read_texture_raw();  // F_t carries over into the other format
     allocate_texture(false);
@@ -236,7 +233,7 @@ void IbfvsRenderer::set_mesh(const TriMesh& mesh, std::span<const glm::vec3> fie
   index_count_ = mesh.triangles.size() * 3;
   vertex_count_ = mesh.positions.size();
   const float diagonal = mesh_bounds(mesh).diagonal();
-  probe_ = diagonal > 0.0f ? 1e-3f * diagonal : 1e-3f;
+  probe_ = shaders::probe_length(diagonal);
   cull_ = closed_orientation(mesh);
   reset();
 }
@@ -288,9 +285,9 @@ void IbfvsRenderer::set_scalars(std::span<const float> color, std::span<const fl
 
 void IbfvsRenderer::reset() {
   gl::prepare_own_draw();
-  if (colour_texture_ == grey(settings_.background) ||
+  if (colour_texture_ != shaders::colour_background(settings_) ||
       (!colour_texture_ && texture_flow_ != (ibfvs::filter_taps(settings_.filter_length) > 0)))
-    allocate_texture(!grey(settings_.background));
+    allocate_texture(shaders::colour_background(settings_));
   for (auto& fb : framebuffer_) clear_targets(fb);
   stats_framebuffer_.clear_color(0, glm::vec4(0.0f));  // no statistics before the first frame
   current_ = 0;

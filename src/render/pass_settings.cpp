@@ -4,6 +4,15 @@
 
 namespace ibfvs::shaders {
 
+bool colour_background(const RenderSettings& settings) {
+  const glm::vec3& c = settings.background;
+  return !(c.r == c.g && c.g == c.b);
+}
+
+float probe_length(float diagonal) {
+  return diagonal > 0.0f ? 1e-3f * diagonal : 1e-3f;
+}
+
 ShaderFeatures features_for(const RenderSettings& settings, bool colour_texture, bool surface_image,
                             bool record_flow) {
   ShaderFeatures f;

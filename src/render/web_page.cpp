@@ -168,10 +168,6 @@ std::string html_escape(const std::string& s) {
   return out;
 }
 
-bool grey(const glm::vec3& c) {
-  return c.r == c.g && c.g == c.b;
-}
-
 }  // namespace
 
 bool has_web_runtime() {
@@ -201,7 +197,7 @@ std::string web_page(const PreparedScene& p, WebPageReport* report, const WebPag
                      std::to_string(limits.vectors) + " vectors); export fewer steps");
 
   const RenderSettings& s = p.settings;
-  const bool colour_texture = !grey(s.background);
+  const bool colour_texture = shaders::colour_background(s);
   const shaders::ShaderFeatures f = shaders::features_for(s, colour_texture, false, false);
   const NoiseGrid grid(p.width, p.height, s.noise);
   const Bounds bounds = mesh_bounds(mesh);
@@ -289,7 +285,7 @@ std::string web_page(const PreparedScene& p, WebPageReport* report, const WebPag
       ",\"height\":" + std::to_string(p.height) + ",\"background\":" +
       json_numbers(std::vector<float>{s.background.r, s.background.g, s.background.b}) +
       ",\"no_depth\":" + json_number(IbfvsRenderer::kNoDepth) + ",\"dt\":" + json_number(p.dt) +
-      ",\"probe\":" + json_number(diagonal > 0.0f ? 1e-3 * diagonal : 1e-3) +
+      ",\"probe\":" + json_number(shaders::probe_length(diagonal)) +
       ",\"noise_rate\":" + json_number(s.noise.rate) +
       ",\"colour_texture\":" + (colour_texture ? "true" : "false") +
       ",\"texture_channels\":" + std::to_string(shaders::texture_channels(f)) +

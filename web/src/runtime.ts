@@ -140,8 +140,17 @@ function compile(gl: WebGL2RenderingContext, vertex: string, fragment: string): 
   return program;
 }
 
+// Uniform locations, looked up once per program and name (not every frame).
+const locations = new WeakMap<WebGLProgram, Map<string, WebGLUniformLocation | null>>();
+function locate(gl: WebGL2RenderingContext, program: WebGLProgram, name: string): WebGLUniformLocation | null {
+  let known = locations.get(program);
+  if (!known) locations.set(program, (known = new Map()));
+  if (!known.has(name)) known.set(name, gl.getUniformLocation(program, name));
+  return known.get(name)!;
+}
+
 function setUniform(gl: WebGL2RenderingContext, program: WebGLProgram, u: Uniform): void {
-  const at = gl.getUniformLocation(program, u.name);
+  const at = locate(gl, program, u.name);
   if (at === null) return; // compiled out
   const v = u.values;
   if (u.array) gl.uniform1fv(at, new Float32Array(v));
@@ -318,14 +327,13 @@ export class PageRenderer {
   }
 
   reset(): void {
-    const gl = this.gl, s = this.scene;
+    const gl = this.gl;
     for (const fb of this.fbs) this.clear(fb);
     gl.bindFramebuffer(gl.FRAMEBUFFER, this.statsFb);
-    gl.clearBufferfv(gl.COLOR, 0, [0, 0, 0, 0]);
+    gl.clearBufferfv(gl.COLOR, 0, [0, 0, 0, 0]); // no statistics before the first frame
     this.current = 0;
     this.frame = 0;
     this.previousViewProjection = null;
-    void s;
   }
 
   private clear(fb: WebGLFramebuffer): void {
@@ -349,7 +357,7 @@ export class PageRenderer {
     gl.disable(gl.DEPTH_TEST);
     gl.disable(gl.CULL_FACE);
     gl.useProgram(this.grid);
-    gl.uniform1f(gl.getUniformLocation(this.grid, "u_noise_time"), noiseTime);
+    gl.uniform1f(locate(gl, this.grid, "u_noise_time"), noiseTime);
     gl.activeTexture(gl.TEXTURE0);
     gl.bindTexture(gl.TEXTURE_2D, this.phases);
     gl.bindVertexArray(this.empty);
@@ -365,7 +373,7 @@ export class PageRenderer {
     }
     const p = this.main;
     gl.useProgram(p);
-    const at = (n: string) => gl.getUniformLocation(p, n);
+    const at = (n: string) => locate(gl, p, n);
     gl.uniformMatrix4fv(at("u_view_projection"), false, vp);
     const advect = s.advect_previous && this.previousViewProjection ? this.previousViewProjection : vp;
     gl.uniformMatrix4fv(at("u_advect_view_projection"), false, advect);
@@ -398,10 +406,10 @@ export class PageRenderer {
       gl.bindFramebuffer(gl.FRAMEBUFFER, this.statsFb);
       gl.viewport(0, 0, 1, 1);
       gl.useProgram(this.stats);
-      gl.uniform2f(gl.getUniformLocation(this.stats, "u_image_size"), s.width, s.height);
-      gl.uniform1i(gl.getUniformLocation(this.stats, "u_stats_size"), s.stats.size);
+      gl.uniform2f(locate(gl, this.stats, "u_image_size"), s.width, s.height);
+      gl.uniform1i(locate(gl, this.stats, "u_stats_size"), s.stats.size);
       const f = this.frame;
-      gl.uniform2f(gl.getUniformLocation(this.stats, "u_offset"), (f * 0.618034) % 1, (f * 0.381966) % 1);
+      gl.uniform2f(locate(gl, this.stats, "u_offset"), (f * 0.618034) % 1, (f * 0.381966) % 1);
       bind(0, this.textures[next]);
       bind(1, this.output);
       gl.enable(gl.BLEND);

@@ -15,6 +15,15 @@
 
 namespace ibfvs::shaders {
 
+/// Whether F_t must hold colour: a background that is not grey (grey noise
+/// on a grey background stays grey; random-cell colours switch a renderer
+/// to colour as well).
+[[nodiscard]] bool colour_background(const RenderSettings& settings);
+
+/// The world length of the probe step of image-space normalisation: 1/1000
+/// of the mesh's bounding-box diagonal.
+[[nodiscard]] float probe_length(float diagonal);
+
 /// The features of the pass for these settings. `colour_texture`: F_t holds
 /// RGB (a coloured background or random cells), else grey; `surface_image`:
 /// an equirectangular image is the surface colour; `record_flow`: the

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The checks beyond the Release build and its tests (docs/reliability.md),
 # each timed: the sources as clang-format leaves them; every libFuzzer
-# harness for 15 seconds from a fixed seed (the fuzz preset: clang,
+# harness for 12 seconds from a fixed seed (the fuzz preset: clang,
 # AddressSanitizer, UndefinedBehaviorSanitizer); and the asan-ubsan preset
 # (the dev preset's build with warnings as errors, plus AddressSanitizer and
 # UndefinedBehaviorSanitizer) with the whole suite in it, headless GL and the
@@ -39,7 +39,7 @@ sanitized() {
     ctest --test-dir build/asan -j2 -LE optimised --output-on-failure
 }
 stage "clang-format" format
-stage "fuzzers, 15 s each" fuzz
+stage "fuzzers, 12 s each" fuzz
 if [[ ${1:-} != --no-asan ]]; then
   stage "asan-ubsan build (warnings as errors) and tests" sanitized
 fi

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <vector>
 
@@ -16,6 +17,7 @@
 #include "ibfvs/core/image/colormap.h"
 #include "ibfvs/core/mesh/mesh.h"
 #include "ibfvs/core/scene/camera.h"
+#include "ibfvs/core/scene/names.h"
 #include "ibfvs/core/support/error.h"
 #include "ibfvs/core/texture/display.h"
 #include "ibfvs/core/texture/noise.h"
@@ -168,6 +170,82 @@ std::string html_escape(const std::string& s) {
   return out;
 }
 
+using T = shaders::UniformValue::Type;
+
+// One look of the page: what the pass is compiled with and set to for one
+// style over the same data. `finest`: the columns and rows of the page's
+// noise phases (a coarser grid takes the first of them).
+std::string look_json(const PreparedScene& q, const std::string& name, std::string_view description,
+                      glm::ivec2 finest, glm::vec3 centre) {
+  const RenderSettings& s = q.settings;
+  const bool colour_texture = shaders::colour_background(s);
+  const shaders::ShaderFeatures f = shaders::features_for(s, colour_texture, false, false);
+  const NoiseGrid grid(q.width, q.height, s.noise);
+  const glm::ivec2 phase_size = glm::min(glm::ivec2(grid.columns(), grid.rows()), finest);
+  const std::vector<shaders::UniformValue> grid_uniforms = {
+      {"u_profile", T::Int, {static_cast<double>(static_cast<int>(s.noise.profile))}},
+      {"u_spike_width", T::Float, {s.noise.spike_width}},
+      {"u_seed", T::Uint, {static_cast<double>(s.noise.seed)}}};
+  return "{\"name\":" + json_string(name) + ",\"description\":" + json_string(description) +
+         ",\"background\":" +
+         json_numbers(std::vector<float>{s.background.r, s.background.g, s.background.b}) +
+         ",\"dt\":" + json_number(q.dt) + ",\"noise_rate\":" + json_number(s.noise.rate) +
+         ",\"colour_texture\":" + (colour_texture ? "true" : "false") +
+         ",\"texture_channels\":" + std::to_string(shaders::texture_channels(f)) +
+         ",\"advect_previous\":" + (s.advect_view == AdvectView::Previous ? "true" : "false") +
+         ",\"phase_size\":[" + std::to_string(phase_size.x) + "," + std::to_string(phase_size.y) +
+         "],\"shaders\":{\"vertex\":" +
+         json_string(shaders::ibfvs_vertex_source(f, shaders::Dialect::Es300)) + ",\"fragment\":" +
+         json_string(shaders::ibfvs_fragment_source(f, shaders::Dialect::Es300)) +
+         ",\"stats_fragment\":" +
+         json_string(shaders::stats_fragment_source(!colour_texture, shaders::Dialect::Es300)) +
+         "},\"uniforms\":" + json_uniforms(shaders::settings_uniforms(s, f, phase_size, centre)) +
+         ",\"grid_uniforms\":" + json_uniforms(grid_uniforms) + "}";
+}
+
+// The page's looks: the scene's own first, then each style that takes the
+// same data (restyled), each once.
+std::string looks_json(const PreparedScene& p, glm::ivec2 finest, glm::vec3 centre) {
+  const auto description = [](Style style) {
+    for (const auto& e : enum_entries<Style>())
+      if (e.value == style) return e.description;
+    return std::string_view();
+  };
+  const auto body = [](const std::string& look) {
+    return look.substr(look.find(",\"background\""));
+  };
+  std::vector<std::string> looks;
+  // Named by its style when it is that style's look, else "as rendered".
+  std::optional<PreparedScene> pure;
+  try {
+    if (p.scene.style) pure = restyled(p, *p.scene.style);
+  } catch (const SettingError&) {
+    // a style the scene's own settings contradict: the look is not that style's
+  }
+  const std::string own =
+      look_json(p, "as rendered", "the settings the page was written with", finest, centre);
+  const bool as_style = pure && body(look_json(*pure, "", "", finest, centre)) == body(own);
+  looks.push_back(as_style ? look_json(p, std::string(enum_name(*p.scene.style)),
+                                       description(*p.scene.style), finest, centre)
+                           : own);
+  for (const auto& e : enum_entries<Style>()) {
+    std::optional<PreparedScene> q;
+    try {
+      q = restyled(p, e.value);
+    } catch (const SettingError&) {
+      continue;  // a setting of the scene that this style's defaults make invalid
+    }
+    if (!q) continue;
+    const std::string look = look_json(*q, std::string(e.name), e.description, finest, centre);
+    if (std::none_of(looks.begin(), looks.end(),
+                     [&](const std::string& l) { return body(l) == body(look); }))
+      looks.push_back(look);
+  }
+  std::string out = "[";
+  for (const std::string& l : looks) out += (out.size() > 1 ? "," : "") + l;
+  return out + "]";
+}
+
 }  // namespace
 
 bool has_web_runtime() {
@@ -197,9 +275,20 @@ std::string web_page(const PreparedScene& p, WebPageReport* report, const WebPag
                      std::to_string(limits.vectors) + " vectors); export fewer steps");
 
   const RenderSettings& s = p.settings;
-  const bool colour_texture = shaders::colour_background(s);
-  const shaders::ShaderFeatures f = shaders::features_for(s, colour_texture, false, false);
-  const NoiseGrid grid(p.width, p.height, s.noise);
+  // The noise phases of the finest look (the default's 1-pixel cells; a
+  // coarser grid takes the first of them).
+  float finest_scale = s.noise.scale;
+  for (const auto& e : enum_entries<Style>()) {
+    try {
+      if (const auto q = restyled(p, e.value))
+        finest_scale = std::min(finest_scale, q->settings.noise.scale);
+    } catch (const SettingError&) {
+      // looks_json leaves this style out
+    }
+  }
+  NoiseParams finest_noise = s.noise;
+  finest_noise.scale = finest_scale;
+  const NoiseGrid grid(p.width, p.height, finest_noise);
   const Bounds bounds = mesh_bounds(mesh);
   const Camera camera(bounds, p.camera, static_cast<float>(p.width) / static_cast<float>(p.height));
 
@@ -268,11 +357,6 @@ std::string web_page(const PreparedScene& p, WebPageReport* report, const WebPag
   }
   arrays += "}";
 
-  using T = shaders::UniformValue::Type;
-  const std::vector<shaders::UniformValue> grid_uniforms = {
-      {"u_profile", T::Int, {static_cast<double>(static_cast<int>(s.noise.profile))}},
-      {"u_spike_width", T::Float, {s.noise.spike_width}},
-      {"u_seed", T::Uint, {static_cast<double>(s.noise.seed)}}};
   const auto matrix = [](const glm::mat4& m) {
     return json_numbers(std::vector<float>(glm::value_ptr(m), glm::value_ptr(m) + 16));
   };
@@ -280,33 +364,21 @@ std::string web_page(const PreparedScene& p, WebPageReport* report, const WebPag
   const glm::vec3 centre = bounds.centre();
   const std::string name = std::filesystem::path(p.mesh_name).stem().string();
   const std::string header =
-      "{\"format\":\"ibfvs-page\",\"version\":1,\"name\":" +
+      "{\"format\":\"ibfvs-page\",\"version\":2,\"name\":" +
       json_string(name.empty() ? "ibfvs" : name) + ",\"width\":" + std::to_string(p.width) +
-      ",\"height\":" + std::to_string(p.height) + ",\"background\":" +
-      json_numbers(std::vector<float>{s.background.r, s.background.g, s.background.b}) +
-      ",\"no_depth\":" + json_number(IbfvsRenderer::kNoDepth) + ",\"dt\":" + json_number(p.dt) +
+      ",\"height\":" + std::to_string(p.height) +
+      ",\"no_depth\":" + json_number(IbfvsRenderer::kNoDepth) +
       ",\"probe\":" + json_number(shaders::probe_length(diagonal)) +
-      ",\"noise_rate\":" + json_number(s.noise.rate) +
-      ",\"colour_texture\":" + (colour_texture ? "true" : "false") +
-      ",\"texture_channels\":" + std::to_string(shaders::texture_channels(f)) +
-      ",\"advect_previous\":" + (s.advect_view == AdvectView::Previous ? "true" : "false") +
       ",\"cull\":" + std::to_string(closed_orientation(mesh)) +
       ",\"stats\":{\"size\":" + std::to_string(display_stats_size(p.width, p.height)) +
       ",\"every\":" + std::to_string(IbfvsRenderer::kStatsEvery) +
       ",\"weight\":" + json_number(IbfvsRenderer::kStatsWeight) + "}" +
       ",\"view\":" + matrix(camera.view()) + ",\"projection\":" + matrix(camera.projection()) +
       ",\"centre\":" + json_numbers(std::vector<float>{centre.x, centre.y, centre.z}) +
-      ",\"shaders\":{\"vertex\":" +
-      json_string(shaders::ibfvs_vertex_source(f, shaders::Dialect::Es300)) +
-      ",\"fragment\":" + json_string(shaders::ibfvs_fragment_source(f, shaders::Dialect::Es300)) +
-      ",\"grid_vertex\":" + json_string(shaders::grid_vertex_source(shaders::Dialect::Es300)) +
+      ",\"shaders\":{\"grid_vertex\":" +
+      json_string(shaders::grid_vertex_source(shaders::Dialect::Es300)) +
       ",\"grid_fragment\":" + json_string(shaders::grid_fragment_source(shaders::Dialect::Es300)) +
-      ",\"stats_fragment\":" +
-      json_string(shaders::stats_fragment_source(!colour_texture, shaders::Dialect::Es300)) +
-      "},\"uniforms\":" +
-      json_uniforms(
-          shaders::settings_uniforms(s, f, glm::ivec2(grid.columns(), grid.rows()), centre)) +
-      ",\"grid_uniforms\":" + json_uniforms(grid_uniforms) +
+      "},\"looks\":" + looks_json(p, glm::ivec2(grid.columns(), grid.rows()), centre) +
       ",\"vertex_count\":" + std::to_string(mesh.positions.size()) +
       ",\"steps\":" + std::to_string(steps) +
       ",\"frames_per_step\":" + std::to_string(p.scene.frames_per_step) +

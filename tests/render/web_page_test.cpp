@@ -52,6 +52,12 @@ TEST(WebPage, HoldsTheSceneTheShadersAndTheRuntime) {
   EXPECT_NE(page.find("\"width\":64,\"height\":48"), std::string::npos);
   EXPECT_NE(page.find("#version 300 es"), std::string::npos);
   EXPECT_NE(page.find("\"name\":\"u_alpha\""), std::string::npos);
+  // The looks: the scene's own, then the styles that take the same data.
+  EXPECT_NE(page.find("\"looks\":[{\"name\":\"as rendered\""), std::string::npos);
+  for (const char* style : {"flow", "crisp", "paper"})
+    EXPECT_NE(page.find("{\"name\":\"" + std::string(style) + "\""), std::string::npos) << style;
+  for (const char* style : {"bronze", "topology", "particles"})
+    EXPECT_EQ(page.find("{\"name\":\"" + std::string(style) + "\""), std::string::npos) << style;
   // One script element each for the header, the data and the runtime: no
   // "</script" inside any of them.
   std::size_t closings = 0;
@@ -59,6 +65,22 @@ TEST(WebPage, HoldsTheSceneTheShadersAndTheRuntime) {
        at = page.find("</script", at + 1))
     ++closings;
   EXPECT_EQ(closings, 3u);
+}
+
+TEST(WebPage, AStyledSceneIsNamedByItsStyle) {
+  if (!has_web_runtime()) GTEST_SKIP() << "built without the browser runtime";
+  Scene s;
+  s.mesh = "torus";
+  s.width = 64;
+  s.height = 48;
+  apply_style(s, Style::Crisp);
+  const std::string crisp = web_page(prepare_scene(s));
+  EXPECT_NE(crisp.find("\"looks\":[{\"name\":\"crisp\""), std::string::npos);
+  EXPECT_EQ(crisp.find("\"as rendered\""), std::string::npos);  // the same as crisp
+  s.filter = 12.0f;  // a key crisp sets, changed: the page's own look and crisp's
+  const std::string changed = web_page(prepare_scene(s));
+  EXPECT_NE(changed.find("\"looks\":[{\"name\":\"as rendered\""), std::string::npos);
+  EXPECT_NE(changed.find("{\"name\":\"crisp\""), std::string::npos);
 }
 
 TEST(WebPage, RefusesWhatIsTooBigAndNamesWithoutHtml) {

@@ -45,33 +45,42 @@ const i8 = (b: ArrayBuffer, o: number, n: number) => new Int8Array(b, o, n);
 const u32 = (b: ArrayBuffer, o: number, n: number) => new Uint32Array(b, o, n);
 const f32 = (b: ArrayBuffer, o: number, n: number) => new Float32Array(b, o, n);
 
-export interface SceneHeader {
-  format: "ibfvs-page";
-  version: 1;
+/// One style over the page's data: what the pass is compiled with and set to.
+export interface Look {
   name: string;
-  width: number;
-  height: number;
+  description: string;
   background: [number, number, number];
-  no_depth: number;
   dt: number;
-  probe: number;
   noise_rate: number;
   colour_texture: boolean;
   texture_channels: 2 | 4; // F_t: RG16F (grey value, depth) or RGBA16F (RGB or grey and displacement, depth)
   advect_previous: boolean;
+  phase_size: [number, number]; // its noise grid: the first columns x rows of the page's phases
+  shaders: { vertex: string; fragment: string; stats_fragment: string };
+  uniforms: Uniform[];
+  grid_uniforms: Uniform[];
+}
+
+export interface SceneHeader {
+  format: "ibfvs-page";
+  version: 2;
+  name: string;
+  width: number;
+  height: number;
+  no_depth: number;
+  probe: number;
   cull: number;
   stats: { size: number; every: number; weight: number };
   view: number[]; // column-major 4x4
   projection: number[];
   centre: [number, number, number];
-  shaders: { vertex: string; fragment: string; grid_vertex: string; grid_fragment: string; stats_fragment: string };
-  uniforms: Uniform[];
-  grid_uniforms: Uniform[];
+  shaders: { grid_vertex: string; grid_fragment: string };
+  looks: Look[]; // the scene's own first
   vertex_count: number;
   steps: number; // time steps of the field (1: steady)
   frames_per_step: number;
   index_count: number;
-  phase_size: [number, number];
+  phase_size: [number, number]; // of the phases array (the finest look's grid)
   arrays: {
     positions: ArrayRef & { min: number[]; max: number[] }; // uint16 x 4 (the last 0), in the box
     normals: ArrayRef; // int8 x 4 (snorm)
@@ -190,19 +199,23 @@ function framebuffer(gl: WebGL2RenderingContext, colours: WebGLTexture[], depth:
 export class PageRenderer {
   readonly gl: WebGL2RenderingContext;
   readonly scene: SceneHeader;
+  look: Look;
   frame = 0;
-  private main: WebGLProgram;
+  private main!: WebGLProgram;
   private grid: WebGLProgram;
-  private stats: WebGLProgram;
+  private stats!: WebGLProgram;
+  private programs = new Map<Look, [WebGLProgram, WebGLProgram]>(); // compiled looks: main, stats
   private vao: WebGLVertexArrayObject;
   private empty: WebGLVertexArrayObject;
-  private textures: WebGLTexture[];
+  private textures: WebGLTexture[] = [];
   private output: WebGLTexture;
-  private fbs: WebGLFramebuffer[];
-  private gridTexture: WebGLTexture;
-  private gridFb: WebGLFramebuffer;
-  private phases: WebGLTexture;
-  private phaseSize: [number, number];
+  private depth: WebGLTexture;
+  private fbs: WebGLFramebuffer[] = [];
+  private gridTexture: WebGLTexture | null = null;
+  private gridFb: WebGLFramebuffer | null = null;
+  private allPhases: Float32Array;
+  private phases: WebGLTexture | null = null;
+  private phaseSize: [number, number] = [0, 0];
   private statsTexture: WebGLTexture;
   private statsFb: WebGLFramebuffer;
   private colorMap: WebGLTexture;
@@ -216,12 +229,8 @@ export class PageRenderer {
     this.gl = gl;
     this.scene = scene;
     const s = scene, w = s.width, h = s.height;
-    this.main = compile(gl, s.shaders.vertex, s.shaders.fragment);
+    this.look = s.looks[0];
     this.grid = compile(gl, s.shaders.grid_vertex, s.shaders.grid_fragment);
-    this.stats = compile(gl, s.shaders.grid_vertex, s.shaders.stats_fragment);
-    this.applySettings(s.uniforms);
-    gl.useProgram(this.grid);
-    for (const u of s.grid_uniforms) setUniform(gl, this.grid, u);
 
     // The mesh: positions from 16 bits in the box, the rest as stored.
     const a = s.arrays;
@@ -258,45 +267,66 @@ export class PageRenderer {
     this.setTime(0);
     this.empty = gl.createVertexArray()!;
 
-    // F_t ping-pong, F, the depth, the grid, the statistics.
-    const [internal, format] = s.texture_channels === 4 ? [gl.RGBA16F, gl.RGBA] : [gl.RG16F, gl.RG];
-    this.textures = [0, 1].map(() => texture(gl, w, h, internal, format, gl.HALF_FLOAT, true));
+    // F and the depth; F_t, the grid and the programs come with the look.
     this.output = texture(gl, w, h, gl.RGBA8, gl.RGBA, gl.UNSIGNED_BYTE, false);
-    const depth = texture(gl, w, h, gl.DEPTH_COMPONENT24, gl.DEPTH_COMPONENT, gl.UNSIGNED_INT, false);
-    this.fbs = this.textures.map((t) => framebuffer(gl, [t, this.output], depth));
-    const [cols, rows] = s.phase_size;
+    this.depth = texture(gl, w, h, gl.DEPTH_COMPONENT24, gl.DEPTH_COMPONENT, gl.UNSIGNED_INT, false);
     const p16 = new Uint16Array(data, a.phases.offset, a.phases.length);
-    const p32 = new Float32Array(p16.length);
-    for (let i = 0; i < p16.length; ++i) p32[i] = p16[i] / 65535;
-    this.phases = texture(gl, cols, rows, gl.R32F, gl.RED, gl.FLOAT, false, p32);
-    this.phaseSize = [cols, rows];
-    [this.gridTexture, this.gridFb] = this.makeGrid(cols, rows);
+    this.allPhases = new Float32Array(p16.length);
+    for (let i = 0; i < p16.length; ++i) this.allPhases[i] = p16[i] / 65535;
     this.statsTexture = texture(gl, 1, 1, gl.RGBA32F, gl.RGBA, gl.FLOAT, false);
     this.statsFb = framebuffer(gl, [this.statsTexture], null);
     this.colorMap = texture(gl, 256, 1, gl.RGBA8, gl.RGBA, gl.UNSIGNED_BYTE, true,
                             new Uint8Array(data, a.color_map.offset, a.color_map.length));
+    this.setLook(0);
+  }
+
+  /// Shows the scene in look `index` (a style over the same data), from a
+  /// fresh texture: its programs (compiled once), F_t's channels, its noise
+  /// grid and its uniforms.
+  setLook(index: number): void {
+    const gl = this.gl, s = this.scene, look = s.looks[index];
+    const channels = this.textures.length ? this.look.texture_channels : 0;
+    this.look = look;
+    let programs = this.programs.get(look);
+    if (!programs) {
+      programs = [compile(gl, look.shaders.vertex, look.shaders.fragment),
+                  compile(gl, s.shaders.grid_vertex, look.shaders.stats_fragment)];
+      this.programs.set(look, programs);
+    }
+    [this.main, this.stats] = programs;
+    this.applySettings(look.uniforms);
+    gl.useProgram(this.grid);
+    for (const u of look.grid_uniforms) setUniform(gl, this.grid, u);
+    // F_t ping-pong, in the look's channels.
+    if (channels !== look.texture_channels) {
+      this.textures.forEach((t) => gl.deleteTexture(t));
+      this.fbs.forEach((f) => gl.deleteFramebuffer(f));
+      const [internal, format] = look.texture_channels === 4 ? [gl.RGBA16F, gl.RGBA] : [gl.RG16F, gl.RG];
+      this.textures = [0, 1].map(() => texture(gl, s.width, s.height, internal, format, gl.HALF_FLOAT, true));
+      this.fbs = this.textures.map((t) => framebuffer(gl, [t, this.output], this.depth));
+    }
+    const scale = look.uniforms.find((u) => u.name === "u_noise_scale");
+    this.setNoiseScale(scale ? scale.values[0] : 1, look.phase_size);
     this.reset();
   }
 
-  // The grid pass's target: G_ij, sampled bilinearly and repeating (eq. 7).
-  private makeGrid(cols: number, rows: number): [WebGLTexture, WebGLFramebuffer] {
-    const gl = this.gl;
-    const t = texture(gl, cols, rows, gl.R32F, gl.RED, gl.FLOAT, true);
+  /// The noise scale s in pixels, at least the finest look's: the grid of
+  /// floor(size / s) + 2 points a side takes the first of the page's phases,
+  /// as NoiseGrid numbers them (row by row), so it is ibfvs render's grid.
+  setNoiseScale(scale: number, size?: [number, number]): void {
+    const gl = this.gl, s = this.scene;
+    const [cols, rows] = size ?? [Math.min(Math.floor(s.width / scale) + 2, s.phase_size[0]),
+                                  Math.min(Math.floor(s.height / scale) + 2, s.phase_size[1])];
+    if (this.phases) gl.deleteTexture(this.phases);
+    if (this.gridTexture) gl.deleteTexture(this.gridTexture);
+    if (this.gridFb) gl.deleteFramebuffer(this.gridFb);
+    this.phases = texture(gl, cols, rows, gl.R32F, gl.RED, gl.FLOAT, false,
+                          this.allPhases.subarray(0, cols * rows));
+    // The grid pass's target: G_ij, sampled bilinearly and repeating (eq. 7).
+    this.gridTexture = texture(gl, cols, rows, gl.R32F, gl.RED, gl.FLOAT, true);
     gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_S, gl.REPEAT);
     gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_T, gl.REPEAT);
-    return [t, framebuffer(gl, [t], null)];
-  }
-
-  /// The noise scale s in pixels, at least the page's own: the grid of
-  /// floor(size / s) + 2 points a side (as NoiseGrid) takes the first of the
-  /// page's phases.
-  setNoiseScale(scale: number): void {
-    const gl = this.gl, s = this.scene;
-    const cols = Math.min(Math.floor(s.width / scale) + 2, s.phase_size[0]);
-    const rows = Math.min(Math.floor(s.height / scale) + 2, s.phase_size[1]);
-    gl.deleteTexture(this.gridTexture);
-    gl.deleteFramebuffer(this.gridFb);
-    [this.gridTexture, this.gridFb] = this.makeGrid(cols, rows);
+    this.gridFb = framebuffer(gl, [this.gridTexture], null);
     this.phaseSize = [cols, rows];
     this.applySettings([
       { name: "u_noise_scale", type: "float", values: [scale] },
@@ -337,9 +367,9 @@ export class PageRenderer {
   }
 
   private clear(fb: WebGLFramebuffer): void {
-    const gl = this.gl, b = this.scene.background, d = this.scene.no_depth;
+    const gl = this.gl, b = this.look.background, d = this.scene.no_depth;
     gl.bindFramebuffer(gl.FRAMEBUFFER, fb);
-    gl.clearBufferfv(gl.COLOR, 0, this.scene.colour_texture ? [b[0], b[1], b[2], d] : [b[0], d, 0, 0]);
+    gl.clearBufferfv(gl.COLOR, 0, this.look.colour_texture ? [b[0], b[1], b[2], d] : [b[0], d, 0, 0]);
     gl.clearBufferfv(gl.COLOR, 1, [b[0], b[1], b[2], 1]);
     gl.clearBufferfi(gl.DEPTH_STENCIL, 0, 1, 0);
   }
@@ -349,17 +379,17 @@ export class PageRenderer {
     const gl = this.gl, s = this.scene;
     const vp = mat4.multiply(mat4.create(), projection, view);
     const next = 1 - this.current;
-    const noiseTime = s.noise_rate * this.frame;
+    const noiseTime = this.look.noise_rate * this.frame;
     gl.disable(gl.BLEND);
     // The grid pass: G_ij of this frame.
-    gl.bindFramebuffer(gl.FRAMEBUFFER, this.gridFb);
+    gl.bindFramebuffer(gl.FRAMEBUFFER, this.gridFb!);
     gl.viewport(0, 0, this.phaseSize[0], this.phaseSize[1]);
     gl.disable(gl.DEPTH_TEST);
     gl.disable(gl.CULL_FACE);
     gl.useProgram(this.grid);
     gl.uniform1f(locate(gl, this.grid, "u_noise_time"), noiseTime);
     gl.activeTexture(gl.TEXTURE0);
-    gl.bindTexture(gl.TEXTURE_2D, this.phases);
+    gl.bindTexture(gl.TEXTURE_2D, this.phases!);
     gl.bindVertexArray(this.empty);
     gl.drawArrays(gl.TRIANGLES, 0, 3);
     // The IBFVS pass into F_t (next) and F.
@@ -375,7 +405,7 @@ export class PageRenderer {
     gl.useProgram(p);
     const at = (n: string) => locate(gl, p, n);
     gl.uniformMatrix4fv(at("u_view_projection"), false, vp);
-    const advect = s.advect_previous && this.previousViewProjection ? this.previousViewProjection : vp;
+    const advect = this.look.advect_previous && this.previousViewProjection ? this.previousViewProjection : vp;
     gl.uniformMatrix4fv(at("u_advect_view_projection"), false, advect);
     gl.uniformMatrix4fv(at("u_view"), false, view);
     const pr = projection;
@@ -393,7 +423,7 @@ export class PageRenderer {
       gl.bindTexture(gl.TEXTURE_2D, t);
     };
     bind(0, this.textures[this.current]);
-    bind(1, this.gridTexture);
+    bind(1, this.gridTexture!);
     bind(2, this.colorMap);
     bind(4, this.statsTexture);
     gl.bindFramebuffer(gl.FRAMEBUFFER, this.fbs[next]);
@@ -509,33 +539,62 @@ export function start(root: HTMLElement, scene: SceneHeader, data: ArrayBuffer):
     play.textContent = playing ? "Pause" : "Play";
   });
   panel.appendChild(play);
-  const uniform = (name: string) => scene.uniforms.find((u) => u.name === name);
-  for (const [name, label] of [["u_alpha", "alpha"], ["u_beta", "beta"]] as const) {
-    const u = uniform(name);
-    if (!u) continue;
-    slider(panel, label, 0, 1, u.values[0], (v) => {
-      u.values[0] = v;
-      renderer.applySettings([u]);
-    });
-  }
-  // The step: pixels per frame of every point (image-space normalisation),
-  // else a factor on the scene's dt.
+  // The styles that take the page's data (the scene's own first): each
+  // brings its own sliders.
   let dtFactor = 1;
-  const imageStep = uniform("u_image_step");
-  if (imageStep && imageStep.values[0] > 0) {
-    slider(panel, "step (px)", 0.25, 8, imageStep.values[0], (v) => {
-      imageStep.values[0] = v;
-      renderer.applySettings([imageStep]);
+  const controls = document.createElement("span");
+  controls.style.display = "contents"; // its sliders flow in the panel
+  const lookControls = () => {
+    controls.replaceChildren();
+    dtFactor = 1;
+    const uniform = (name: string) => renderer.look.uniforms.find((u) => u.name === name);
+    for (const [name, label] of [["u_alpha", "alpha"], ["u_beta", "beta"]] as const) {
+      const u = uniform(name);
+      if (!u) continue;
+      slider(controls, label, 0, 1, u.values[0], (v) => {
+        u.values[0] = v;
+        renderer.applySettings([u]);
+      });
+    }
+    // The step: pixels per frame of every point (image-space normalisation),
+    // else a factor on the look's dt.
+    const imageStep = uniform("u_image_step");
+    if (imageStep && imageStep.values[0] > 0) {
+      slider(controls, "step (px)", 0.25, 8, imageStep.values[0], (v) => {
+        imageStep.values[0] = v;
+        renderer.applySettings([imageStep]);
+      });
+    } else {
+      slider(controls, "speed", 0, 4, 1, (v) => (dtFactor = v));
+    }
+    // The noise scale, from the look's own up (the phases cover finer grids only).
+    const noiseScale = uniform("u_noise_scale");
+    if (noiseScale) {
+      const base = noiseScale.values[0];
+      slider(controls, "noise scale (px)", base, 6 * base, base, (v) => renderer.setNoiseScale(v));
+    }
+  };
+  if (scene.looks.length > 1) {
+    const wrap = document.createElement("label");
+    wrap.textContent = "style ";
+    const menu = document.createElement("select");
+    menu.dataset.name = "style";
+    scene.looks.forEach((look, i) => {
+      const option = document.createElement("option");
+      option.value = String(i);
+      option.textContent = look.name;
+      option.title = look.description;
+      menu.appendChild(option);
     });
-  } else {
-    slider(panel, "speed", 0, 4, 1, (v) => (dtFactor = v));
+    menu.addEventListener("change", () => {
+      renderer.setLook(parseInt(menu.value, 10));
+      lookControls();
+    });
+    wrap.appendChild(menu);
+    panel.appendChild(wrap);
   }
-  // The noise scale, from the page's own up (its phases cover finer grids only).
-  const noiseScale = uniform("u_noise_scale");
-  if (noiseScale) {
-    const base = noiseScale.values[0];
-    slider(panel, "noise scale (px)", base, 6 * base, base, (v) => renderer.setNoiseScale(v));
-  }
+  lookControls();
+  panel.appendChild(controls);
   // Time steps: a slider over the steps, moving while playing.
   let time = 0;
   let timeSlider: HTMLInputElement | null = null;
@@ -634,7 +693,7 @@ export function start(root: HTMLElement, scene: SceneHeader, data: ArrayBuffer):
         renderer.setTime(time);
         if (timeSlider) timeSlider.value = String(time);
       }
-      renderer.render(nav.view(), nav.projection(), scene.dt * dtFactor);
+      renderer.render(nav.view(), nav.projection(), renderer.look.dt * dtFactor);
     }
     renderer.present();
     const w = window as unknown as { ibfvsFrames: number; ibfvsTime: number };

@@ -44,6 +44,13 @@ async function open(file, setup) {
 
 const frames = (page, n) => page.waitForFunction(`(window.ibfvsFrames || 0) >= ${n}`, { timeout: 120000 });
 const frameNow = (page) => page.evaluate("window.ibfvsFrames");
+// Pauses the page (its Pause button) once it has drawn n frames, checked on
+// every animation frame: the picture of frame n or n + 1 stays.
+const pauseAt = (page, n) => page.waitForFunction(`(() => {
+  if ((window.ibfvsFrames || 0) < ${n}) return false;
+  document.querySelector("button").click();
+  return true;
+})()`, { timeout: 120000, polling: "raf" });
 
 async function shot(page, name) {
   const file = path.join(out, name + ".png");
@@ -147,6 +154,29 @@ test("the noise scale slider coarsens the texture", async () => {
   const coarse = await roughness(page);
   assert.deepEqual(messages, []);
   assert.ok(coarse < 0.8 * fine, `roughness ${fine} at the page's scale, ${coarse} at 5 px`);
+  await page.close();
+});
+
+test("the style menu shows the same data in another style, as ibfvs render draws it", async () => {
+  const { page, messages } = await open(writePage("cow-styles"));
+  const menu = 'select[data-name="style"]';
+  await page.waitForSelector(menu);
+  // The styles that take the page's data; bronze, particles, ... need other data.
+  const names = await page.$$eval(menu + " option", (o) => o.map((e) => e.textContent));
+  assert.deepEqual(names, ["as rendered", "flow", "crisp", "paper"]);
+  await frames(page, 10);
+  await page.select(menu, String(names.indexOf("paper")));  // from a fresh texture: frame 0
+  await pauseAt(page, 61);
+  const a = alignment(await shot(page, "cow-paper"));
+  const rendered = path.join(out, "cow-paper-render.png");
+  execFileSync(ibfvs, ["render", "--mesh", "data/meshes/cow.off", "--field", "rotate:0,0,1",
+                       "--size", "256x256", "--style", "paper", "--frames", "61", "--out", rendered,
+                       "-q"]);
+  const reference = alignment(rendered);
+  assert.deepEqual(messages, []);
+  assert.ok(Math.abs(a - reference) <= 0.03, `page ${a}, ibfvs render --style paper ${reference}`);
+  // The paper's 4-pixel cells, not the page's own 1-pixel ones.
+  assert.ok(await page.$('input[data-name="noise scale (px)"][min="4"]'));
   await page.close();
 });
 

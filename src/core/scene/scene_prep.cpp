@@ -104,6 +104,35 @@ PreparedScene resized(const PreparedScene& prepared, int width, int height) {
   return p;
 }
 
+std::optional<PreparedScene> restyled(const PreparedScene& prepared, Style style) {
+  Scene s = prepared.scene;
+  apply_style(s, style);
+  // Keys a restyle carries besides the live texture keys: the noise grid
+  // and dt are rebuilt below.
+  static const std::set<std::string_view> rebuilt = {"style", "scale", "seed", "step",
+                                                     "image_normalize"};
+  for (const SceneKey& key : scene_keys()) {
+    if (key.get(s) == key.get(prepared.scene)) continue;
+    // A percentile range (unset: p1,p99) needs the scalars again.
+    const auto by_percentile = [](const std::optional<ScalarRange>& r) {
+      return !r || r->percentile;
+    };
+    const bool percentile = (key.name == "color_range" && by_percentile(s.color_range)) ||
+                            (key.name == "beta_range" && by_percentile(s.beta_range));
+    if ((is_live_texture_key(key.name) && !percentile) || rebuilt.count(key.name)) continue;
+    return std::nullopt;
+  }
+  if (s.init == InitMode::RandomCells) return std::nullopt;
+  PreparedScene p = prepared;
+  p.scene = s;
+  apply_texture_settings(s, p.settings);
+  p.settings.noise.scale = s.scale;
+  p.settings.noise.seed = s.seed;
+  p.settings.validate();
+  fit_to_image(p, p.width, p.height);
+  return p;
+}
+
 void apply_texture_settings(const Scene& s, RenderSettings& settings) {
   settings.alpha = s.alpha;
   settings.beta = s.beta;

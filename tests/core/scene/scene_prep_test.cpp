@@ -84,6 +84,45 @@ TEST(ScenePrep, ResizedSharesTheMeshAndKeepsTheStepInPixels) {
   EXPECT_THROW(resized(p, 0, 10), SettingError);
 }
 
+TEST(ScenePrep, RestyledChangesTheLookAndKeepsTheData) {
+  Scene s;
+  s.mesh = "torus";
+  s.field = FieldSpec::parse("rotate:0,1,0");
+  s.width = 160;
+  s.height = 120;
+  const PreparedScene p = prepare_scene(s);
+  const std::optional<PreparedScene> crisp = restyled(p, Style::Crisp);
+  ASSERT_TRUE(crisp);
+  EXPECT_EQ(crisp->mesh.get(), p.mesh.get());  // the same data
+  EXPECT_EQ(crisp->settings.filter_length, 16.0f);
+  EXPECT_EQ(crisp->scene.style, Style::Crisp);
+  const std::optional<PreparedScene> paper = restyled(p, Style::Paper);
+  ASSERT_TRUE(paper);
+  EXPECT_EQ(paper->settings.noise.scale, 4.0f);
+  EXPECT_EQ(paper->settings.image_step, 0.0f);
+  EXPECT_EQ(paper->settings.filter_length, 0.0f);
+  EXPECT_NEAR(paper->max_px, 3.0f, 1e-4f);  // the paper's step, through dt
+  EXPECT_NE(paper->dt, p.dt);
+  // A field of its own (the principal directions), curvature colours, random
+  // cells and a camera of its own need other data.
+  EXPECT_FALSE(restyled(p, Style::Particles));
+  EXPECT_FALSE(restyled(p, Style::Principal));
+  EXPECT_FALSE(restyled(p, Style::Bronze));
+  EXPECT_FALSE(restyled(p, Style::Eroded));
+  EXPECT_FALSE(restyled(p, Style::Topology));
+  // From the particles style (its field in force), the flow look keeps that
+  // field; the principal style signs it otherwise.
+  Scene particles = s;
+  particles.field.reset();
+  apply_style(particles, Style::Particles);
+  const PreparedScene q = prepare_scene(particles);
+  const std::optional<PreparedScene> flow = restyled(q, Style::Flow);
+  ASSERT_TRUE(flow);
+  EXPECT_EQ(flow->field, q.field);
+  EXPECT_EQ(flow->settings.beta, 0.5f);
+  EXPECT_FALSE(restyled(q, Style::Principal));
+}
+
 TEST(ScenePrep, ErrorsNameTheKey) {
   const auto key_of = [](Scene s) -> std::string {
     try {

@@ -71,6 +71,15 @@ PreparedScene prepare_scene(const Scene& scene, TriMesh mesh, const std::string&
 /// SettingError for a size outside 1..16384.
 PreparedScene resized(const PreparedScene& prepared, int width, int height);
 
+/// The prepared scene with `style`'s look, as the viewer's style keys give it
+/// (the style's defaults over the scene), when that look takes the same data:
+/// what changes is texture settings (is_live_texture_key), the noise scale
+/// and seed and the step (dt follows). Empty when the style needs other data:
+/// curvature colours, a field of its own (the particles and principal styles
+/// are pictures of the principal directions), random cells, its own camera.
+/// Throws SettingError for settings the style makes invalid.
+std::optional<PreparedScene> restyled(const PreparedScene& prepared, Style style);
+
 /// The mesh's thinnest bounding-box axis (+X, +Y or +Z): the height axis of a
 /// terrain.
 glm::vec3 thinnest_axis(const TriMesh& mesh);

@@ -178,7 +178,9 @@ using T = shaders::UniformValue::Type;
 std::string look_json(const PreparedScene& q, const std::string& name, std::string_view description,
                       glm::ivec2 finest, glm::vec3 centre) {
   const RenderSettings& s = q.settings;
-  const bool colour_texture = shaders::colour_background(s);
+  // Random-cell colours make F_t a colour texture, as in the renderer.
+  const bool colour_texture =
+      shaders::colour_background(s) || q.scene.init == InitMode::RandomCells;
   const shaders::ShaderFeatures f = shaders::features_for(s, colour_texture, false, false);
   const NoiseGrid grid(q.width, q.height, s.noise);
   const glm::ivec2 phase_size = glm::min(glm::ivec2(grid.columns(), grid.rows()), finest);
@@ -228,6 +230,8 @@ std::string looks_json(const PreparedScene& p, glm::ivec2 finest, glm::vec3 cent
   looks.push_back(as_style ? look_json(p, std::string(enum_name(*p.scene.style)),
                                        description(*p.scene.style), finest, centre)
                            : own);
+  // Random cells start F_t from colours of the look's own noise cells: one look.
+  if (p.scene.init == InitMode::RandomCells) return "[" + looks.front() + "]";
   for (const auto& e : enum_entries<Style>()) {
     std::optional<PreparedScene> q;
     try {
@@ -261,8 +265,6 @@ std::string web_page(const PreparedScene& p, WebPageReport* report, const WebPag
                      "scripts/install-deps.sh)");
   if (!p.surface_image.pixels.empty())
     throw InputError(what + ": a surface image is not in pages yet");
-  if (p.scene.init == InitMode::RandomCells)
-    throw InputError(what + ": random-cell colours are not in pages yet");
   const TriMesh& mesh = *p.mesh;
   if (mesh.triangle_count() > limits.triangles)
     throw InputError(what + ": " + std::to_string(mesh.triangle_count()) +
@@ -355,6 +357,22 @@ std::string web_page(const PreparedScene& p, WebPageReport* report, const WebPag
     }
     arrays += ",\"scalars\":" + block.add_vertices(scalars, 2);
   }
+  if (p.scene.init == InitMode::RandomCells) {
+    // F_t's first colours, one per noise cell (IbfvsRenderer::
+    // fill_texture_with_cell_colors): half floats, as F_t holds them.
+    const int columns =
+        static_cast<int>(std::ceil(static_cast<float>(p.width) / s.noise.scale)) + 1;
+    const int rows = static_cast<int>(std::ceil(static_cast<float>(p.height) / s.noise.scale)) + 1;
+    std::vector<std::uint16_t> cells;
+    cells.reserve(static_cast<std::size_t>(columns) * rows * 4);
+    for (std::uint64_t cell = 0; cell < static_cast<std::uint64_t>(columns) * rows; ++cell) {
+      for (std::uint64_t c = 0; c < 3; ++c)
+        cells.push_back(glm::packHalf1x16(hash_uniform(p.scene.seed, 3 * cell + c)));
+      cells.push_back(0);
+    }
+    arrays += ",\"cells\":" + block.add(cells, ",\"columns\":" + std::to_string(columns) +
+                                                   ",\"scale\":" + json_number(s.noise.scale));
+  }
   arrays += "}";
 
   const auto matrix = [](const glm::mat4& m) {
@@ -363,11 +381,21 @@ std::string web_page(const PreparedScene& p, WebPageReport* report, const WebPag
   const float diagonal = bounds.diagonal();
   const glm::vec3 centre = bounds.centre();
   const std::string name = std::filesystem::path(p.mesh_name).stem().string();
+  // The lock (Session::advance): at that frame F_t stops and the camera
+  // moves to the lock view.
+  std::string lock = "null";
+  if (p.lock_at >= 0) {
+    const Camera lock_camera(bounds, p.lock_camera.value_or(p.camera),
+                             static_cast<float>(p.width) / static_cast<float>(p.height));
+    lock = "{\"frame\":" + std::to_string(p.lock_at) + ",\"view\":" + matrix(lock_camera.view()) +
+           ",\"projection\":" + matrix(lock_camera.projection()) + "}";
+  }
   const std::string header =
       "{\"format\":\"ibfvs-page\",\"version\":2,\"name\":" +
       json_string(name.empty() ? "ibfvs" : name) + ",\"width\":" + std::to_string(p.width) +
       ",\"height\":" + std::to_string(p.height) +
       ",\"no_depth\":" + json_number(IbfvsRenderer::kNoDepth) +
+      ",\"any_depth\":" + json_number(IbfvsRenderer::kAnyDepth) + ",\"lock\":" + lock +
       ",\"probe\":" + json_number(shaders::probe_length(diagonal)) +
       ",\"cull\":" + std::to_string(closed_orientation(mesh)) +
       ",\"stats\":{\"size\":" + std::to_string(display_stats_size(p.width, p.height)) +

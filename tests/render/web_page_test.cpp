@@ -83,6 +83,23 @@ TEST(WebPage, AStyledSceneIsNamedByItsStyle) {
   EXPECT_NE(changed.find("{\"name\":\"crisp\""), std::string::npos);
 }
 
+TEST(WebPage, TopologyHoldsItsCellColoursAndItsLock) {
+  if (!has_web_runtime()) GTEST_SKIP() << "built without the browser runtime";
+  Scene s;
+  s.mesh = "landscape:2:6";
+  apply_style(s, Style::Topology);
+  s.width = 64;
+  s.height = 48;
+  const PreparedScene p = prepare_scene(s);
+  const std::string page = web_page(p);
+  EXPECT_NE(page.find("\"cells\":{"), std::string::npos);
+  EXPECT_NE(page.find("\"lock\":{\"frame\":" + std::to_string(p.lock_at) + ","), std::string::npos);
+  // The cells are of the look's own noise scale: no other look.
+  EXPECT_NE(page.find("\"looks\":[{\"name\":\"topology\""), std::string::npos);
+  EXPECT_EQ(page.find("{\"name\":\"flow\""), std::string::npos);
+  EXPECT_NE(web_page(torus_scene()).find("\"lock\":null"), std::string::npos);
+}
+
 TEST(WebPage, RefusesWhatIsTooBigAndNamesWithoutHtml) {
   const PreparedScene scene = torus_scene();
   if (!has_web_runtime()) GTEST_SKIP() << "built without the browser runtime";

@@ -68,6 +68,9 @@ export interface SceneHeader {
   width: number;
   height: number;
   no_depth: number;
+  any_depth: number;
+  // At this frame F_t stops and the camera moves to the lock view (null: never).
+  lock: { frame: number; view: number[]; projection: number[] } | null;
   probe: number;
   cull: number;
   stats: { size: number; every: number; weight: number };
@@ -89,7 +92,17 @@ export interface SceneHeader {
     indices: ArrayRef; // uint32
     phases: ArrayRef; // uint16, phi * 65535
     color_map: ArrayRef; // uint8 RGBA x 256
+    // F_t's first colours, one per noise cell of `scale` pixels, float16 RGB_ by rows of `columns`
+    cells?: ArrayRef & { columns: number; scale: number };
   };
+}
+
+/// An IEEE half float's value.
+function halfToFloat(h: number): number {
+  const exponent = (h >> 10) & 31, fraction = h & 1023, sign = h & 0x8000 ? -1 : 1;
+  if (exponent === 0) return sign * fraction * 2 ** -24;
+  if (exponent === 31) return fraction ? NaN : sign * Infinity;
+  return sign * (1 + fraction / 1024) * 2 ** (exponent - 15);
 }
 
 function decodeBase64(text: string): ArrayBuffer {
@@ -224,6 +237,9 @@ export class PageRenderer {
   private step = -1;
   private fieldMix = 0;
   private previousViewProjection: mat4 | null = null;
+  private cells: Float32Array | null = null; // F_t's first texels (random cells), or null
+  locked = false;
+  private lockViewProjection: mat4 | null = null;
 
   constructor(gl: WebGL2RenderingContext, scene: SceneHeader, data: ArrayBuffer) {
     this.gl = gl;
@@ -277,6 +293,18 @@ export class PageRenderer {
     this.statsFb = framebuffer(gl, [this.statsTexture], null);
     this.colorMap = texture(gl, 256, 1, gl.RGBA8, gl.RGBA, gl.UNSIGNED_BYTE, true,
                             new Uint8Array(data, a.color_map.offset, a.color_map.length));
+    if (a.cells) {
+      // IbfvsRenderer::fill_texture_with_cell_colors: each texel its cell's colour, any depth.
+      const c16 = new Uint16Array(data, a.cells.offset, a.cells.length);
+      const { columns, scale } = a.cells;
+      this.cells = new Float32Array(w * h * 4);
+      for (let y = 0; y < h; ++y)
+        for (let x = 0; x < w; ++x) {
+          const cell = Math.floor(y / scale) * columns + Math.floor(x / scale), i = (y * w + x) * 4;
+          for (let c = 0; c < 3; ++c) this.cells[i + c] = halfToFloat(c16[cell * 4 + c]);
+          this.cells[i + 3] = s.any_depth;
+        }
+    }
     this.setLook(0);
   }
 
@@ -356,9 +384,23 @@ export class PageRenderer {
     for (const u of uniforms) setUniform(this.gl, this.main, u);
   }
 
+  /// F_t stops as it is and is mapped onto the surface as seen now, while the
+  /// view moves (IbfvsRenderer::lock).
+  lock(): void {
+    if (this.locked) return;
+    this.locked = true;
+    this.lockViewProjection = this.previousViewProjection;
+  }
+
   reset(): void {
     const gl = this.gl;
     for (const fb of this.fbs) this.clear(fb);
+    if (this.cells) {
+      gl.bindTexture(gl.TEXTURE_2D, this.textures[0]);
+      gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, this.scene.width, this.scene.height, gl.RGBA, gl.FLOAT,
+                       this.cells);
+    }
+    this.locked = false;
     gl.bindFramebuffer(gl.FRAMEBUFFER, this.statsFb);
     gl.clearBufferfv(gl.COLOR, 0, [0, 0, 0, 0]); // no statistics before the first frame
     this.current = 0;
@@ -405,18 +447,19 @@ export class PageRenderer {
     gl.useProgram(p);
     const at = (n: string) => locate(gl, p, n);
     gl.uniformMatrix4fv(at("u_view_projection"), false, vp);
-    const advect = this.look.advect_previous && this.previousViewProjection ? this.previousViewProjection : vp;
+    const advect = this.locked && this.lockViewProjection ? this.lockViewProjection
+      : this.look.advect_previous && this.previousViewProjection ? this.previousViewProjection : vp;
     gl.uniformMatrix4fv(at("u_advect_view_projection"), false, advect);
     gl.uniformMatrix4fv(at("u_view"), false, view);
     const pr = projection;
     if (pr[15] === 0) gl.uniform2f(at("u_clip_to_depth"), 0, 1);
     else gl.uniform2f(at("u_clip_to_depth"), -1 / pr[10], pr[14] / pr[10]);
-    gl.uniform1f(at("u_dt"), dt);
+    gl.uniform1f(at("u_dt"), this.locked ? 0 : dt);
     gl.uniform1f(at("u_probe"), s.probe);
     gl.uniform1f(at("u_field_mix"), this.fieldMix);
     gl.uniform2f(at("u_texture_shift"), 0, 0);
     gl.uniform2f(at("u_noise_shift"), 0, 0);
-    gl.uniform1i(at("u_locked"), 0);
+    gl.uniform1i(at("u_locked"), this.locked ? 1 : 0);
     gl.uniform1f(at("u_noise_time"), noiseTime);
     const bind = (unit: number, t: WebGLTexture) => {
       gl.activeTexture(gl.TEXTURE0 + unit);
@@ -449,8 +492,10 @@ export class PageRenderer {
       gl.drawArrays(gl.TRIANGLES, 0, 3);
       gl.disable(gl.BLEND);
     }
-    this.current = next;
-    this.previousViewProjection = vp;
+    if (!this.locked) {  // a locked F_t stays where it is; F is shared
+      this.current = next;
+      this.previousViewProjection = vp;
+    }
     ++this.frame;
   }
 
@@ -475,9 +520,19 @@ class Navigation {
   turn = mat4.create();
   zoom = 1;
   pan = [0, 0];
-  constructor(private scene: SceneHeader) {}
+  private base: { view: number[]; projection: number[] };
+  constructor(private scene: SceneHeader) {
+    this.base = scene;
+  }
+  /// Starts again from `base`'s camera (the scene's, or its lock view).
+  moveTo(base: { view: number[]; projection: number[] }): void {
+    this.base = base;
+    this.turn = mat4.create();
+    this.zoom = 1;
+    this.pan = [0, 0];
+  }
   view(): mat4 {
-    const v0 = mat4.clone(this.scene.view as unknown as mat4);
+    const v0 = mat4.clone(this.base.view as unknown as mat4);
     const c = vec3.transformMat4(vec3.create(), this.scene.centre as unknown as vec3, v0);
     const m = mat4.fromTranslation(mat4.create(), c);
     mat4.multiply(m, m, this.turn);
@@ -487,7 +542,7 @@ class Navigation {
   projection(): mat4 {
     const m = mat4.fromTranslation(mat4.create(), [this.pan[0], this.pan[1], 0]);
     mat4.scale(m, m, [this.zoom, this.zoom, 1]);
-    return mat4.multiply(m, m, this.scene.projection as unknown as mat4);
+    return mat4.multiply(m, m, this.base.projection as unknown as mat4);
   }
   drag(dx: number, dy: number): void {
     // Degrees per pixel as ibfvs view's.
@@ -539,6 +594,16 @@ export function start(root: HTMLElement, scene: SceneHeader, data: ArrayBuffer):
     play.textContent = playing ? "Pause" : "Play";
   });
   panel.appendChild(play);
+  // A scene with a lock (the topology style) plays to it and stays: Replay starts it again.
+  if (scene.lock) {
+    const replay = document.createElement("button");
+    replay.textContent = "Replay";
+    replay.addEventListener("click", () => {
+      renderer.reset();
+      nav.moveTo(scene);
+    });
+    panel.appendChild(replay);
+  }
   // The styles that take the page's data (the scene's own first): each
   // brings its own sliders.
   let dtFactor = 1;
@@ -693,11 +758,16 @@ export function start(root: HTMLElement, scene: SceneHeader, data: ArrayBuffer):
         renderer.setTime(time);
         if (timeSlider) timeSlider.value = String(time);
       }
+      if (scene.lock && renderer.frame === scene.lock.frame && !renderer.locked) {
+        renderer.lock(); // as Session::advance: before the lock frame is drawn
+        nav.moveTo(scene.lock);
+      }
       renderer.render(nav.view(), nav.projection(), renderer.look.dt * dtFactor);
     }
     renderer.present();
-    const w = window as unknown as { ibfvsFrames: number; ibfvsTime: number };
+    const w = window as unknown as { ibfvsFrames: number; ibfvsTime: number; ibfvsLocked: boolean };
     w.ibfvsFrames = renderer.frame;
+    w.ibfvsLocked = renderer.locked;
     w.ibfvsTime = time;
     requestAnimationFrame(tick);
   };

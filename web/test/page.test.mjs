@@ -180,6 +180,53 @@ test("the style menu shows the same data in another style, as ibfvs render draws
   await page.close();
 });
 
+// The fraction of the canvas's pixels that differ from a PNG (ibfvs
+// render's frame) by more than 24 of 255 in a channel, compared in the page
+// (the PNG as a data URL: no file access).
+const differsFrom = (page, png) => page.evaluate(async (url) => {
+  const image = new Image();
+  image.src = url;
+  await image.decode();
+  const c = document.querySelector("canvas");
+  const pixels = (source) => {
+    const t = document.createElement("canvas");
+    t.width = c.width;
+    t.height = c.height;
+    const x = t.getContext("2d");
+    x.drawImage(source, 0, 0);
+    return x.getImageData(0, 0, c.width, c.height).data;
+  };
+  const a = pixels(c), b = pixels(image);
+  let differ = 0;
+  for (let i = 0; i < a.length; i += 4)
+    if (Math.max(...[0, 1, 2].map((k) => Math.abs(a[i + k] - b[i + k]))) > 24) ++differ;
+  return differ / (a.length / 4);
+}, "data:image/png;base64," + fs.readFileSync(png).toString("base64"));
+
+test("the topology style: random cell colours, locked and seen obliquely, as ibfvs render", async () => {
+  const args = ["render", "scenes/figure7-topology.toml", "--size", "128x128", "-q"];
+  const file = path.join(out, "topology.html");
+  const rendered = path.join(out, "topology.png");
+  execFileSync(ibfvs, [...args, "--out", file]);
+  execFileSync(ibfvs, [...args, "--out", rendered]);  // the lock frame + 60
+  const { page, messages } = await open(file);
+  await page.waitForFunction("window.ibfvsLocked === true", { timeout: 120000 });
+  await frames(page, (await frameNow(page)) + 3);
+  const before = await differsFrom(page, rendered);
+  // The locked texture stays; turning the view still moves the mesh.
+  const box = await (await page.$("canvas")).boundingBox();
+  await page.mouse.move(box.x + 4, box.y + 64);
+  await page.mouse.down();
+  await page.mouse.move(box.x + 124, box.y + 64, { steps: 6 });  // 0.6 radians
+  await page.mouse.up();
+  await frames(page, (await frameNow(page)) + 3);
+  const turned = await differsFrom(page, rendered);
+  assert.deepEqual(messages, []);
+  assert.ok(before < 0.01, `${before} of the pixels differ from ibfvs render's`);
+  assert.ok(turned > 0.1, `turned, only ${turned} of the pixels differ`);
+  await page.close();
+});
+
 test("the page records a WebM of its canvas", async () => {
   const { page, messages } = await open(writePage("cow-record"));
   await frames(page, 5);

@@ -122,7 +122,6 @@ std::optional<PreparedScene> restyled(const PreparedScene& prepared, Style style
     if ((is_live_texture_key(key.name) && !percentile) || rebuilt.count(key.name)) continue;
     return std::nullopt;
   }
-  if (s.init == InitMode::RandomCells) return std::nullopt;
   PreparedScene p = prepared;
   p.scene = s;
   apply_texture_settings(s, p.settings);

@@ -181,7 +181,8 @@ std::string look_json(const PreparedScene& q, const std::string& name, std::stri
   // Random-cell colours make F_t a colour texture, as in the renderer.
   const bool colour_texture =
       shaders::colour_background(s) || q.scene.init == InitMode::RandomCells;
-  const shaders::ShaderFeatures f = shaders::features_for(s, colour_texture, false, false);
+  const shaders::ShaderFeatures f =
+      shaders::features_for(s, colour_texture, !q.surface_image.pixels.empty(), false);
   const NoiseGrid grid(q.width, q.height, s.noise);
   const glm::ivec2 phase_size = glm::min(glm::ivec2(grid.columns(), grid.rows()), finest);
   const std::vector<shaders::UniformValue> grid_uniforms = {
@@ -263,8 +264,6 @@ std::string web_page(const PreparedScene& p, WebPageReport* report, const WebPag
                      ": this ibfvs was built without the browser runtime (it needs node "
                      "and npm at build time, and web/node_modules from "
                      "scripts/install-deps.sh)");
-  if (!p.surface_image.pixels.empty())
-    throw InputError(what + ": a surface image is not in pages yet");
   const TriMesh& mesh = *p.mesh;
   if (mesh.triangle_count() > limits.triangles)
     throw InputError(what + ": " + std::to_string(mesh.triangle_count()) +
@@ -356,6 +355,15 @@ std::string web_page(const PreparedScene& p, WebPageReport* report, const WebPag
       scalars.push_back(p.beta_scalar.empty() ? 0.0f : p.beta_scalar[i]);
     }
     arrays += ",\"scalars\":" + block.add_vertices(scalars, 2);
+  }
+  if (const ImageU8& image = p.surface_image; !image.pixels.empty()) {
+    // The surface colour (RGBA8, bottom row first as the GL texture takes
+    // it), through the vertex codec: 4 bytes a pixel, deltas along the row.
+    if (image.channels != 4) throw InputError(what + ": the surface image must be RGBA");
+    arrays += ",\"surface_image\":" +
+              block.add_vertices(image.pixels, 4,
+                                 ",\"width\":" + std::to_string(image.width) +
+                                     ",\"height\":" + std::to_string(image.height));
   }
   if (p.scene.init == InitMode::RandomCells) {
     // F_t's first colours, one per noise cell (IbfvsRenderer::

@@ -92,6 +92,8 @@ export interface SceneHeader {
     indices: ArrayRef; // uint32
     phases: ArrayRef; // uint16, phi * 65535
     color_map: ArrayRef; // uint8 RGBA x 256
+    // The surface colour, an equirectangular image (uint8 RGBA, the bottom row first)
+    surface_image?: ArrayRef & { width: number; height: number };
     // F_t's first colours, one per noise cell of `scale` pixels, float16 RGB_ by rows of `columns`
     cells?: ArrayRef & { columns: number; scale: number };
   };
@@ -232,6 +234,7 @@ export class PageRenderer {
   private statsTexture: WebGLTexture;
   private statsFb: WebGLFramebuffer;
   private colorMap: WebGLTexture;
+  private surfaceImage: WebGLTexture | null = null;
   private current = 0;
   private vectorBuffer: WebGLBuffer | null = null;
   private step = -1;
@@ -293,6 +296,14 @@ export class PageRenderer {
     this.statsFb = framebuffer(gl, [this.statsTexture], null);
     this.colorMap = texture(gl, 256, 1, gl.RGBA8, gl.RGBA, gl.UNSIGNED_BYTE, true,
                             new Uint8Array(data, a.color_map.offset, a.color_map.length));
+    if (a.surface_image) {
+      const { width, height } = a.surface_image, largest = gl.getParameter(gl.MAX_TEXTURE_SIZE) as number;
+      if (width > largest || height > largest)
+        throw new Error(`its surface image of ${width}x${height} pixels is larger than this browser's ` +
+                        `largest texture (${largest})`);
+      this.surfaceImage = texture(gl, width, height, gl.RGBA8, gl.RGBA, gl.UNSIGNED_BYTE, true,
+                                  view(data, a.surface_image, (b, o, n) => new Uint8Array(b, o, n), 1));
+    }
     if (a.cells) {
       // IbfvsRenderer::fill_texture_with_cell_colors: each texel its cell's colour, any depth.
       const c16 = new Uint16Array(data, a.cells.offset, a.cells.length);
@@ -468,6 +479,7 @@ export class PageRenderer {
     bind(0, this.textures[this.current]);
     bind(1, this.gridTexture!);
     bind(2, this.colorMap);
+    if (this.surfaceImage) bind(3, this.surfaceImage);
     bind(4, this.statsTexture);
     gl.bindFramebuffer(gl.FRAMEBUFFER, this.fbs[next]);
     gl.bindVertexArray(this.vao);

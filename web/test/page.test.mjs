@@ -227,6 +227,24 @@ test("the topology style: random cell colours, locked and seen obliquely, as ibf
   await page.close();
 });
 
+test("a surface image colours the surface as in ibfvs render", async () => {
+  // A colourful equirectangular image: the topology's cells, by ibfvs render.
+  const image = path.join(out, "cells.png");
+  execFileSync(ibfvs, ["render", "scenes/figure7-topology.toml", "--size", "96x48", "--out", image, "-q"]);
+  const args = ["render", "--mesh", "globe:4", "--surface-image", image, "--field", "rotate:0,1,0",
+                "--size", "128x128", "-q"];
+  const file = path.join(out, "globe.html");
+  const rendered = path.join(out, "globe.png");
+  execFileSync(ibfvs, [...args, "--out", file]);
+  execFileSync(ibfvs, [...args, "--frames", "61", "--out", rendered]);
+  const { page, messages } = await open(file);
+  await pauseAt(page, 61);
+  const differ = await differsFrom(page, rendered);
+  assert.deepEqual(messages, []);
+  assert.ok(differ < 0.03, `${differ} of the pixels differ from ibfvs render's`);
+  await page.close();
+});
+
 test("the page records a WebM of its canvas", async () => {
   const { page, messages } = await open(writePage("cow-record"));
   await frames(page, 5);

@@ -34,9 +34,9 @@ struct WebPageReport {
 
 /// The page as text; an unsteady field's steps all go in (the page plays
 /// them, with a time slider), and so do the styles that take the same data
-/// (restyled: a style menu), random-cell colours and the lock. Throws
-/// InputError for what a page cannot hold (a surface image: not yet; more
-/// than `limits`) or when this build has no runtime.
+/// (restyled: a style menu), a surface image, random-cell colours and the
+/// lock. Throws InputError for what a page cannot hold (more than `limits`)
+/// or when this build has no runtime.
 [[nodiscard]] std::string web_page(const PreparedScene& scene, WebPageReport* report = nullptr,
                                    const WebPageLimits& limits = {});
 /// Writes web_page() to `path` (which must end in .html). Throws InputError.

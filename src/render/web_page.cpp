@@ -395,15 +395,28 @@ std::string web_page(const PreparedScene& p, WebPageReport* report, const WebPag
   if (p.lock_at >= 0) {
     const Camera lock_camera(bounds, p.lock_camera.value_or(p.camera),
                              static_cast<float>(p.width) / static_cast<float>(p.height));
+    const glm::vec3 target = centre + p.lock_camera.value_or(p.camera).target;
     lock = "{\"frame\":" + std::to_string(p.lock_at) + ",\"view\":" + matrix(lock_camera.view()) +
-           ",\"projection\":" + matrix(lock_camera.projection()) + "}";
+           ",\"projection\":" + matrix(lock_camera.projection()) +
+           ",\"target\":" + json_numbers(std::vector<float>{target.x, target.y, target.z}) + "}";
   }
+  // The orbit (Camera::orbit): degrees a frame about the vertical through
+  // the look-at point.
+  std::string orbit = "null";
+  if (p.scene.orbit != 0.0f) {
+    const glm::vec3 up = p.camera.up;
+    orbit = "{\"degrees\":" + json_number(p.scene.orbit) +
+            ",\"up\":" + json_numbers(std::vector<float>{up.x, up.y, up.z}) + "}";
+  }
+  const glm::vec3 target = centre + p.camera.target;
   const std::string header =
       "{\"format\":\"ibfvs-page\",\"version\":2,\"name\":" +
       json_string(name.empty() ? "ibfvs" : name) + ",\"width\":" + std::to_string(p.width) +
       ",\"height\":" + std::to_string(p.height) +
       ",\"no_depth\":" + json_number(IbfvsRenderer::kNoDepth) +
       ",\"any_depth\":" + json_number(IbfvsRenderer::kAnyDepth) + ",\"lock\":" + lock +
+      ",\"orbit\":" + orbit +
+      ",\"target\":" + json_numbers(std::vector<float>{target.x, target.y, target.z}) +
       ",\"probe\":" + json_number(shaders::probe_length(diagonal)) +
       ",\"cull\":" + std::to_string(closed_orientation(mesh)) +
       ",\"stats\":{\"size\":" + std::to_string(display_stats_size(p.width, p.height)) +

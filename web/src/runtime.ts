@@ -45,6 +45,13 @@ const i8 = (b: ArrayBuffer, o: number, n: number) => new Int8Array(b, o, n);
 const u32 = (b: ArrayBuffer, o: number, n: number) => new Uint32Array(b, o, n);
 const f32 = (b: ArrayBuffer, o: number, n: number) => new Float32Array(b, o, n);
 
+/// A camera of the page: its matrices (column-major 4x4) and look-at point.
+interface Camera {
+  view: number[];
+  projection: number[];
+  target: [number, number, number];
+}
+
 /// One style over the page's data: what the pass is compiled with and set to.
 export interface Look {
   name: string;
@@ -70,7 +77,9 @@ export interface SceneHeader {
   no_depth: number;
   any_depth: number;
   // At this frame F_t stops and the camera moves to the lock view (null: never).
-  lock: { frame: number; view: number[]; projection: number[] } | null;
+  lock: (Camera & { frame: number }) | null;
+  orbit: { degrees: number; up: [number, number, number] } | null; // a frame, about the vertical
+  target: [number, number, number]; // the look-at point
   probe: number;
   cull: number;
   stats: { size: number; every: number; weight: number };
@@ -532,19 +541,30 @@ class Navigation {
   turn = mat4.create();
   zoom = 1;
   pan = [0, 0];
-  private base: { view: number[]; projection: number[] };
+  orbit = 0; // degrees the camera has orbited (the scene's orbit)
+  private base: Camera;
   constructor(private scene: SceneHeader) {
     this.base = scene;
   }
   /// Starts again from `base`'s camera (the scene's, or its lock view).
-  moveTo(base: { view: number[]; projection: number[] }): void {
+  moveTo(base: Camera): void {
     this.base = base;
     this.turn = mat4.create();
     this.zoom = 1;
     this.pan = [0, 0];
+    this.orbit = 0;
   }
   view(): mat4 {
+    // The orbit turns the eye about the vertical through the look-at point
+    // (Camera::orbit): the world the other way.
     const v0 = mat4.clone(this.base.view as unknown as mat4);
+    const o = this.scene.orbit;
+    if (o && this.orbit !== 0) {
+      const t = this.base.target as unknown as vec3;
+      mat4.translate(v0, v0, t);
+      mat4.rotate(v0, v0, (-this.orbit * Math.PI) / 180, o.up as unknown as vec3);
+      mat4.translate(v0, v0, vec3.negate(vec3.create(), t));
+    }
     const c = vec3.transformMat4(vec3.create(), this.scene.centre as unknown as vec3, v0);
     const m = mat4.fromTranslation(mat4.create(), c);
     mat4.multiply(m, m, this.turn);
@@ -774,6 +794,7 @@ export function start(root: HTMLElement, scene: SceneHeader, data: ArrayBuffer):
         renderer.lock(); // as Session::advance: before the lock frame is drawn
         nav.moveTo(scene.lock);
       }
+      if (scene.orbit && renderer.frame > 0) nav.orbit += scene.orbit.degrees;
       renderer.render(nav.view(), nav.projection(), renderer.look.dt * dtFactor);
     }
     renderer.present();

@@ -245,6 +245,21 @@ test("a surface image colours the surface as in ibfvs render", async () => {
   await page.close();
 });
 
+test("the scene's orbit turns the camera as in ibfvs render", async () => {
+  const args = ["render", "--mesh", "data/meshes/cow.off", "--field", "rotate:0,0,1", "--orbit", "2",
+                "--size", "128x128", "-q"];
+  const file = path.join(out, "orbit.html");
+  const rendered = path.join(out, "orbit.png");
+  execFileSync(ibfvs, [...args, "--out", file]);
+  execFileSync(ibfvs, [...args, "--frames", "61", "--out", rendered]);  // 120 degrees on
+  const { page, messages } = await open(file);
+  await pauseAt(page, 61);
+  const differ = await differsFrom(page, rendered);
+  assert.deepEqual(messages, []);
+  assert.ok(differ < 0.03, `${differ} of the pixels differ from ibfvs render's`);
+  await page.close();
+});
+
 test("the page records a WebM of its canvas", async () => {
   const { page, messages } = await open(writePage("cow-record"));
   await frames(page, 5);

@@ -10,6 +10,7 @@ import os
 import shutil
 import signal
 import subprocess
+import threading
 import time
 from pathlib import Path
 
@@ -159,19 +160,47 @@ def x_trouble(returncode, output):
         "XSync", "XOpenDisplay", "_XReply", "_XIOError", "vtkXRenderWindowInteractor::Initialize"))
 
 
-def on_display(cmd, timeout=150, **kwargs):
+FIRST_RENDER = "ibfvs-test: first render"  # pv/render.py's line after its first Render
+
+
+def on_display(cmd, timeout=150, first=None, **kwargs):
     """Runs a ParaView command on the module's display. ParaView 5.11's own
     first distributed render sometimes never returns (rank 0 in IceT's
     MPI_Comm_dup, the others waiting for the render request; seen with the
     plugin not loaded too, docs/paraview.md): such a run is killed with all
-    its processes and run again, and says so."""
+    its processes and run again, and says so. With `first`, a run that has
+    not printed FIRST_RENDER after that many seconds is taken for hung
+    (pv/render.py renders once before anything else; a healthy start takes
+    2-10 s), rather than after the whole timeout."""
     env = dict(os.environ, DISPLAY=DISPLAY["name"])
     attempts = 5
     for attempt in range(attempts):
         proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                                 env=env, start_new_session=True, **kwargs)
+        streams = {"out": [], "err": []}
+        started = threading.Event()
+
+        def read(stream, lines):
+            for line in stream:
+                lines.append(line)
+                if line.startswith(FIRST_RENDER):
+                    started.set()
+
+        readers = [threading.Thread(target=read, args=(proc.stdout, streams["out"]), daemon=True),
+                   threading.Thread(target=read, args=(proc.stderr, streams["err"]), daemon=True)]
+        for r in readers:
+            r.start()
         try:
-            out, err = proc.communicate(timeout=timeout)
+            if first is not None:
+                try:
+                    proc.wait(timeout=first)
+                except subprocess.TimeoutExpired:
+                    if not started.is_set():
+                        raise
+            proc.wait(timeout=timeout)
+            for r in readers:
+                r.join()
+            out, err = "".join(streams["out"]), "".join(streams["err"])
             # Xvfb now and then refuses a connection ("bad X server
             # connection", at random: one ParaView start in 8 to 16 on this
             # machine on some days, however idle), or drops one (a crash in
@@ -183,9 +212,13 @@ def on_display(cmd, timeout=150, **kwargs):
             return subprocess.CompletedProcess(cmd, proc.returncode, out, err)
         except subprocess.TimeoutExpired:
             os.killpg(proc.pid, signal.SIGKILL)  # mpiexec and every rank
-            proc.communicate()
-            print("ParaView did not finish in %d s (attempt %d): %s" % (timeout, attempt + 1,
-                                                                        " ".join(cmd[:6])))
+            proc.wait()
+            for r in readers:
+                r.join()
+            print("ParaView did not %s in %d s (attempt %d): %s" % (
+                "finish" if started.is_set() or first is None else "render its first frame",
+                timeout if started.is_set() or first is None else first, attempt + 1,
+                " ".join(cmd[:6])))
     pytest.fail("ParaView did not finish, or X refused it, %d times: %s" % (attempts, " ".join(cmd)))
 
 
@@ -205,7 +238,7 @@ def run(cfg, tmp_path, ranks=1, batch=False):
     cmd = []
     if ranks > 1:
         cmd += [MPIEXEC, "--allow-run-as-root", "--oversubscribe", "-n", str(ranks)]
-    done = on_display(cmd + [exe, str(SCRIPT), json.dumps(cfg)])
+    done = on_display(cmd + [exe, str(SCRIPT), json.dumps(cfg)], first=45)
     assert done.returncode == 0, why(done)
     return done, cfg["out"]
 

@@ -160,9 +160,10 @@ def test_web_page_of_the_animation(tmp_path):
     header = json.loads(re.search(r'id="ibfvs-scene">(.*?)</script>', page).group(1))
     assert header["vertex_count"] == len(p) and header["index_count"] == 3 * len(t)
     assert [header["width"], header["height"]] == list(SIZE)
-    alpha = next(u for u in header["uniforms"] if u["name"] == "u_alpha")
+    own = header["looks"][0]  # the page's own look first, then other styles of the same data
+    alpha = next(u for u in own["uniforms"] if u["name"] == "u_alpha")
     assert abs(alpha["values"][0] - 0.15) < 1e-6  # the settings in force
-    assert "#version 300 es" in header["shaders"]["fragment"]
+    assert "#version 300 es" in own["shaders"]["fragment"]
     inline = anim._repr_html_()
     assert inline.startswith("<iframe srcdoc=") and html.unescape(inline).count('id="ibfvs-scene"') == 1
     with pytest.raises(ValueError, match="must be named NAME.html"):

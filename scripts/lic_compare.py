@@ -26,6 +26,8 @@ Markdown table. Crops magnified 4x, side by side, go to OUT/crops-VIEW.png.
   --plugin PATH         IBFVS.so (default: build/lib/ibfvs/paraview/IBFVS/IBFVS.so)
   --ibfvs PATH          the ibfvs binary (default: build/ibfvs)
   --set NAME=VALUE      a property of the IBFVS representation (repeatable)
+  --variant N=V[,N=V]   IBFVS with these properties too, measured after the
+                        defaults in the same session (repeatable)
   --frames N            IBFVS warm-up frames before the first picture (default 120)
 """
 import argparse
@@ -50,6 +52,7 @@ parser.add_argument("--crop", default="")
 parser.add_argument("--plugin", default=os.path.join(root, "build/lib/ibfvs/paraview/IBFVS/IBFVS.so"))
 parser.add_argument("--ibfvs", default=os.path.join(root, "build/ibfvs"))
 parser.add_argument("--set", action="append", default=[])
+parser.add_argument("--variant", action="append", default=[])
 parser.add_argument("--frames", type=int, default=120)
 args = parser.parse_args()
 os.makedirs(args.out, exist_ok=True)
@@ -209,10 +212,13 @@ for spec in args.views:
     pictures.append(("Surface LIC, defaults", shot(name + "-lic"), ms))
     display.Representation = "IBFVS"
     display.SelectInputVectors = ["POINTS", "flow"]
-    for setting in args.set:
-        key, value = setting.split("=")
-        number = float(value)
-        setattr(display, key, int(number) if number.is_integer() else number)
+    def apply(settings):
+        for setting in settings:
+            key, value = setting.split("=")
+            number = float(value)
+            setattr(display, key, int(number) if number.is_integer() else number)
+
+    apply(args.set)
     for _ in range(args.frames):
         pv.Render(view)
     ms = timed(20)
@@ -221,6 +227,16 @@ for spec in args.views:
     for _ in range(100):
         pv.Render(view)
     pictures.append((label + ", 100 frames later", shot(name + "-ibfvs-later"), ms))
+    for k, variant in enumerate(args.variant):
+        settings = variant.split(",")
+        before = [s.split("=")[0] + "=" + str(getattr(display, s.split("=")[0])) for s in settings]
+        apply(settings)
+        for _ in range(args.frames):
+            pv.Render(view)
+        ms = timed(20)
+        pictures.append(("IBFVS, " + ", ".join(args.set + settings),
+                         shot("%s-variant%d" % (name, k + 1)), ms))
+        apply(before)
     for label, path, ms in pictures:
         m = measure(path, truth)
         rows.append((name, label, m.get("A", float("nan")), m.get("W", float("nan")), ms))

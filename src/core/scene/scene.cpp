@@ -672,7 +672,7 @@ void apply_style(Scene& s, Style style) {
     case Style::Crisp:
       // docs/quality.md: longer unbroken lines than the defaults at about
       // 1.3 times their cost per pixel.
-      s.filter = 16.0f;  // the defaults' 8 -> 16
+      s.filter = 24.0f;  // the defaults' 16 -> 24
       break;
     case Style::Paper:
       // Section 5's look, and Table 1's cost: 4-pixel noise cells, the

@@ -27,7 +27,7 @@ float sample_bilinear(const ImageF& image, float x, float y, int c) {
 
 int filter_taps(float length) {
   if (!(length > 0.0f)) return 0;
-  return std::clamp(static_cast<int>(std::ceil(length / 2.0f)), 1, 16);
+  return std::clamp(static_cast<int>(std::ceil(length / 3.0f)), 1, 16);
 }
 
 float filter_spacing(float length) {

@@ -94,7 +94,7 @@ TEST(ScenePrep, RestyledChangesTheLookAndKeepsTheData) {
   const std::optional<PreparedScene> crisp = restyled(p, Style::Crisp);
   ASSERT_TRUE(crisp);
   EXPECT_EQ(crisp->mesh.get(), p.mesh.get());  // the same data
-  EXPECT_EQ(crisp->settings.filter_length, 16.0f);
+  EXPECT_EQ(crisp->settings.filter_length, 24.0f);
   EXPECT_EQ(crisp->scene.style, Style::Crisp);
   const std::optional<PreparedScene> paper = restyled(p, Style::Paper);
   ASSERT_TRUE(paper);

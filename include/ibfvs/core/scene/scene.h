@@ -162,7 +162,7 @@ struct Scene {
   float step = 2.0f;  ///< pixels per frame of the fastest vertex (sets dt)
   float dt = 0.0f;    ///< world units per frame; > 0 overrides step
   bool image_normalize = true;
-  float filter = 8.0f;  ///< display filter length along the flow, pixels (0 off)
+  float filter = 16.0f;  ///< display filter length along the flow, pixels (0 off)
   Resample resample = Resample::Cubic;
   float sharpen = 4.0f;    ///< display taps sharpened across the flow (0 off)
   float contrast = 0.35f;  ///< target RMS contrast of the shown texture (0: as synthesised)

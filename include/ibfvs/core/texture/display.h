@@ -23,8 +23,10 @@ namespace ibfvs {
 /// the image.
 int display_stats_size(int width, int height);
 
-/// The display filter's taps per side for a length L: ceil(L / 2), at most 16
-/// (0 for L = 0), spaced L / (taps + 1/2) apart.
+/// The display filter's taps per side for a length L: ceil(L / 3), at most 16
+/// (0 for L = 0), spaced L / (taps + 1/2) apart: 2.3-2.7 pixels, along lines
+/// that vary slowly along the flow (closer taps: A +0.001-0.002 on the
+/// motorbike, docs/quality.md, for a third more reads).
 int filter_taps(float length);
 float filter_spacing(float length);
 /// The weight exp(-2 (d / L)^2) of tap k (1-based) on each side.

@@ -6,122 +6,13 @@
 // contrast statistics, and shows F. Only what WebGL2 needs differently is
 // here: sampler units set by name, extension checks, the canvas.
 //
-// Sections: the scene format; the page's elements; WebGL objects; the
-// renderer; the camera and input; start.
+// Sections: the page's elements; the renderer; the camera and input; start.
+// The scene format is in format.ts, the WebGL objects in webgl.ts.
 import { mat4, vec3 } from "gl-matrix";
 import { MeshoptDecoder } from "meshoptimizer/decoder";
-
-// ---------------------------------------------------------------- the scene format
-
-interface Uniform {
-  name: string;
-  type: "float" | "int" | "uint";
-  values: number[];
-  array?: boolean;
-}
-
-interface ArrayRef {
-  offset: number; // bytes into the binary block
-  length: number; // elements, or with a codec its encoded bytes
-  codec?: "vertex" | "index"; // meshoptimizer's codecs (per-vertex arrays, triangle indices)
-  stride?: number; // bytes a vertex (the vertex codec)
-  elements?: number; // elements once decoded
-}
-
-/// An array of the block as `T` (Uint16Array, Float32Array, ...), decoded
-/// where the page wrote it through a meshoptimizer codec.
-function view<T>(data: ArrayBuffer, ref: ArrayRef,
-                 make: (buffer: ArrayBuffer, offset: number, length: number) => T, bytesEach: number): T {
-  if (!ref.codec) return make(data, ref.offset, ref.length);
-  const source = new Uint8Array(data, ref.offset, ref.length);
-  const target = new Uint8Array(ref.elements! * bytesEach);
-  if (ref.codec === "vertex")
-    MeshoptDecoder.decodeVertexBuffer(target, target.length / ref.stride!, ref.stride!, source);
-  else MeshoptDecoder.decodeIndexBuffer(target, ref.elements!, 4, source);
-  return make(target.buffer, 0, ref.elements!);
-}
-const u16 = (b: ArrayBuffer, o: number, n: number) => new Uint16Array(b, o, n);
-const i8 = (b: ArrayBuffer, o: number, n: number) => new Int8Array(b, o, n);
-const u32 = (b: ArrayBuffer, o: number, n: number) => new Uint32Array(b, o, n);
-const f32 = (b: ArrayBuffer, o: number, n: number) => new Float32Array(b, o, n);
-
-/// A camera of the page: its matrices (column-major 4x4) and look-at point.
-interface Camera {
-  view: number[];
-  projection: number[];
-  target: [number, number, number];
-}
-
-/// One style over the page's data: what the pass is compiled with and set to.
-export interface Look {
-  name: string;
-  description: string;
-  background: [number, number, number];
-  dt: number;
-  noise_rate: number;
-  colour_texture: boolean;
-  texture_channels: 2 | 4; // F_t: RG16F (grey value, depth) or RGBA16F (RGB or grey and displacement, depth)
-  advect_previous: boolean;
-  phase_size: [number, number]; // its noise grid: the first columns x rows of the page's phases
-  shaders: { vertex: string; fragment: string; stats_fragment: string };
-  uniforms: Uniform[];
-  grid_uniforms: Uniform[];
-}
-
-export interface SceneHeader {
-  format: "ibfvs-page";
-  version: 2;
-  name: string;
-  width: number;
-  height: number;
-  no_depth: number;
-  any_depth: number;
-  // At this frame F_t stops and the camera moves to the lock view (null: never).
-  lock: (Camera & { frame: number }) | null;
-  orbit: { degrees: number; up: [number, number, number] } | null; // a frame, about the vertical
-  target: [number, number, number]; // the look-at point
-  probe: number;
-  cull: number;
-  stats: { size: number; every: number; weight: number };
-  view: number[]; // column-major 4x4
-  projection: number[];
-  centre: [number, number, number];
-  shaders: { grid_vertex: string; grid_fragment: string };
-  looks: Look[]; // the scene's own first
-  vertex_count: number;
-  steps: number; // time steps of the field (1: steady)
-  frames_per_step: number;
-  index_count: number;
-  phase_size: [number, number]; // of the phases array (the finest look's grid)
-  arrays: {
-    positions: ArrayRef & { min: number[]; max: number[] }; // uint16 x 4 (the last 0), in the box
-    normals: ArrayRef; // int8 x 4 (snorm)
-    vectors: ArrayRef; // float16 x 4, every time step one after the other
-    scalars?: ArrayRef; // float32 x 2 (colour, beta)
-    indices: ArrayRef; // uint32
-    phases: ArrayRef; // uint16, phi * 65535
-    color_map: ArrayRef; // uint8 RGBA x 256
-    // The surface colour, an equirectangular image (uint8 RGBA, the bottom row first)
-    surface_image?: ArrayRef & { width: number; height: number };
-    // F_t's first colours, one per noise cell of `scale` pixels, float16 RGB_ by rows of `columns`
-    cells?: ArrayRef & { columns: number; scale: number };
-  };
-}
-
-/// An IEEE half float's value.
-function halfToFloat(h: number): number {
-  const exponent = (h >> 10) & 31, fraction = h & 1023, sign = h & 0x8000 ? -1 : 1;
-  if (exponent === 0) return sign * fraction * 2 ** -24;
-  if (exponent === 31) return fraction ? NaN : sign * Infinity;
-  return sign * (1 + fraction / 1024) * 2 ** (exponent - 15);
-}
-
-function decodeBase64(text: string): ArrayBuffer {
-  const binary = atob(text.replace(/\s+/g, ""));
-  const bytes = new Uint8Array(binary.length);
-  for (let i = 0; i < binary.length; ++i) bytes[i] = binary.charCodeAt(i);
-  return bytes.buffer;
-}
+import { type Camera, type Look, type SceneHeader, type Uniform, decodeBase64, f32, halfToFloat, i8, u16, u32,
+         view } from "./format";
+import { compile, framebuffer, locate, setUniform, texture } from "./webgl";
 
 // ---------------------------------------------------------------- the page's elements
 
@@ -148,74 +39,6 @@ function slider(panel: HTMLElement, label: string, min: number, max: number, val
   wrap.appendChild(input);
   panel.appendChild(wrap);
   return input;
-}
-
-// ---------------------------------------------------------------- WebGL objects
-
-function compile(gl: WebGL2RenderingContext, vertex: string, fragment: string): WebGLProgram {
-  const program = gl.createProgram()!;
-  for (const [type, source] of [[gl.VERTEX_SHADER, vertex], [gl.FRAGMENT_SHADER, fragment]] as const) {
-    const shader = gl.createShader(type)!;
-    gl.shaderSource(shader, source);
-    gl.compileShader(shader);
-    if (!gl.getShaderParameter(shader, gl.COMPILE_STATUS))
-      throw new Error("shader: " + gl.getShaderInfoLog(shader));
-    gl.attachShader(program, shader);
-  }
-  gl.linkProgram(program);
-  if (!gl.getProgramParameter(program, gl.LINK_STATUS)) throw new Error("link: " + gl.getProgramInfoLog(program));
-  // Sampler units: GLSL ES has no layout(binding); the sources keep the
-  // generator's BINDING(n) marks, and the units are set from them by name.
-  gl.useProgram(program);
-  for (const source of [vertex, fragment])
-    for (const m of source.matchAll(/BINDING\((\d+)\)\s+uniform\s+\w+\s+(\w+)/g))
-      gl.uniform1i(gl.getUniformLocation(program, m[2]), parseInt(m[1], 10));
-  return program;
-}
-
-// Uniform locations, looked up once per program and name (not every frame).
-const locations = new WeakMap<WebGLProgram, Map<string, WebGLUniformLocation | null>>();
-function locate(gl: WebGL2RenderingContext, program: WebGLProgram, name: string): WebGLUniformLocation | null {
-  let known = locations.get(program);
-  if (!known) locations.set(program, (known = new Map()));
-  if (!known.has(name)) known.set(name, gl.getUniformLocation(program, name));
-  return known.get(name)!;
-}
-
-function setUniform(gl: WebGL2RenderingContext, program: WebGLProgram, u: Uniform): void {
-  const at = locate(gl, program, u.name);
-  if (at === null) return; // compiled out
-  const v = u.values;
-  if (u.array) gl.uniform1fv(at, new Float32Array(v));
-  else if (u.type === "uint") gl.uniform1ui(at, v[0]);
-  else if (u.type === "int") v.length === 1 ? gl.uniform1i(at, v[0]) : gl.uniform2i(at, v[0], v[1]);
-  else if (v.length === 1) gl.uniform1f(at, v[0]);
-  else if (v.length === 2) gl.uniform2f(at, v[0], v[1]);
-  else gl.uniform3f(at, v[0], v[1], v[2]);
-}
-
-function texture(gl: WebGL2RenderingContext, w: number, h: number, internal: number, format: number,
-                 type: number, linear: boolean, data: ArrayBufferView | null = null): WebGLTexture {
-  const t = gl.createTexture()!;
-  gl.bindTexture(gl.TEXTURE_2D, t);
-  gl.texImage2D(gl.TEXTURE_2D, 0, internal, w, h, 0, format, type, data);
-  const filter = linear ? gl.LINEAR : gl.NEAREST;
-  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, filter);
-  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, filter);
-  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_S, gl.CLAMP_TO_EDGE);
-  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_T, gl.CLAMP_TO_EDGE);
-  return t;
-}
-
-function framebuffer(gl: WebGL2RenderingContext, colours: WebGLTexture[], depth: WebGLTexture | null): WebGLFramebuffer {
-  const fb = gl.createFramebuffer()!;
-  gl.bindFramebuffer(gl.FRAMEBUFFER, fb);
-  colours.forEach((t, i) => gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0 + i, gl.TEXTURE_2D, t, 0));
-  if (depth) gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.DEPTH_ATTACHMENT, gl.TEXTURE_2D, depth, 0);
-  gl.drawBuffers(colours.map((_, i) => gl.COLOR_ATTACHMENT0 + i));
-  if (gl.checkFramebufferStatus(gl.FRAMEBUFFER) !== gl.FRAMEBUFFER_COMPLETE)
-    throw new Error("this browser cannot render into float textures (framebuffer incomplete)");
-  return fb;
 }
 
 // ---------------------------------------------------------------- the renderer

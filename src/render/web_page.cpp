@@ -206,42 +206,50 @@ std::string look_json(const PreparedScene& q, const std::string& name, std::stri
          ",\"grid_uniforms\":" + json_uniforms(grid_uniforms) + "}";
 }
 
+// A style that takes the page's data, with the scene in its look.
+struct Restyle {
+  EnumName<Style> style;
+  PreparedScene scene;
+};
+
+// Every style that takes the scene's data (restyled), in table order: made
+// once, for the noise grid and the looks.
+std::vector<Restyle> restyles(const PreparedScene& p) {
+  std::vector<Restyle> out;
+  for (const auto& e : enum_entries<Style>()) {
+    try {
+      if (std::optional<PreparedScene> q = restyled(p, e.value)) out.push_back({e, std::move(*q)});
+    } catch (const SettingError&) {
+      // a setting of the scene that this style's defaults make invalid: left out
+    }
+  }
+  return out;
+}
+
 // The page's looks: the scene's own first, then each style that takes the
-// same data (restyled), each once.
-std::string looks_json(const PreparedScene& p, glm::ivec2 finest, glm::vec3 centre) {
-  const auto description = [](Style style) {
-    for (const auto& e : enum_entries<Style>())
-      if (e.value == style) return e.description;
-    return std::string_view();
-  };
+// same data, each once.
+std::string looks_json(const PreparedScene& p, const std::vector<Restyle>& styles,
+                       glm::ivec2 finest, glm::vec3 centre) {
   const auto body = [](const std::string& look) {
     return look.substr(look.find(",\"background\""));
   };
   std::vector<std::string> looks;
   // Named by its style when it is that style's look, else "as rendered".
-  std::optional<PreparedScene> pure;
-  try {
-    if (p.scene.style) pure = restyled(p, *p.scene.style);
-  } catch (const SettingError&) {
-    // a style the scene's own settings contradict: the look is not that style's
-  }
+  const auto pure = std::find_if(styles.begin(), styles.end(), [&](const Restyle& r) {
+    return p.scene.style && r.style.value == *p.scene.style;
+  });
   const std::string own =
       look_json(p, "as rendered", "the settings the page was written with", finest, centre);
-  const bool as_style = pure && body(look_json(*pure, "", "", finest, centre)) == body(own);
-  looks.push_back(as_style ? look_json(p, std::string(enum_name(*p.scene.style)),
-                                       description(*p.scene.style), finest, centre)
+  const bool as_style =
+      pure != styles.end() && body(look_json(pure->scene, "", "", finest, centre)) == body(own);
+  looks.push_back(as_style ? look_json(p, std::string(pure->style.name), pure->style.description,
+                                       finest, centre)
                            : own);
   // Random cells start F_t from colours of the look's own noise cells: one look.
   if (p.scene.init == InitMode::RandomCells) return "[" + looks.front() + "]";
-  for (const auto& e : enum_entries<Style>()) {
-    std::optional<PreparedScene> q;
-    try {
-      q = restyled(p, e.value);
-    } catch (const SettingError&) {
-      continue;  // a setting of the scene that this style's defaults make invalid
-    }
-    if (!q) continue;
-    const std::string look = look_json(*q, std::string(e.name), e.description, finest, centre);
+  for (const Restyle& r : styles) {
+    const std::string look =
+        look_json(r.scene, std::string(r.style.name), r.style.description, finest, centre);
     if (std::none_of(looks.begin(), looks.end(),
                      [&](const std::string& l) { return body(l) == body(look); }))
       looks.push_back(look);
@@ -278,15 +286,10 @@ std::string web_page(const PreparedScene& p, WebPageReport* report, const WebPag
   const RenderSettings& s = p.settings;
   // The noise phases of the finest look (the default's 1-pixel cells; a
   // coarser grid takes the first of them).
+  const std::vector<Restyle> styles = restyles(p);
   float finest_scale = s.noise.scale;
-  for (const auto& e : enum_entries<Style>()) {
-    try {
-      if (const auto q = restyled(p, e.value))
-        finest_scale = std::min(finest_scale, q->settings.noise.scale);
-    } catch (const SettingError&) {
-      // looks_json leaves this style out
-    }
-  }
+  for (const Restyle& r : styles)
+    finest_scale = std::min(finest_scale, r.scene.settings.noise.scale);
   NoiseParams finest_noise = s.noise;
   finest_noise.scale = finest_scale;
   const NoiseGrid grid(p.width, p.height, finest_noise);
@@ -427,7 +430,7 @@ std::string web_page(const PreparedScene& p, WebPageReport* report, const WebPag
       ",\"shaders\":{\"grid_vertex\":" +
       json_string(shaders::grid_vertex_source(shaders::Dialect::Es300)) +
       ",\"grid_fragment\":" + json_string(shaders::grid_fragment_source(shaders::Dialect::Es300)) +
-      "},\"looks\":" + looks_json(p, glm::ivec2(grid.columns(), grid.rows()), centre) +
+      "},\"looks\":" + looks_json(p, styles, glm::ivec2(grid.columns(), grid.rows()), centre) +
       ",\"vertex_count\":" + std::to_string(mesh.positions.size()) +
       ",\"steps\":" + std::to_string(steps) +
       ",\"frames_per_step\":" + std::to_string(p.scene.frames_per_step) +

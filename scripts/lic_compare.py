@@ -5,7 +5,8 @@ Surface LIC, IBFVS after the warm-up frames and 100 frames later, and a
 direction-coded picture of the TRUE projected flow (red, green: 0.5 + 0.5 x,
 y of the unit image-space direction; blue 255 where the direction is defined:
 the vector is not zero and not within 17 degrees of the line of sight), then
-measures alignment A and streak width W of each against it with
+measures alignment A, streak width W and grain along the lines Z of each
+against it with
 `ibfvs quality --png P --direction D`, times a frame of each (the camera
 nudged by 0.001 degrees each frame, so that nothing is cached) and prints one
 Markdown table. Crops magnified 4x, side by side, go to OUT/crops-VIEW.png.
@@ -174,6 +175,8 @@ def measure(picture, truth):
             values["A"] = float(line.split()[2])
         if "streak width W" in line:
             values["W"] = float(line.split()[3])
+        if "grain along Z" in line:
+            values["Z"] = float(line.split()[3])
     return values
 
 
@@ -239,16 +242,17 @@ for spec in args.views:
         apply(before)
     for label, path, ms in pictures:
         m = measure(path, truth)
-        rows.append((name, label, m.get("A", float("nan")), m.get("W", float("nan")), ms))
+        rows.append((name, label, m.get("A", float("nan")), m.get("W", float("nan")),
+                     m.get("Z", float("nan")), ms))
     crops[name] = [p for _, p, _ in pictures[1:3]]
 
 print("\n%s (%s%s), %dx%d, pvbatch, ParaView %s\n" % (
     os.path.basename(args.data), args.array, ", reversed" if args.reverse else "", w, h,
     pv.GetParaViewVersion()))
-print("| view | picture | A | W (px) | ms per frame |")
-print("|---|---|---|---|---|")
-for name, label, a, wd, ms in rows:
-    print("| %s | %s | %.3f | %.2f | %.0f |" % (name, label, a, wd, ms))
+print("| view | picture | A | W (px) | Z | ms per frame |")
+print("|---|---|---|---|---|---|")
+for name, label, a, wd, z, ms in rows:
+    print("| %s | %s | %.3f | %.2f | %.3f | %.0f |" % (name, label, a, wd, z, ms))
 
 # Crops: the middle (or --crop) of LIC and IBFVS, 4x, side by side.
 try:

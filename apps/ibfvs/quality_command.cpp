@@ -105,6 +105,8 @@ int measure_picture(const QualityOptions& o) {
               flow_alignment(image, mask, flow, 4));
   std::printf("  streak width W            %.2f px (across the flow; 0.8 thin lines)\n",
               streak_width(image, mask, flow, 4));
+  std::printf("  grain along Z             %.3f   (along the lines against across; LIC 0.1)\n",
+              grain_along(image, mask, flow, 4));
   std::printf("  RMS contrast              %.3f\n", rms_contrast(image, mask));
   return 0;
 }
@@ -129,6 +131,8 @@ int run_quality(const SceneOptions& scene_options, const QualityOptions& options
               r.alignment);
   std::printf("  streak width W            %.2f px (across the flow; 0.8 thin lines)\n",
               r.streak_width);
+  std::printf("  grain along Z             %.3f   (along the lines against across; LIC 0.1)\n",
+              r.grain);
   if (!options.shown)
     std::printf("  red inflow                %.2f%%  of the surface pixels\n",
                 100.0 * r.red_inflow);

@@ -68,6 +68,7 @@ QualityReport measure_quality(PreparedScene scene, int warmup, bool shown) {
   // channels are equal); as shown: the luminance.
   report.alignment = flow_alignment(shown ? grey : last, mask, direction, 4);
   report.streak_width = streak_width(shown ? grey : last, mask, direction, 4);
+  report.grain = grain_along(shown ? grey : last, mask, direction, 4);
   report.red_inflow = shown ? std::nan("") : red_tinted_fraction(last, mask);
   report.lag8 = pattern_motion(frames[kMeasured - 9], last, flow, mask, 8);
   report.lag16 = pattern_motion(frames[0], last, flow, mask, 16);

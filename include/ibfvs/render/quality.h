@@ -14,6 +14,7 @@ struct QualityReport {
   double coverage = 0.0;         ///< fraction of the image the surface covers
   double alignment = 0.0;        ///< A (flow_alignment), 0.5 isotropic, 1 perfect streaks
   double streak_width = 0.0;     ///< W (streak_width) in pixels: thin lines about 0.8
+  double grain = 0.0;            ///< Z (grain_along): grain along the lines, LIC about 0.1
   double red_inflow = 0.0;       ///< surface pixels tinted by the red background, fraction
   PatternMotion lag8, lag16;     ///< the pattern's motion over 8 and 16 frames
   double carried = 0.0;          ///< frame-to-frame correlation along the flow (flicker: low)

@@ -158,6 +158,35 @@ double streak_width(const ImageF& image, const std::vector<std::uint8_t>& mask,
   return kStep * 200;
 }
 
+double grain_along(const ImageF& image, const std::vector<std::uint8_t>& mask,
+                   const std::function<glm::vec2(float, float)>& flow, int margin) {
+  const int w = image.width, h = image.height;
+  if (mask.size() != static_cast<std::size_t>(w) * h)
+    throw InputError("grain_along: the mask must match the image");
+  const std::vector<std::uint8_t> inner = eroded(mask, w, h, std::max(margin, 2));
+  double along = 0.0, across = 0.0;
+  std::size_t n = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      if (!inner[static_cast<std::size_t>(y) * w + x]) continue;
+      const float px = static_cast<float>(x) + 0.5f, py = static_cast<float>(y) + 0.5f;
+      const glm::vec2 f = flow(px, py);
+      const float len = glm::length(f);
+      if (!(len > 0.0f)) continue;
+      const glm::vec2 u = f / len, v(-u.y, u.x);
+      const auto second = [&](glm::vec2 d) {
+        return 2.0 * image.at(x, y, 0) - sample_bilinear(image, px + d.x, py + d.y, 0) -
+               sample_bilinear(image, px - d.x, py - d.y, 0);
+      };
+      const double a = second(u), c = second(v);
+      along += a * a;
+      across += c * c;
+      ++n;
+    }
+  if (n < 16 || !(across > 0.0)) return std::numeric_limits<double>::quiet_NaN();
+  return along / across;
+}
+
 namespace {
 
 double channel_mean(const ImageF& image, int x, int y) {

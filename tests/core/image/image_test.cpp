@@ -147,5 +147,33 @@ TEST(ImageAnalysis, StreakWidthFollowsTheWidthOfTheStreaks) {
   EXPECT_TRUE(std::isnan(streak_width(streaks(1), none, along, 4)));
 }
 
+// Z tells smooth lines from lines with a zipper: random streaks along x are
+// constant along the flow (Z 0), every second pixel of them raised and the
+// others lowered is a zipper, and white noise has as much grain along as
+// across (Z 1).
+TEST(ImageAnalysis, GrainAlongTellsSmoothLinesFromAZipper) {
+  ImageF smooth(96, 96, 1), zipper(96, 96, 1), white(96, 96, 1);
+  std::uint32_t state = 777;
+  const auto next = [&state] {
+    state = state * 1664525u + 1013904223u;
+    return static_cast<float>(state >> 8) / 16777216.0f;
+  };
+  for (int y = 0; y < 96; ++y) {
+    const float v = next();
+    for (int x = 0; x < 96; ++x) {
+      smooth.at(x, y) = v;
+      zipper.at(x, y) = v + (x % 2 == 0 ? 0.3f : -0.3f);
+      white.at(x, y) = next();
+    }
+  }
+  std::vector<std::uint8_t> mask(96 * 96, 1);
+  const auto along = [](float, float) { return glm::vec2(1, 0); };
+  EXPECT_LT(grain_along(smooth, mask, along, 4), 1e-6);
+  EXPECT_GT(grain_along(zipper, mask, along, 4), 1.0);
+  EXPECT_NEAR(grain_along(white, mask, along, 4), 1.0, 0.1);
+  std::vector<std::uint8_t> none(96 * 96, 0);
+  EXPECT_TRUE(std::isnan(grain_along(smooth, none, along, 4)));
+}
+
 }  // namespace
 }  // namespace ibfvs

@@ -244,7 +244,7 @@ std::vector<SceneKey> make_keys() {
                        require(v >= 0.0f && v <= 32.0f, "must be between 0 and 32 pixels")),
       IBFVS_NUMBER_KEY(sharpen,
                        "display only: each filter tap plus k times its excess over its two "
-                       "neighbours one pixel across the flow, 0..4 (0 off): thinner lines",
+                       "neighbours 1.5 pixels across the flow, 0..4 (0 off): thinner lines",
                        require(v >= 0.0f && v <= 4.0f, "must be between 0 (off) and 4")),
       IBFVS_NUMBER_KEY(contrast,
                        "display only: RMS contrast of the shown texture, mean 0.5, 0..0.5 (0: "

@@ -67,7 +67,8 @@ float NoiseGrid::grid_value(int i, int j, int frame) const {
 }
 
 float NoiseGrid::sample(float x, float y, int frame) const {
-  const float u = x / params_.scale, v = y / params_.scale;
+  // Grid point (i, j) on the centre of pixel (i s, j s), as the shader's noise().
+  const float u = (x - 0.5f) / params_.scale, v = (y - 0.5f) / params_.scale;
   const float fu = std::floor(u), fv = std::floor(v);
   const int i = static_cast<int>(fu), j = static_cast<int>(fv);
   const float a = u - fu, b = v - fv;

@@ -46,11 +46,24 @@ TEST(Noise, GridIsBilinearBetweenGridPoints) {
   EXPECT_EQ(g.columns(), 64 / 4 + 2);
   EXPECT_EQ(g.rows(), 32 / 4 + 2);
   for (int k : {0, 5}) {
-    EXPECT_FLOAT_EQ(g.sample(8.0f, 12.0f, k), g.grid_value(2, 3, k));
+    // Grid point (i, j) on the centre of pixel (i s, j s).
+    EXPECT_FLOAT_EQ(g.sample(8.5f, 12.5f, k), g.grid_value(2, 3, k));
     const float mid = 0.25f * (g.grid_value(2, 3, k) + g.grid_value(3, 3, k) +
                                g.grid_value(2, 4, k) + g.grid_value(3, 4, k));
-    EXPECT_NEAR(g.sample(10.0f, 14.0f, k), mid, 1e-6f);
+    EXPECT_NEAR(g.sample(10.5f, 14.5f, k), mid, 1e-6f);
   }
+}
+
+TEST(Noise, PixelFineNoiseIsOneGridValuePerPixel) {
+  // At s = 1 every pixel centre takes its own grid value: white noise, no
+  // neighbour shares any (the lines it makes are as thin as they can be).
+  NoiseParams p;
+  p.scale = 1.0f;
+  const NoiseGrid g(16, 16, p);
+  for (int j = 0; j < 16; ++j)
+    for (int i = 0; i < 16; ++i)
+      EXPECT_FLOAT_EQ(g.sample(static_cast<float>(i) + 0.5f, static_cast<float>(j) + 0.5f, 3),
+                      g.grid_value(i, j, 3));
 }
 
 TEST(Noise, SeedAndRateControlTheValues) {

@@ -75,7 +75,7 @@ struct RenderSettings {
   float filter_length = 0.0f;
   Resample resample = Resample::Linear;  ///< how F_t is sampled at t(x)
   /// Display only: each tap of the display filter plus k times its excess
-  /// over the mean of its two neighbours one pixel across the flow, which
+  /// over the mean of its two neighbours 1.5 pixels across the flow, which
   /// counters the blur that each frame's resampling leaves across it
   /// (thinner lines); 0 off.
   float sharpen = 0.0f;

@@ -159,7 +159,7 @@ struct Scene {
   NoiseProfile profile = NoiseProfile::Random;
   float vg = 0.2f, spike_width = 0.1f;
   std::uint32_t seed = 1;
-  float step = 2.0f;  ///< pixels per frame of the fastest vertex (sets dt)
+  float step = 1.5f;  ///< pixels per frame of the fastest vertex (sets dt)
   float dt = 0.0f;    ///< world units per frame; > 0 overrides step
   bool image_normalize = true;
   float filter = 16.0f;  ///< display filter length along the flow, pixels (0 off)

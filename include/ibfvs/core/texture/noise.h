@@ -70,7 +70,9 @@ class NoiseGrid {
 
   /// G_ij;k = w(v_g k + phi_ij) (equation 8).
   [[nodiscard]] float grid_value(int i, int j, int frame) const;
-  /// G(x; k) at image point (x, y) in pixels (equations 6-7).
+  /// G(x; k) at image point (x, y) in pixels (equations 6-7), grid point
+  /// (i, j) on the centre of pixel (i s, j s): at s = 1 each pixel centre
+  /// takes one grid value (white noise).
   [[nodiscard]] float sample(float x, float y, int frame) const;
 
  private:

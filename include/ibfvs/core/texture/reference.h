@@ -61,7 +61,7 @@ class ReferenceIbfvs {
   /// this frame's fresh noise; 0 shows F_t as it is.
   void set_filter_length(float length) { filter_length_ = length; }
   /// Each display tap plus k times its excess over the mean of its two
-  /// neighbours one pixel across the flow (RenderSettings::sharpen); 0 off.
+  /// neighbours 1.5 pixels across the flow (RenderSettings::sharpen); 0 off.
   void set_sharpen(float k) { sharpen_ = k; }
   /// F_t,prev(source) by Catmull-Rom (RenderSettings::resample cubic) where
   /// the 4 x 4 texels around it were all on the surface, else bilinearly.

@@ -69,6 +69,22 @@ std::vector<std::uint8_t> eroded(const std::vector<std::uint8_t>& mask, int w, i
   return inner;
 }
 
+// Calls visit(x, y, centre, unit) for each pixel of `inner` whose flow at
+// its centre is not zero, with that centre and the flow's unit direction.
+template <typename Visit>
+void for_each_flow_pixel(const std::vector<std::uint8_t>& inner, int w, int h,
+                         const std::function<glm::vec2(float, float)>& flow, Visit&& visit) {
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      if (!inner[static_cast<std::size_t>(y) * w + x]) continue;
+      const glm::vec2 centre(static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f);
+      const glm::vec2 f = flow(centre.x, centre.y);
+      const float len = glm::length(f);
+      if (!(len > 0.0f)) continue;
+      visit(x, y, centre, f / len);
+    }
+}
+
 }  // namespace
 
 double flow_alignment(const ImageF& image, const std::vector<std::uint8_t>& mask,
@@ -122,15 +138,9 @@ double streak_width(const ImageF& image, const std::vector<std::uint8_t>& mask,
     float x, y, nx, ny, value;
   };
   std::vector<Sample> samples;
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      if (!inner[static_cast<std::size_t>(y) * w + x]) continue;
-      const float px = static_cast<float>(x) + 0.5f, py = static_cast<float>(y) + 0.5f;
-      const glm::vec2 f = flow(px, py);
-      const float len = glm::length(f);
-      if (!(len > 0.0f)) continue;
-      samples.push_back({px, py, -f.y / len, f.x / len, band.at(x, y)});
-    }
+  for_each_flow_pixel(inner, w, h, flow, [&](int x, int y, glm::vec2 c, glm::vec2 u) {
+    samples.push_back({c.x, c.y, -u.y, u.x, band.at(x, y)});
+  });
   if (samples.size() < 16) return std::numeric_limits<double>::quiet_NaN();
   // The correlation of the band-passed picture with itself shifted s pixels
   // along each pixel's normal to the flow; W is where it falls below 0.5.
@@ -166,23 +176,16 @@ double grain_along(const ImageF& image, const std::vector<std::uint8_t>& mask,
   const std::vector<std::uint8_t> inner = eroded(mask, w, h, std::max(margin, 2));
   double along = 0.0, across = 0.0;
   std::size_t n = 0;
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      if (!inner[static_cast<std::size_t>(y) * w + x]) continue;
-      const float px = static_cast<float>(x) + 0.5f, py = static_cast<float>(y) + 0.5f;
-      const glm::vec2 f = flow(px, py);
-      const float len = glm::length(f);
-      if (!(len > 0.0f)) continue;
-      const glm::vec2 u = f / len, v(-u.y, u.x);
-      const auto second = [&](glm::vec2 d) {
-        return 2.0 * image.at(x, y, 0) - sample_bilinear(image, px + d.x, py + d.y, 0) -
-               sample_bilinear(image, px - d.x, py - d.y, 0);
-      };
-      const double a = second(u), c = second(v);
-      along += a * a;
-      across += c * c;
-      ++n;
-    }
+  for_each_flow_pixel(inner, w, h, flow, [&](int x, int y, glm::vec2 c, glm::vec2 u) {
+    const auto second = [&](glm::vec2 d) {
+      return 2.0 * image.at(x, y, 0) - sample_bilinear(image, c.x + d.x, c.y + d.y, 0) -
+             sample_bilinear(image, c.x - d.x, c.y - d.y, 0);
+    };
+    const double a = second(u), b = second(glm::vec2(-u.y, u.x));
+    along += a * a;
+    across += b * b;
+    ++n;
+  });
   if (n < 16 || !(across > 0.0)) return std::numeric_limits<double>::quiet_NaN();
   return along / across;
 }

@@ -1,5 +1,9 @@
 #include "ibfvs/render/shaders.h"
 
+#include <string>
+
+#include "ibfvs/core/texture/display.h"
+
 namespace ibfvs::shaders {
 
 namespace {
@@ -237,7 +241,7 @@ vec2 stored_flow(vec4 t, vec2 fallback) { return fallback; }
 // aligned ones (motorbike: A 0.929, W 0.89 px against 0.920, 0.87 at one pixel).
 vec3 display_tap(vec2 p, vec3 value, vec2 along) {
 #ifdef IBFVS_SHARPEN
-  vec2 across = 1.5 * vec2(-along.y, along.x);
+  vec2 across = IBFVS_SHARPEN_REACH * vec2(-along.y, along.x);
   vec4 a = textureLod(u_previous, (p + across) * u_inverse_size, 0.0);
   vec4 b = textureLod(u_previous, (p - across) * u_inverse_size, 0.0);
   if (stored_depth(a) > -255.0 && stored_depth(b) > -255.0)
@@ -514,6 +518,8 @@ std::string with_defines(const ShaderFeatures& features, const char* body, bool 
   define(features.contrast, "IBFVS_CONTRAST");
   define(features.record_flow, "IBFVS_RECORD_FLOW");
   define(features.sharpen, "IBFVS_SHARPEN");
+  if (features.sharpen)
+    source += "#define IBFVS_SHARPEN_REACH " + std::to_string(ibfvs::kSharpenReach) + "\n";
   if (profile) source += kProfile;
   return source + body;
 }

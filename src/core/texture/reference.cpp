@@ -70,7 +70,7 @@ float ReferenceIbfvs::sample(float x, float y) const {
 
 float ReferenceIbfvs::display_tap(glm::vec2 p, float value, glm::vec2 along) const {
   if (!(sharpen_ > 0.0f)) return value;
-  const glm::vec2 across = 1.5f * glm::vec2(-along.y, along.x);  // as the shader
+  const glm::vec2 across = kSharpenReach * glm::vec2(-along.y, along.x);
   const glm::vec2 a = p + across, b = p - across;
   if (!footprint_covered(a.x, a.y) || !footprint_covered(b.x, b.y)) return value;
   return value + sharpen_ * (value - 0.5f * (sample(a.x, a.y) + sample(b.x, b.y)));

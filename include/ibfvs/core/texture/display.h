@@ -32,6 +32,12 @@ float filter_spacing(float length);
 /// The weight exp(-2 (d / L)^2) of tap k (1-based) on each side.
 float filter_weight(float length, int k);
 
+/// How far across the flow sharpening takes a tap's two neighbours, in
+/// pixels: the gain then peaks at lines 3 pixels apart, where the streaks
+/// are (docs/quality.md, "thin lines"). The shader and ReferenceIbfvs both
+/// read it.
+inline constexpr float kSharpenReach = 1.5f;
+
 /// Bilinear sample of channel c at (x, y) in pixels, texel centres at +0.5,
 /// clamped at the edges (a GL_LINEAR texture with CLAMP_TO_EDGE).
 float sample_bilinear(const ImageF& image, float x, float y, int c);

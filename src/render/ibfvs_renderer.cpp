@@ -90,18 +90,24 @@ IbfvsRenderer::IbfvsRenderer(const RenderSettings& settings) : settings_(setting
   reset();
 }
 
+int IbfvsRenderer::texture_layout(bool colour) const {
+  const shaders::ShaderFeatures f = shaders::features_for(settings_, colour, false, false);
+  return 2 * shaders::texture_channels(f) + (shaders::tap_texture(f) ? 1 : 0);
+}
+
 void IbfvsRenderer::allocate_texture(bool colour) {
   colour_texture_ = colour;
   // Grey: value and depth, and the displacement when the display filter
   // follows it (the paper's look, without the filter, reads and writes half
-  // the bytes).
-  texture_flow_ = !colour && ibfvs::filter_taps(settings_.filter_length) > 0;
-  const gl::Format format =
-      shaders::texture_channels(shaders::features_for(settings_, colour, false, false)) == 4
-          ? gl::Format::RGBA16F
-          : gl::Format::RG16F;
-  for (int i = 0; i < 2; ++i)
+  // the bytes); with sharpening the displacement goes with the taps' image.
+  texture_layout_ = texture_layout(colour);
+  const gl::Format format = texture_layout_ / 2 == 4 ? gl::Format::RGBA16F : gl::Format::RG16F;
+  for (int i = 0; i < 2; ++i) {
     texture_[i] = gl::Texture2D(settings_.width, settings_.height, format, true);
+    taps_[i] = texture_layout_ % 2 == 1
+                   ? gl::Texture2D(settings_.width, settings_.height, gl::Format::RGBA16F, true)
+                   : gl::Texture2D();
+  }
   build_framebuffers();
 }
 
@@ -110,9 +116,10 @@ void IbfvsRenderer::build_framebuffers() {
     framebuffer_[i] = gl::Framebuffer::create();
     framebuffer_[i].attach_color(0, texture_[i]);
     framebuffer_[i].attach_color(1, output_);
-    if (record_flow_) framebuffer_[i].attach_color(2, flow_);
+    if (taps_[i]) framebuffer_[i].attach_color(2, taps_[i]);
+    if (record_flow_) framebuffer_[i].attach_color(flow_attachment(), flow_);
     framebuffer_[i].attach_depth(depth_);
-    framebuffer_[i].finish(record_flow_ ? 3 : 2);
+    framebuffer_[i].finish(record_flow_ ? flow_attachment() + 1 : flow_attachment());
   }
 }
 
@@ -122,20 +129,19 @@ void IbfvsRenderer::record_flow(bool on) {
   if (on && !flow_)
     flow_ = gl::Texture2D(settings_.width, settings_.height, gl::Format::RG16F, false);
   build_framebuffers();
-  if (on) framebuffer_[current_].clear_color(2, glm::vec4(0.0f));
+  if (on) framebuffer_[current_].clear_color(flow_attachment(), glm::vec4(0.0f));
 }
 
 void IbfvsRenderer::use_colour_texture() {
   if (colour_texture_) return;
-  const ImageF raw = read_texture_raw();  // value, depth, displacement
-  std::vector<float> rgba(raw.pixels.size());
-  for (std::size_t i = 0; i < raw.pixels.size() / 4; ++i) {
-    const float v = raw.pixels[4 * i];
-    rgba[4 * i] = rgba[4 * i + 1] = rgba[4 * i + 2] = v;
-    rgba[4 * i + 3] = raw.pixels[4 * i + 1];
+  const ImageF raw = read_texture_raw();  // value, depth, displacement, tap value
+  ImageF rgb(raw.width, raw.height, kRawChannels, 0.0f);
+  for (std::size_t i = 0; i < raw.pixels.size(); i += kRawChannels) {
+    rgb.pixels[i] = rgb.pixels[i + 1] = rgb.pixels[i + 2] = raw.pixels[i];
+    rgb.pixels[i + 3] = raw.pixels[i + 1];
   }
   allocate_texture(true);
-  texture_[current_].upload_float(rgba, 4);
+  upload_raw(rgb);
 }
 
 shaders::ShaderFeatures IbfvsRenderer::features() const {
@@ -194,10 +200,10 @@ void IbfvsRenderer::update_settings(const RenderSettings& settings) {
   settings_ = settings;
   if (shaders::colour_background(settings_))
     use_colour_texture();  // a grey texture stays until reset()
-  if (!colour_texture_ && texture_flow_ != (ibfvs::filter_taps(settings_.filter_length) > 0)) {
+  if (!colour_texture_ && texture_layout_ != texture_layout(false)) {
     const ImageF raw = read_texture_raw();  // F_t carries over into the other format
     allocate_texture(false);
-    texture_[current_].upload_float(raw.pixels, 4);
+    upload_raw(raw);
   }
   apply_settings();
 }
@@ -286,7 +292,7 @@ void IbfvsRenderer::set_scalars(std::span<const float> color, std::span<const fl
 void IbfvsRenderer::reset() {
   gl::prepare_own_draw();
   if (colour_texture_ != shaders::colour_background(settings_) ||
-      (!colour_texture_ && texture_flow_ != (ibfvs::filter_taps(settings_.filter_length) > 0)))
+      texture_layout_ != texture_layout(colour_texture_))
     allocate_texture(shaders::colour_background(settings_));
   for (auto& fb : framebuffer_) clear_targets(fb);
   stats_framebuffer_.clear_color(0, glm::vec4(0.0f));  // no statistics before the first frame
@@ -361,6 +367,7 @@ void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
     p.set(v.u.locked, locked_ ? 1 : 0);
     p.set(v.u.noise_time, noise_time);
     texture_[current_].bind(0);
+    if (taps_[current_]) taps_[current_].bind(5);
     grid_.bind(1);
     color_map_.bind(2);
     if (surface_image_) surface_image_.bind(3);
@@ -390,7 +397,8 @@ void IbfvsRenderer::clear_targets(gl::Framebuffer& fb) const {
   const glm::vec3& b = settings_.background;
   fb.clear_color(0, colour_texture_ ? glm::vec4(b, kNoDepth) : glm::vec4(b.r, kNoDepth, 0, 0));
   fb.clear_color(1, glm::vec4(b, 1.0f));
-  if (record_flow_) fb.clear_color(2, glm::vec4(0.0f));
+  if (taps_[0]) fb.clear_color(2, glm::vec4(b.r, kNoDepth, 0, 0));
+  if (record_flow_) fb.clear_color(flow_attachment(), glm::vec4(0.0f));
   fb.clear_depth();  // the depth buffer is shared by both framebuffers
 }
 
@@ -469,12 +477,42 @@ void IbfvsRenderer::read_output(ImageU8& image) const {
 }
 
 ImageF IbfvsRenderer::read_texture_raw() const {
-  ImageF image(settings_.width, settings_.height, 4);
-  texture_[current_].read_float(image.pixels, 4);
-  if (!colour_texture_ && !texture_flow_)  // two channels: no displacement (GL reads 0, 1)
-    for (std::size_t i = 0; i < image.pixels.size(); i += 4)
-      image.pixels[i + 2] = image.pixels[i + 3] = 0.0f;
-  return image;
+  const int w = settings_.width, h = settings_.height;
+  ImageF stored(w, h, 4);
+  texture_[current_].read_float(stored.pixels, 4);
+  ImageF taps;
+  if (taps_[current_]) {
+    taps = ImageF(w, h, 4);
+    taps_[current_].read_float(taps.pixels, 4);
+  }
+  const bool flow = texture_layout_ / 2 == 4;  // else two channels: GL reads (0, 1) after them
+  ImageF raw(w, h, kRawChannels, 0.0f);
+  for (std::size_t i = 0; i < static_cast<std::size_t>(w) * h; ++i) {
+    const float* s = &stored.pixels[4 * i];
+    float* r = &raw.pixels[kRawChannels * i];
+    std::copy_n(s, flow ? 4 : 2, r);
+    if (colour_texture_) continue;
+    if (!taps.pixels.empty()) std::copy_n(&taps.pixels[4 * i + 2], 2, r + 2);
+    r[4] = taps.pixels.empty() ? s[0] : taps.pixels[4 * i];
+  }
+  return raw;
+}
+
+void IbfvsRenderer::upload_raw(const ImageF& raw) {
+  const std::size_t n = static_cast<std::size_t>(raw.width) * raw.height;
+  const int channels = texture_layout_ / 2;
+  std::vector<float> stored(n * static_cast<std::size_t>(channels));
+  std::vector<float> taps(taps_[current_] ? n * 4 : 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const float* r = &raw.pixels[kRawChannels * i];
+    std::copy_n(r, channels, &stored[channels * i]);
+    if (!taps.empty()) {
+      float* t = &taps[4 * i];
+      t[0] = r[4], t[1] = r[1], t[2] = r[2], t[3] = r[3];
+    }
+  }
+  texture_[current_].upload_float(stored, channels);
+  if (!taps.empty()) taps_[current_].upload_float(taps, 4);
 }
 
 ImageF IbfvsRenderer::read_texture() const {
@@ -482,10 +520,11 @@ ImageF IbfvsRenderer::read_texture() const {
   ImageF image(settings_.width, settings_.height, 4);
   for (std::size_t i = 0; i < image.pixels.size() / 4; ++i) {
     float* p = &image.pixels[4 * i];
+    const float* r = &raw.pixels[kRawChannels * i];
     if (colour_texture_)
-      std::copy_n(&raw.pixels[4 * i], 3, p);
+      std::copy_n(r, 3, p);
     else
-      p[0] = p[1] = p[2] = raw.pixels[4 * i];
+      p[0] = p[1] = p[2] = r[0];
     p[3] = 1.0f;
   }
   return image;
@@ -522,13 +561,12 @@ void IbfvsRenderer::draw_to_host(glm::ivec2 origin) const {
 }
 
 void IbfvsRenderer::write_texture_raw(const ImageF& texture) {
-  const int channels = 4;
   if (texture.width != settings_.width || texture.height != settings_.height ||
-      texture.channels != channels)
+      texture.channels != kRawChannels)
     throw InputError("renderer: write_texture_raw needs a " + std::to_string(settings_.width) +
                      "x" + std::to_string(settings_.height) + " image of " +
-                     std::to_string(channels) + " channels");
-  texture_[current_].upload_float(texture.pixels, channels);
+                     std::to_string(kRawChannels) + " channels");
+  upload_raw(texture);
 }
 
 ImageF IbfvsRenderer::read_output_raw() const {

@@ -32,7 +32,11 @@ ShaderFeatures features_for(const RenderSettings& settings, bool colour_texture,
 }
 
 int texture_channels(const ShaderFeatures& f) {
-  return !f.mono_texture || f.filter_taps > 0 ? 4 : 2;
+  return !f.mono_texture || (f.filter_taps > 0 && !tap_texture(f)) ? 4 : 2;
+}
+
+bool tap_texture(const ShaderFeatures& f) {
+  return f.mono_texture && f.filter_taps > 0 && f.sharpen;
 }
 
 std::vector<UniformValue> settings_uniforms(const RenderSettings& s, const ShaderFeatures& f,

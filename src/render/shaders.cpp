@@ -150,8 +150,23 @@ layout(location = 0) out vec4 o_texture;
 // F; its alpha holds D(F_t) before the contrast stage, for the statistics
 // (read_output sets it to 1): a third attachment would cost more per pixel.
 layout(location = 1) out vec4 o_color;
+// A grey F_t with the display filter and sharpening keeps a second image
+// for the filter's taps: (the sharpened value, depth, displacement). Each
+// pixel sharpens once here, and each tap then reads one texel, where it read
+// three (the tap and its two neighbours across the flow: a third of the
+// frame on llvmpipe). F_t itself is then (value, depth).
+#if defined(IBFVS_MONO_TEXTURE) && defined(IBFVS_FILTER) && defined(IBFVS_SHARPEN)
+#define IBFVS_TAP_TEXTURE
+layout(location = 2) out vec4 o_taps;
+BINDING(5) uniform sampler2D u_taps;  // the last frame's
+#define IBFVS_TAPS u_taps
+#define IBFVS_FLOW_LOCATION 3
+#else
+#define IBFVS_TAPS u_previous
+#define IBFVS_FLOW_LOCATION 2
+#endif
 #ifdef IBFVS_RECORD_FLOW
-layout(location = 2) out vec2 o_flow;  // this frame's displacement in pixels (measurements)
+layout(location = IBFVS_FLOW_LOCATION) out vec2 o_flow;  // this frame's displacement in pixels (measurements)
 #endif
 #ifdef IBFVS_FILTER
 uniform float u_filter_spacing;        // pixels between taps
@@ -232,15 +247,17 @@ vec2 stored_flow(vec4 t, vec2 fallback) { return fallback; }
 #endif
 
 #if defined(IBFVS_FILTER) || defined(IBFVS_SHARPEN)
-// A display tap at p (pixels) of the last frame's F_t: its value plus, when
-// sharpening, k times its excess over its two neighbours 1.5 pixels across
-// the flow (unit direction `along`), which counters the blur that the
+// Sharpening: a value plus k times its excess over its two neighbours 1.5
+// pixels across the flow (its high-pass), which counters the blur that the
 // frames' resampling leaves across the flow. At 1.5 pixels the gain peaks
 // at lines 3 pixels apart, where the picture's streaks are, rather than at
 // the pixel grid's own frequency (one pixel): thinner lines and better
-// aligned ones (motorbike: A 0.929, W 0.89 px against 0.920, 0.87 at one pixel).
+// aligned ones (motorbike: A 0.929, W 0.89 px against 0.920, 0.87 at one
+// pixel). A grey F_t carries its sharpened value with it (the tap texture,
+// made in main()), so a display tap is its value as read; a colour F_t's
+// tap at p (pixels) is sharpened here, across the unit direction `along`.
 vec3 display_tap(vec2 p, vec3 value, vec2 along) {
-#ifdef IBFVS_SHARPEN
+#if defined(IBFVS_SHARPEN) && !defined(IBFVS_MONO_TEXTURE)
   vec2 across = IBFVS_SHARPEN_REACH * vec2(-along.y, along.x);
   vec4 a = textureLod(u_previous, (p + across) * u_inverse_size, 0.0);
   vec4 b = textureLod(u_previous, (p - across) * u_inverse_size, 0.0);
@@ -342,10 +359,49 @@ void main() {
 #endif
   if (u_locked != 0) ft = previous;  // a locked texture is only mapped, never changed
   vec2 moved = ahead && u_locked == 0 ? gl_FragCoord.xy - unshifted / u_inverse_size : vec2(0.0);
+  float moved_length = length(moved);
+  vec2 along = moved_length > 1e-6 ? moved / moved_length : vec2(0.0);
+  vec2 start = texcoord / u_inverse_size;  // t(x) in pixels
+#if defined(IBFVS_SHARPEN) && defined(IBFVS_MONO_TEXTURE)
+  // Sharpening once per pixel (display_tap): the high-pass of the last
+  // frame's F_t at t(x) across this pixel's flow, and that of this frame's
+  // noise at x; F_t's high-pass mixes them as equation 10 mixes the values
+  // (t carries x's neighbours to t(x)'s, up to the map's slight stretch and
+  // turn in one frame). Off the last frame's surface the value is the noise.
+  vec2 across = IBFVS_SHARPEN_REACH * vec2(-along.y, along.x);
+#ifdef IBFVS_OBJECT_NOISE
+  vec3 object_across = dFdx(v_position_object) * across.x + dFdy(v_position_object) * across.y;
+#endif
+  float high_previous = 0.0, high_noise = 0.0;
+  if (moved_length > 1e-6) {
+    if (same_surface) {
+      vec4 a = textureLod(u_previous, (start + across) * u_inverse_size, 0.0);
+      vec4 b = textureLod(u_previous, (start - across) * u_inverse_size, 0.0);
+      if (stored_depth(a) > -255.0 && stored_depth(b) > -255.0)
+        high_previous = previous.r - 0.5 * (stored_value(a).r + stored_value(b).r);
+    }
+#ifdef IBFVS_OBJECT_NOISE
+    high_noise = g - 0.5 * (solid_noise(v_position_object + object_across) +
+                            solid_noise(v_position_object - object_across));
+#else
+    vec2 here = gl_FragCoord.xy - u_noise_shift;
+    high_noise = g - 0.5 * (noise(here + across) + noise(here - across));
+#endif
+  }
+#ifdef IBFVS_INJECT_ADD
+  float high = (1.0 - u_alpha) * high_previous + high_noise;  // no ink off the last surface
+#else
+  float high = same_surface ? mix(high_previous, high_noise, u_alpha) : high_noise;
+#endif
+  if (u_locked != 0) high = high_previous;
+#endif
 #ifdef IBFVS_MONO_TEXTURE
   o_texture = vec4(ft.r, depth, moved);
 #else
   o_texture = vec4(ft, depth);
+#endif
+#ifdef IBFVS_TAP_TEXTURE
+  o_taps = vec4(ft.r + u_sharpen * high, depth, moved);
 #endif
 #ifdef IBFVS_RECORD_FLOW
   o_flow = moved;
@@ -363,11 +419,12 @@ void main() {
   // which is not yet smooth along the flow), and no pass reads this frame's
   // F_t again. The line stops where it leaves the last frame's surface or
   // meets one at another depth.
-  float moved_length = length(moved);
   if (same_surface && moved_length > 1e-6) {
-    vec2 along = moved / moved_length;
-    vec2 start = texcoord / u_inverse_size;
+#if defined(IBFVS_SHARPEN) && defined(IBFVS_MONO_TEXTURE)
+    shown = previous + u_sharpen * high_previous;
+#else
     shown = display_tap(start, previous, along);
+#endif
 #ifdef IBFVS_FILTER
     vec3 sum = shown;
     float weights = 1.0;
@@ -377,7 +434,7 @@ void main() {
       for (int k = 0; k < IBFVS_FILTER; ++k) {  // taps per side, a compile-time constant
         vec2 turned = heading + 0.5 * (heading - last);
         p += u_filter_spacing * (dot(turned, turned) > 1e-12 ? normalize(turned) : heading);
-        vec4 t = textureLod(u_previous, p * u_inverse_size, 0.0);
+        vec4 t = textureLod(IBFVS_TAPS, p * u_inverse_size, 0.0);
         if (!(stored_depth(t) > -255.0) || abs(stored_depth(t) - previous_depth) > depth_tolerance)
           break;
         vec2 f = stored_flow(t, along);

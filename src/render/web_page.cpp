@@ -195,6 +195,7 @@ std::string look_json(const PreparedScene& q, const std::string& name, std::stri
          ",\"dt\":" + json_number(q.dt) + ",\"noise_rate\":" + json_number(s.noise.rate) +
          ",\"colour_texture\":" + (colour_texture ? "true" : "false") +
          ",\"texture_channels\":" + std::to_string(shaders::texture_channels(f)) +
+         ",\"tap_texture\":" + (shaders::tap_texture(f) ? "true" : "false") +
          ",\"advect_previous\":" + (s.advect_view == AdvectView::Previous ? "true" : "false") +
          ",\"phase_size\":[" + std::to_string(phase_size.x) + "," + std::to_string(phase_size.y) +
          "],\"shaders\":{\"vertex\":" +

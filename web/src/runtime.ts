@@ -55,6 +55,7 @@ export class PageRenderer {
   private vao: WebGLVertexArrayObject;
   private empty: WebGLVertexArrayObject;
   private textures: WebGLTexture[] = [];
+  private taps: WebGLTexture[] = []; // beside F_t when the look has a tap texture, else none
   private output: WebGLTexture;
   private depth: WebGLTexture;
   private fbs: WebGLFramebuffer[] = [];
@@ -156,7 +157,7 @@ export class PageRenderer {
   /// grid and its uniforms.
   setLook(index: number): void {
     const gl = this.gl, s = this.scene, look = s.looks[index];
-    const channels = this.textures.length ? this.look.texture_channels : 0;
+    const layout = this.textures.length ? [this.look.texture_channels, this.look.tap_texture] : [];
     this.look = look;
     let programs = this.programs.get(look);
     if (!programs) {
@@ -169,12 +170,16 @@ export class PageRenderer {
     gl.useProgram(this.grid);
     for (const u of look.grid_uniforms) setUniform(gl, this.grid, u);
     // F_t ping-pong, in the look's channels.
-    if (channels !== look.texture_channels) {
-      this.textures.forEach((t) => gl.deleteTexture(t));
+    if (layout[0] !== look.texture_channels || layout[1] !== look.tap_texture) {
+      [...this.textures, ...this.taps].forEach((t) => gl.deleteTexture(t));
       this.fbs.forEach((f) => gl.deleteFramebuffer(f));
       const [internal, format] = look.texture_channels === 4 ? [gl.RGBA16F, gl.RGBA] : [gl.RG16F, gl.RG];
       this.textures = [0, 1].map(() => texture(gl, s.width, s.height, internal, format, gl.HALF_FLOAT, true));
-      this.fbs = this.textures.map((t) => framebuffer(gl, [t, this.output], this.depth));
+      this.taps = look.tap_texture
+        ? [0, 1].map(() => texture(gl, s.width, s.height, gl.RGBA16F, gl.RGBA, gl.HALF_FLOAT, true))
+        : [];
+      this.fbs = this.textures.map((t, i) =>
+        framebuffer(gl, this.taps.length ? [t, this.output, this.taps[i]] : [t, this.output], this.depth));
     }
     const scale = look.uniforms.find((u) => u.name === "u_noise_scale");
     this.setNoiseScale(scale ? scale.values[0] : 1, look.phase_size);
@@ -256,6 +261,7 @@ export class PageRenderer {
     gl.bindFramebuffer(gl.FRAMEBUFFER, fb);
     gl.clearBufferfv(gl.COLOR, 0, this.look.colour_texture ? [b[0], b[1], b[2], d] : [b[0], d, 0, 0]);
     gl.clearBufferfv(gl.COLOR, 1, [b[0], b[1], b[2], 1]);
+    if (this.taps.length) gl.clearBufferfv(gl.COLOR, 2, [b[0], d, 0, 0]);
     gl.clearBufferfi(gl.DEPTH_STENCIL, 0, 1, 0);
   }
 
@@ -309,6 +315,7 @@ export class PageRenderer {
       gl.bindTexture(gl.TEXTURE_2D, t);
     };
     bind(0, this.textures[this.current]);
+    if (this.taps.length) bind(5, this.taps[this.current]);
     bind(1, this.gridTexture!);
     bind(2, this.colorMap);
     if (this.surfaceImage) bind(3, this.surfaceImage);

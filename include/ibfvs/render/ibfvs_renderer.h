@@ -126,11 +126,13 @@ class IbfvsRenderer {
   /// The texture image F_t, RGBA float (values as stored in 16-bit float; a
   /// one-channel F_t is spread to grey RGB with alpha 1).
   [[nodiscard]] ImageF read_texture() const;
-  /// F_t as stored, four channels: grey value, eye depth and the pixel's
-  /// displacement in its frame (x, y pixels, kept when the display filter is
-  /// on: it follows them; else 0), or RGB and eye depth; the depth is
-  /// kNoDepth off the surface.
+  /// F_t as stored, kRawChannels channels: grey value, eye depth, the
+  /// pixel's displacement in its frame (x, y pixels, kept when the display
+  /// filter is on: it follows them; else 0) and the value the filter's taps
+  /// read (sharpened, or the value); or RGB, eye depth and 0. The depth is
+  /// kNoDepth off the surface. write_texture_raw takes the same.
   [[nodiscard]] ImageF read_texture_raw() const;
+  static constexpr int kRawChannels = 5;
   /// Records every pixel's displacement from now on (for measurements: it
   /// costs a fourth attachment), or stops.
   void record_flow(bool on);
@@ -204,8 +206,13 @@ class IbfvsRenderer {
   // content.
   void allocate_texture(bool colour);
   void use_colour_texture();
+  // F_t's channels for these settings, times 2, plus 1 with a tap texture:
+  // a change of either allocates again.
+  [[nodiscard]] int texture_layout(bool colour) const;
+  void upload_raw(const ImageF& raw);  // read_texture_raw's layout into F_t (and its taps)
+  [[nodiscard]] unsigned flow_attachment() const { return taps_[0] ? 3u : 2u; }
   bool colour_texture_ = true;
-  bool texture_flow_ = true;  // a grey F_t also keeps each pixel's displacement
+  int texture_layout_ = 0;
 
   RenderSettings settings_;
   std::unordered_map<unsigned, Variant> variants_;  // by ShaderFeatures::key()
@@ -214,6 +221,7 @@ class IbfvsRenderer {
   glm::vec3 image_centre_{0.0f};
   float field_mix_ = 0.0f;
   gl::Texture2D texture_[2];  // F_t ping-pong
+  gl::Texture2D taps_[2];     // the display filter's taps beside a grey F_t (tap_texture), or none
   gl::Texture2D output_;      // F
   gl::Texture2D flow_;        // displacement of the last frame, pixels (when recorded)
   bool record_flow_ = false;
@@ -232,7 +240,7 @@ class IbfvsRenderer {
   gl::Texture2D depth_;  // a texture: draw_to_host reads it
   gl::Program host_program_;
   int host_origin_ = -1;
-  gl::Framebuffer framebuffer_[2];  // [i] draws into texture_[i], output_ (, flow_)
+  gl::Framebuffer framebuffer_[2];  // [i] draws into texture_[i], output_ (, taps_[i]) (, flow_)
   gl::Buffer vertices_;
   gl::Buffer field_;
   gl::Buffer field_next_;

@@ -33,8 +33,15 @@ namespace ibfvs::shaders {
 
 /// Channels of F_t: a colour F_t holds RGB and the eye depth; a grey one the
 /// value and the depth, plus each pixel's displacement when the display
-/// filter follows it (2 channels are cheaper to read on llvmpipe).
+/// filter follows it without a tap texture (2 channels are cheaper to read
+/// on llvmpipe).
 [[nodiscard]] int texture_channels(const ShaderFeatures& features);
+
+/// Whether the pass keeps a second image beside a grey F_t for the display
+/// filter's taps, (sharpened value, depth, displacement) in RGBA16F: when
+/// the filter and sharpening are both on, so that each pixel sharpens once
+/// and each tap reads one texel (the fragment shader's IBFVS_TAP_TEXTURE).
+[[nodiscard]] bool tap_texture(const ShaderFeatures& features);
 
 /// One uniform's value: 1-4 components of a float, int or uint uniform, or
 /// (array) a float array.

@@ -521,7 +521,8 @@ void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor) {
     const int w = in.width, h = in.height;
     ibfvs::ImageF depth = session ? session->renderer().read_depth() : ibfvs::ImageF(w, h, 1, 1.0f);
     ibfvs::ImageF texture =
-        session ? session->renderer().read_texture_raw() : ibfvs::ImageF(w, h, 4, 0.0f);
+        session ? session->renderer().read_texture_raw()
+                : ibfvs::ImageF(w, h, ibfvs::IbfvsRenderer::kRawChannels, 0.0f);
     // Every rank counts frames alike; the statistics are due on the same ones.
     const bool statistics = in.scene.contrast > 0.0f && in.frame % 4 == 0;
     ibfvs::ImageF output;

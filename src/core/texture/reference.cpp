@@ -11,7 +11,7 @@ namespace ibfvs {
 ReferenceIbfvs::ReferenceIbfvs(int width, int height, float background, const NoiseParams& noise)
     : background_(background), noise_(width, height, noise) {
   texture_ = ImageF(width, height, 1, background);
-  shown_ = texture_;
+  shown_ = taps_ = texture_;
   moved_ = ImageF(width, height, 2, 0.0f);
   covered_.assign(static_cast<std::size_t>(width) * height, 0);
 }
@@ -68,12 +68,10 @@ float ReferenceIbfvs::sample(float x, float y) const {
   return sample_bilinear(texture_, x, y, 0);
 }
 
-float ReferenceIbfvs::display_tap(glm::vec2 p, float value, glm::vec2 along) const {
-  if (!(sharpen_ > 0.0f)) return value;
-  const glm::vec2 across = kSharpenReach * glm::vec2(-along.y, along.x);
+float ReferenceIbfvs::high_pass(glm::vec2 p, float value, glm::vec2 across) const {
   const glm::vec2 a = p + across, b = p - across;
-  if (!footprint_covered(a.x, a.y) || !footprint_covered(b.x, b.y)) return value;
-  return value + sharpen_ * (value - 0.5f * (sample(a.x, a.y) + sample(b.x, b.y)));
+  if (!footprint_covered(a.x, a.y) || !footprint_covered(b.x, b.y)) return 0.0f;
+  return value - 0.5f * (sample(a.x, a.y) + sample(b.x, b.y));
 }
 
 void ReferenceIbfvs::step(const BackwardMap& map, int frame, float alpha, InjectMode mode) {
@@ -81,6 +79,7 @@ void ReferenceIbfvs::step(const BackwardMap& map, int frame, float alpha, Inject
     throw InputError("reference: backward map size differs from the image size");
   ImageF next = texture_;
   ImageF shown = texture_;
+  ImageF tap_values = texture_;
   ImageF moved(texture_.width, texture_.height, 2, 0.0f);
   const int taps = filter_taps(filter_length_);
   const float spacing = filter_spacing(filter_length_);
@@ -94,7 +93,7 @@ void ReferenceIbfvs::step(const BackwardMap& map, int frame, float alpha, Inject
     for (int x = 0; x < texture_.width; ++x) {
       const std::size_t i = static_cast<std::size_t>(y) * texture_.width + x;
       if (!map.covered[i]) {
-        next.pixels[i] = shown.pixels[i] = background_;
+        next.pixels[i] = shown.pixels[i] = tap_values.pixels[i] = background_;
         continue;
       }
       const float g =
@@ -109,13 +108,30 @@ void ReferenceIbfvs::step(const BackwardMap& map, int frame, float alpha, Inject
       const glm::vec2 d = here - s;
       moved.at(x, y, 0) = d.x;
       moved.at(x, y, 1) = d.y;
-      shown.pixels[i] = next.pixels[i];
+      shown.pixels[i] = tap_values.pixels[i] = next.pixels[i];
       const float length = std::sqrt(d.x * d.x + d.y * d.y);
-      if (!display || !same || !(length > 1e-6f)) continue;
-      // The display filter, as the fragment shader: along the streamline
-      // through the source in the last frame's F_t and stored displacements.
+      if (!(length > 1e-6f)) continue;
       const glm::vec2 along = d / length;
-      float sum = display_tap(s, prev, along), weights = 1.0f;
+      // Sharpening once per pixel, as the fragment shader: the high-pass of
+      // the last frame's F_t at the source and of this frame's noise here,
+      // mixed as the values are; the taps read the sharpened values.
+      float high_previous = 0.0f;
+      if (sharpen_ > 0.0f) {
+        const glm::vec2 across = kSharpenReach * glm::vec2(-along.y, along.x);
+        if (same) high_previous = high_pass(s, prev, across);
+        const glm::vec2 a = here + across, b = here - across;
+        const float high_noise =
+            g - 0.5f * (noise_.sample(a.x, a.y, frame) + noise_.sample(b.x, b.y, frame));
+        const float high = mode == InjectMode::Add ? (1 - alpha) * high_previous + high_noise
+                           : same                  ? (1 - alpha) * high_previous + alpha * high_noise
+                                                   : high_noise;
+        tap_values.pixels[i] = next.pixels[i] + sharpen_ * high;
+      }
+      if (!display || !same) continue;
+      // The display filter, as the fragment shader: along the streamline
+      // through the source in the last frame's sharpened F_t and stored
+      // displacements.
+      float sum = prev + sharpen_ * high_previous, weights = 1.0f;
       for (const float side : {-1.0f, 1.0f}) {
         glm::vec2 p = s, heading = side * along, last = heading;
         for (int k = 1; k <= taps; ++k) {
@@ -130,7 +146,7 @@ void ReferenceIbfvs::step(const BackwardMap& map, int frame, float alpha, Inject
           heading = side * normalised(f);
           if (heading.x * last.x + heading.y * last.y < 0.0f) break;
           const float w = filter_weight(filter_length_, k);
-          sum += w * display_tap(p, sample(p.x, p.y), heading);
+          sum += w * sample_bilinear(taps_, p.x, p.y, 0);
           weights += w;
         }
       }
@@ -138,6 +154,7 @@ void ReferenceIbfvs::step(const BackwardMap& map, int frame, float alpha, Inject
     }
   texture_ = std::move(next);
   shown_ = std::move(shown);
+  taps_ = std::move(tap_values);
   moved_ = std::move(moved);
   covered_ = map.covered;
 }

@@ -150,7 +150,7 @@ struct Scene {
   // (shear spans decades), pixel-fine noise that never repeats (the pattern
   // moves with the flow), a display filter along the curved streamline,
   // sharpened across it, a fixed RMS contrast, a Catmull-Rom warp, steps of
-  // 2 pixels, the texture strong against the shading (beta 0.65). The crisp
+  // 1.5 pixels, the texture strong against the shading (beta 0.65). The crisp
   // style adds a longer filter; the paper style is the 2003 look: scale 4,
   // profile square, vg 0.02, beta 0.5, step 3, bilinear warp, no display
   // stage.

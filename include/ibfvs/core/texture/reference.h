@@ -61,7 +61,9 @@ class ReferenceIbfvs {
   /// this frame's fresh noise; 0 shows F_t as it is.
   void set_filter_length(float length) { filter_length_ = length; }
   /// Each display tap plus k times its excess over the mean of its two
-  /// neighbours 1.5 pixels across the flow (RenderSettings::sharpen); 0 off.
+  /// neighbours 1.5 pixels across the flow (RenderSettings::sharpen), taken
+  /// once per pixel as the GPU pass does (the high-pass of the last F_t at
+  /// the source mixed with that of the fresh noise); 0 off.
   void set_sharpen(float k) { sharpen_ = k; }
   /// F_t,prev(source) by Catmull-Rom (RenderSettings::resample cubic) where
   /// the 4 x 4 texels around it were all on the surface, else bilinearly.
@@ -88,8 +90,10 @@ class ReferenceIbfvs {
   float sharpen_ = 0.0f;
   bool cubic_ = false;
   ImageF moved_;  // each pixel's displacement in the last frame (2 channels)
-  // A display tap at p of the last frame's F_t, sharpened across `along`.
-  [[nodiscard]] float display_tap(glm::vec2 p, float value, glm::vec2 along) const;
+  ImageF taps_;   // the values the display taps read: F_t sharpened
+  // `value` (F_t at p) less the mean of F_t at p +- across; 0 where one of
+  // them is off the last frame's surface.
+  [[nodiscard]] float high_pass(glm::vec2 p, float value, glm::vec2 across) const;
   [[nodiscard]] float sample_cubic(float x, float y) const;
   std::vector<std::uint8_t> covered_;  // the previous frame's surface
   float background_;

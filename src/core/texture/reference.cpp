@@ -123,8 +123,8 @@ void ReferenceIbfvs::step(const BackwardMap& map, int frame, float alpha, Inject
         const float high_noise =
             g - 0.5f * (noise_.sample(a.x, a.y, frame) + noise_.sample(b.x, b.y, frame));
         const float high = mode == InjectMode::Add ? (1 - alpha) * high_previous + high_noise
-                           : same                  ? (1 - alpha) * high_previous + alpha * high_noise
-                                                   : high_noise;
+                           : same ? (1 - alpha) * high_previous + alpha * high_noise
+                                  : high_noise;
         tap_values.pixels[i] = next.pixels[i] + sharpen_ * high;
       }
       if (!display || !same) continue;

@@ -90,9 +90,9 @@ IbfvsRenderer::IbfvsRenderer(const RenderSettings& settings) : settings_(setting
   reset();
 }
 
-int IbfvsRenderer::texture_layout(bool colour) const {
+IbfvsRenderer::TextureLayout IbfvsRenderer::texture_layout(bool colour) const {
   const shaders::ShaderFeatures f = shaders::features_for(settings_, colour, false, false);
-  return 2 * shaders::texture_channels(f) + (shaders::tap_texture(f) ? 1 : 0);
+  return {shaders::texture_channels(f), shaders::tap_texture(f)};
 }
 
 void IbfvsRenderer::allocate_texture(bool colour) {
@@ -101,10 +101,10 @@ void IbfvsRenderer::allocate_texture(bool colour) {
   // follows it (the paper's look, without the filter, reads and writes half
   // the bytes); with sharpening the displacement goes with the taps' image.
   texture_layout_ = texture_layout(colour);
-  const gl::Format format = texture_layout_ / 2 == 4 ? gl::Format::RGBA16F : gl::Format::RG16F;
+  const gl::Format format = texture_layout_.channels == 4 ? gl::Format::RGBA16F : gl::Format::RG16F;
   for (int i = 0; i < 2; ++i) {
     texture_[i] = gl::Texture2D(settings_.width, settings_.height, format, true);
-    taps_[i] = texture_layout_ % 2 == 1
+    taps_[i] = texture_layout_.taps
                    ? gl::Texture2D(settings_.width, settings_.height, gl::Format::RGBA16F, true)
                    : gl::Texture2D();
   }
@@ -485,12 +485,12 @@ ImageF IbfvsRenderer::read_texture_raw() const {
     taps = ImageF(w, h, 4);
     taps_[current_].read_float(taps.pixels, 4);
   }
-  const bool flow = texture_layout_ / 2 == 4;  // else two channels: GL reads (0, 1) after them
+  const int channels = texture_layout_.channels;  // of two, GL reads (0, 1) after them
   ImageF raw(w, h, kRawChannels, 0.0f);
   for (std::size_t i = 0; i < static_cast<std::size_t>(w) * h; ++i) {
     const float* s = &stored.pixels[4 * i];
     float* r = &raw.pixels[kRawChannels * i];
-    std::copy_n(s, flow ? 4 : 2, r);
+    std::copy_n(s, channels, r);
     if (colour_texture_) continue;
     if (!taps.pixels.empty()) std::copy_n(&taps.pixels[4 * i + 2], 2, r + 2);
     r[4] = taps.pixels.empty() ? s[0] : taps.pixels[4 * i];
@@ -500,7 +500,7 @@ ImageF IbfvsRenderer::read_texture_raw() const {
 
 void IbfvsRenderer::upload_raw(const ImageF& raw) {
   const std::size_t n = static_cast<std::size_t>(raw.width) * raw.height;
-  const int channels = texture_layout_ / 2;
+  const int channels = texture_layout_.channels;
   std::vector<float> stored(n * static_cast<std::size_t>(channels));
   std::vector<float> taps(taps_[current_] ? n * 4 : 0);
   for (std::size_t i = 0; i < n; ++i) {

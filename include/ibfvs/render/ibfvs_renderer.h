@@ -206,13 +206,17 @@ class IbfvsRenderer {
   // content.
   void allocate_texture(bool colour);
   void use_colour_texture();
-  // F_t's channels for these settings, times 2, plus 1 with a tap texture:
-  // a change of either allocates again.
-  [[nodiscard]] int texture_layout(bool colour) const;
+  // How F_t is stored for these settings; a change allocates it again.
+  struct TextureLayout {
+    int channels = 4;   // F_t's: 2 (grey value, depth) or 4
+    bool taps = false;  // a tap texture beside it (shaders::tap_texture)
+    bool operator==(const TextureLayout&) const = default;
+  };
+  [[nodiscard]] TextureLayout texture_layout(bool colour) const;
   void upload_raw(const ImageF& raw);  // read_texture_raw's layout into F_t (and its taps)
   [[nodiscard]] unsigned flow_attachment() const { return taps_[0] ? 3u : 2u; }
   bool colour_texture_ = true;
-  int texture_layout_ = 0;
+  TextureLayout texture_layout_;
 
   RenderSettings settings_;
   std::unordered_map<unsigned, Variant> variants_;  // by ShaderFeatures::key()

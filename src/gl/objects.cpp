@@ -443,6 +443,12 @@ void enable_depth_test(bool on) {
     glDisable(GL_DEPTH_TEST);
   }
 }
+void test_depth_behind_surface(bool on) {
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(on ? GL_GREATER : GL_LESS);
+  glDepthMask(on ? GL_FALSE : GL_TRUE);
+}
+
 void draw_attributeless_triangle(const VertexArray& vao) {
   vao.bind();
   glDrawArrays(GL_TRIANGLES, 0, 3);

@@ -53,6 +53,10 @@ IbfvsRenderer::IbfvsRenderer(const RenderSettings& settings) : settings_(setting
   const int w = settings_.width, h = settings_.height;
   output_ = gl::Texture2D(w, h, gl::Format::RGBA8, false);
   depth_ = gl::Texture2D(w, h, gl::Format::Depth24, false);
+  output_framebuffer_ = gl::Framebuffer::create();
+  output_framebuffer_.attach_color(0, output_);
+  output_framebuffer_.attach_depth(depth_);
+  output_framebuffer_.finish(1);
   stats_ = gl::Texture2D(1, 1, gl::Format::RGBA32F, false);
   stats_framebuffer_ = gl::Framebuffer::create();
   stats_framebuffer_.attach_color(0, stats_);
@@ -108,6 +112,12 @@ void IbfvsRenderer::allocate_texture(bool colour) {
                    ? gl::Texture2D(settings_.width, settings_.height, gl::Format::RGBA16F, true)
                    : gl::Texture2D();
   }
+  const auto own = [&](gl::Format f) {
+    return texture_layout_.taps ? gl::Texture2D(settings_.width, settings_.height, f, false)
+                                : gl::Texture2D();
+  };
+  base_ = own(gl::Format::RGBA16F);
+  seed_ = own(gl::Format::RG16F);
   build_framebuffers();
 }
 
@@ -115,8 +125,11 @@ void IbfvsRenderer::build_framebuffers() {
   for (int i = 0; i < 2; ++i) {
     framebuffer_[i] = gl::Framebuffer::create();
     framebuffer_[i].attach_color(0, texture_[i]);
-    framebuffer_[i].attach_color(1, output_);
-    if (taps_[i]) framebuffer_[i].attach_color(2, taps_[i]);
+    framebuffer_[i].attach_color(1, taps_[i] ? base_ : output_);
+    if (taps_[i]) {
+      framebuffer_[i].attach_color(2, taps_[i]);
+      framebuffer_[i].attach_color(3, seed_);
+    }
     if (record_flow_) framebuffer_[i].attach_color(flow_attachment(), flow_);
     framebuffer_[i].attach_depth(depth_);
     framebuffer_[i].finish(record_flow_ ? flow_attachment() + 1 : flow_attachment());
@@ -166,12 +179,19 @@ IbfvsRenderer::Variant& IbfvsRenderer::current_variant() {
     v.u.probe = p.location("u_probe");
     v.u.texture_shift = p.location("u_texture_shift");
     v.u.noise_shift = p.location("u_noise_shift");
+    if (shaders::tap_texture(f)) {
+      v.display =
+          gl::Program(shaders::display_vertex_source(), shaders::display_fragment_source(f));
+      v.display_texture_shift = v.display.location("u_texture_shift");
+    }
   }
   if (v.applied != settings_version_) {  // the settings changed since it was last used
     const gl::Program& p = v.program;
     for (const shaders::UniformValue& u :
-         shaders::settings_uniforms(settings_, f, phase_size_, image_centre_))
+         shaders::settings_uniforms(settings_, f, phase_size_, image_centre_)) {
       set_uniform(p, u);
+      if (v.display) set_uniform(v.display, u);
+    }
     v.applied = settings_version_;
   }
   return v;
@@ -315,8 +335,7 @@ void IbfvsRenderer::present(int window_width, int window_height, int left) const
   const int w = static_cast<int>(std::lround(settings_.width * scale));
   const int h = static_cast<int>(std::lround(settings_.height * scale));
   const int x0 = left + (area - w) / 2, y0 = (window_height - h) / 2;
-  framebuffer_[displayed_].blit_to_default(1, settings_.width, settings_.height, x0, y0, x0 + w,
-                                           y0 + h);
+  output_framebuffer_.blit_to_default(0, settings_.width, settings_.height, x0, y0, x0 + w, y0 + h);
 }
 
 void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
@@ -374,6 +393,7 @@ void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
     stats_.bind(4);
     vao_.bind();
     gl::draw_triangles(index_count_, true);
+    if (v.display) display_pass(v, next);
     // The statistics change slowly: every kStatsEvery frames is enough, and
     // on llvmpipe each extra pass ends the frame's scene early.
     if (settings_.contrast > 0.0f && frame_ % kStatsEvery == 0) {
@@ -393,10 +413,25 @@ void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
   ++frame_;
 }
 
-void IbfvsRenderer::clear_targets(gl::Framebuffer& fb) const {
+void IbfvsRenderer::display_pass(const Variant& v, int next) {
+  output_framebuffer_.bind();
+  gl::set_face_culling(0);
+  gl::test_depth_behind_surface(true);
+  v.display.use();
+  v.display.set(v.display_texture_shift, texture_shift_);
+  taps_[next].bind(0);
+  seed_.bind(1);
+  base_.bind(2);
+  stats_.bind(4);
+  taps_[current_].bind(5);
+  gl::draw_attributeless_triangle(empty_vao_);
+  gl::test_depth_behind_surface(false);
+}
+
+void IbfvsRenderer::clear_targets(gl::Framebuffer& fb) {
   const glm::vec3& b = settings_.background;
   fb.clear_color(0, colour_texture_ ? glm::vec4(b, kNoDepth) : glm::vec4(b.r, kNoDepth, 0, 0));
-  fb.clear_color(1, glm::vec4(b, 1.0f));
+  output_framebuffer_.clear_color(0, glm::vec4(b, 1.0f));
   if (taps_[0]) fb.clear_color(2, glm::vec4(b.r, kNoDepth, 0, 0));
   if (record_flow_) fb.clear_color(flow_attachment(), glm::vec4(0.0f));
   fb.clear_depth();  // the depth buffer is shared by both framebuffers
@@ -471,7 +506,7 @@ void IbfvsRenderer::read_output(ImageU8& image) const {
   image.height = settings_.height;
   image.channels = 4;
   image.pixels.resize(static_cast<std::size_t>(image.width) * image.height * 4);
-  framebuffer_[displayed_].read_rgba8(1, image.width, image.height, image.pixels);
+  output_framebuffer_.read_rgba8(0, image.width, image.height, image.pixels);
   // The alpha channel holds the contrast stage's statistics input: F is opaque.
   for (std::size_t i = 3; i < image.pixels.size(); i += 4) image.pixels[i] = 255;
 }

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "ibfvs/core/texture/display.h"
+#include "ibfvs/render/pass_settings.h"
 
 namespace ibfvs::shaders {
 
@@ -43,25 +44,15 @@ out vec3 v_position_eye;
 #if defined(IBFVS_SURFACE_IMAGE) || defined(IBFVS_OBJECT_NOISE)
 out vec3 v_position_object;  // for the spherical image map and the solid noise
 #endif
-#ifdef IBFVS_CONTRAST
+#if defined(IBFVS_CONTRAST) && !defined(IBFVS_TAP_TEXTURE)
 // The contrast stage's mean and gain from the last frame's statistics, read
 // per vertex (the same for all) rather than per pixel.
 BINDING(4) uniform sampler2D u_stats;  // 1 x 1: (sum l, sum l^2, count)
-uniform float u_contrast;
 flat out vec2 v_contrast;
 #endif
-
 void main() {
-#ifdef IBFVS_CONTRAST
-  {
-    vec3 st = texelFetch(u_stats, ivec2(0), 0).xyz;
-    v_contrast = vec2(0.0);
-    if (st.z > 0.0) {
-      float mean = st.x / st.z;
-      float deviation = sqrt(max(st.y / st.z - mean * mean, 0.0));
-      v_contrast = vec2(mean, min(u_contrast / max(deviation, 1e-6), 8.0));
-    }
-  }
+#if defined(IBFVS_CONTRAST) && !defined(IBFVS_TAP_TEXTURE)
+  v_contrast = contrast_stage(texelFetch(u_stats, ivec2(0), 0).xyz);
 #endif
   gl_Position = u_view_projection * vec4(a_position, 1.0);
   vec3 v = mix(a_vector, a_vector_next, u_field_mix);
@@ -90,11 +81,17 @@ void main() {
 }
 )";
 
-// The grid pass's vertex shader: one triangle that covers the viewport.
+// The grid pass's vertex shader: one triangle that covers the viewport; the
+// display pass's lies on the far plane, so that a depth test of GREATER
+// passes where the IBFVS pass drew the surface and nowhere else.
 const char* const kGridVertexBody = R"(
 void main() {
   vec2 p = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);
+#ifdef IBFVS_FAR
+  gl_Position = vec4(p * 2.0 - 1.0, 1.0, 1.0);
+#else
   gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);
+#endif
 }
 )";
 
@@ -132,7 +129,7 @@ float cell_value(ivec3 cell, float t) {
 
 // Features a renderer does not use are compiled out (ShaderFeatures), not
 // skipped by uniform branches: llvmpipe runs both sides of every branch.
-const char* const kIbfvsFragmentBody = R"(
+const char* const kIbfvsFragmentHead = R"(
 in vec4 v_from;
 uniform vec2 u_clip_to_depth;  // (a, b): eye depth = a clip.z + b clip.w (this projection)
 #if defined(IBFVS_COLOR_SCALAR) || defined(IBFVS_BETA_SCALAR)
@@ -147,35 +144,30 @@ in vec3 v_position_object;
 // F_t of this frame, its last channel the eye depth (the background holds
 // kNoDepth): the next frame tells by it whether t(x) lands on this surface.
 layout(location = 0) out vec4 o_texture;
+#ifndef IBFVS_TAP_TEXTURE
 // F; its alpha holds D(F_t) before the contrast stage, for the statistics
 // (read_output sets it to 1): a third attachment would cost more per pixel.
+layout(location = 1) out vec4 o_color;
+#define IBFVS_FLOW_LOCATION 2
+#else
+// With the tap texture the display filter and the contrast stage run in the
+// display pass, once per pixel of the surface (kDisplayFragmentHead); this
+// pass leaves it F_s weighted, ((1 - beta) F_s, beta), and a seed: the
+// filter's first tap and t(x)'s depth (or kNoFilter where no line starts).
 layout(location = 1) out vec4 o_color;
 // A grey F_t with the display filter and sharpening keeps a second image
 // for the filter's taps: (the sharpened value, depth, displacement). Each
 // pixel sharpens once here, and each tap then reads one texel, where it read
 // three (the tap and its two neighbours across the flow: a third of the
 // frame on llvmpipe). F_t itself is then (value, depth).
-#if defined(IBFVS_MONO_TEXTURE) && defined(IBFVS_FILTER) && defined(IBFVS_SHARPEN)
-#define IBFVS_TAP_TEXTURE
 layout(location = 2) out vec4 o_taps;
-BINDING(5) uniform sampler2D u_taps;  // the last frame's
-#define IBFVS_TAPS u_taps
-#define IBFVS_FLOW_LOCATION 3
-#else
-#define IBFVS_TAPS u_previous
-#define IBFVS_FLOW_LOCATION 2
+layout(location = 3) out vec2 o_seed;
+#define IBFVS_FLOW_LOCATION 4
 #endif
 #ifdef IBFVS_RECORD_FLOW
 layout(location = IBFVS_FLOW_LOCATION) out vec2 o_flow;  // this frame's displacement in pixels (measurements)
 #endif
-#ifdef IBFVS_FILTER
-uniform float u_filter_spacing;        // pixels between taps
-uniform float u_filter_weights[16];    // exp(-2 (d / L)^2) of tap k at d = (k + 1) spacing
-#endif
-#ifdef IBFVS_SHARPEN
-uniform float u_sharpen;  // k: each tap plus k (its value - the mean of its neighbours 1.5 px across)
-#endif
-#ifdef IBFVS_CONTRAST
+#if defined(IBFVS_CONTRAST) && !defined(IBFVS_TAP_TEXTURE)
 flat in vec2 v_contrast;  // (mean, gain) of the contrast stage
 #endif
 BINDING(0) uniform sampler2D u_previous;  // F_t of the last frame
@@ -233,6 +225,26 @@ float solid_noise(vec3 p) {
 }
 #endif
 
+)";
+
+const char* const kDisplayFilter = R"(
+// The display filter and its taps, in the IBFVS pass or (with the tap
+// texture) in the display pass.
+#ifdef IBFVS_TAP_TEXTURE
+BINDING(5) uniform sampler2D u_taps;  // the last frame's tap texture
+#define IBFVS_TAPS u_taps
+#else
+#define IBFVS_TAPS u_previous
+#endif
+#ifdef IBFVS_FILTER
+uniform float u_filter_spacing;        // pixels between taps
+uniform float u_filter_weights[16];    // exp(-2 (d / L)^2) of tap k at d = (k + 1) spacing
+#endif
+#ifdef IBFVS_SHARPEN
+uniform float u_sharpen;  // k: each tap plus k (its value - the mean of its neighbours 1.5 px across)
+#endif
+const float kNoFilter = -65504.0;  // a seed's depth where no line starts
+
 // F_t as stored: the value (grey in one channel, or RGB) and the eye depth;
 // a grey F_t also keeps the pixel's displacement in that frame (in pixels),
 // which the display filter follows.
@@ -268,6 +280,104 @@ vec3 display_tap(vec2 p, vec3 value, vec2 along) {
 }
 #endif
 
+#ifdef IBFVS_FILTER
+// A line integral along the flow: a Gaussian exp(-2 (d / L)^2) over taps
+// u_filter_spacing apart along the streamline through t(x) in the last
+// frame's F_t, which follows the displacement each pixel stored there
+// (second-order steps: the heading turned on by half the last turn), so
+// the lines stay thin where the flow curves. It reads the last frame's
+// F_t carried to this frame, without this frame's fresh noise (alpha G,
+// which is not yet smooth along the flow). The line stops where it leaves
+// the last frame's surface or meets one at another depth. `shown` is the
+// first tap (at t(x): `start`, in pixels), `along` the unit displacement.
+vec3 display_filter(vec2 start, vec2 along, float previous_depth, vec3 shown) {
+  vec3 sum = shown;
+  float weights = 1.0;
+  float depth_tolerance = 0.05 * abs(previous_depth);
+  for (int side = -1; side <= 1; side += 2) {
+    vec2 p = start, heading = float(side) * along, last = heading;
+    for (int k = 0; k < IBFVS_FILTER; ++k) {  // taps per side, a compile-time constant
+      vec2 turned = heading + 0.5 * (heading - last);
+      p += u_filter_spacing * (dot(turned, turned) > 1e-12 ? normalize(turned) : heading);
+      vec4 t = textureLod(IBFVS_TAPS, p * u_inverse_size, 0.0);
+      if (!(stored_depth(t) > -255.0) || abs(stored_depth(t) - previous_depth) > depth_tolerance)
+        break;
+      vec2 f = stored_flow(t, along);
+      float fl = length(f);
+      if (!(fl > 1e-6)) break;
+      last = heading;
+      heading = float(side) * f / fl;
+      if (dot(heading, last) < 0.0) break;  // a stagnation line: no crossing it
+      float w = u_filter_weights[k];
+      sum += w * display_tap(p, stored_value(t), heading);
+      weights += w;
+    }
+  }
+  return sum / weights;
+}
+#endif
+)";
+
+const char* const kContrast = R"(
+// Section 3.4's contrast, improved separately: the surface's values moved
+// to mean 0.5 and standard deviation u_contrast, with the mean and
+// deviation of the last frame's whole surface: steady over time (no
+// brightness pumping as with a per-frame min/max stretch).
+#ifdef IBFVS_CONTRAST
+uniform float u_contrast;
+// (mean, gain) from the statistics (sum l, sum l^2, count); gain 0: none yet.
+vec2 contrast_stage(vec3 st) {
+  if (!(st.z > 0.0)) return vec2(0.0);
+  float mean = st.x / st.z;
+  float deviation = sqrt(max(st.y / st.z - mean * mean, 0.0));
+  return vec2(mean, min(u_contrast / max(deviation, 1e-6), 8.0));
+}
+vec3 contrast(vec3 shown, vec2 stage) {
+  return stage.y > 0.0 ? clamp(0.5 + (shown - stage.x) * stage.y, 0.0, 1.0) : shown;
+}
+#endif
+)";
+
+// The display pass, with the tap texture: D(F_t) and F once per pixel of
+// the surface, drawn after the IBFVS pass over the viewport with the depth
+// test keeping the surface's pixels. The display filter is most of a frame
+// on llvmpipe, and in the IBFVS pass it ran for every fragment drawn (small
+// triangles shade whole blocks of pixels, and hidden ones shade too).
+const char* const kDisplayFragmentHead = R"(
+BINDING(0) uniform sampler2D u_moved;  // this frame's tap texture: the displacement in .ba
+BINDING(1) uniform sampler2D u_start;  // (the first tap, t(x)'s depth or kNoFilter)
+BINDING(2) uniform sampler2D u_base;   // ((1 - beta) F_s, beta)
+#ifdef IBFVS_CONTRAST
+BINDING(4) uniform sampler2D u_stats;  // 1 x 1: (sum l, sum l^2, count)
+#endif
+uniform vec2 u_inverse_size;   // 1 / image size in pixels
+uniform vec2 u_texture_shift;  // pixels: F_t moved with the mouse for this frame (3.7)
+// F; its alpha holds D(F_t) before the contrast stage, for the statistics.
+layout(location = 0) out vec4 o_color;
+)";
+
+const char* const kDisplayFragmentMain = R"(
+void main() {
+  ivec2 p = ivec2(gl_FragCoord.xy);
+  vec2 seed = texelFetch(u_start, p, 0).rg;
+  vec4 base = texelFetch(u_base, p, 0);
+  vec3 shown = vec3(seed.x);
+#ifdef IBFVS_FILTER
+  vec2 moved = texelFetch(u_moved, p, 0).ba;  // as the IBFVS pass wrote it: t(x) = x - moved
+  float moved_length = length(moved);
+  if (seed.y > -255.0 && moved_length > 0.0)
+    shown = display_filter(gl_FragCoord.xy - moved - u_texture_shift, moved / moved_length,
+                           seed.y, shown);
+#endif
+  float shown_mean = (shown.r + shown.g + shown.b) / 3.0;
+#ifdef IBFVS_CONTRAST
+  shown = contrast(shown, contrast_stage(texelFetch(u_stats, ivec2(0), 0).xyz));
+#endif
+  o_color = vec4(base.a * shown + base.rgb, shown_mean);
+}
+)";
+
+const char* const kIbfvsFragmentMain = R"(
 #ifdef IBFVS_CUBIC
 // Catmull-Rom interpolation of F_t at uv from five bilinear taps: per axis the
 // two middle weights are merged into one bilinear tap between their texels,
@@ -410,55 +520,19 @@ void main() {
   // The displayed texture D(F_t), for display only: F_t stays as synthesised.
   vec3 shown = ft;
 #if defined(IBFVS_FILTER) || defined(IBFVS_SHARPEN)
-  // A line integral along the flow: a Gaussian exp(-2 (d / L)^2) over taps
-  // u_filter_spacing apart along the streamline through t(x) in the last
-  // frame's F_t, which follows the displacement each pixel stored there
-  // (second-order steps: the heading turned on by half the last turn), so
-  // the lines stay thin where the flow curves. It reads the last frame's
-  // F_t carried to this frame, without this frame's fresh noise (alpha G,
-  // which is not yet smooth along the flow), and no pass reads this frame's
-  // F_t again. The line stops where it leaves the last frame's surface or
-  // meets one at another depth.
-  if (same_surface && moved_length > 1e-6) {
+  // The display filter's line starts at t(x) in the last frame's F_t, from
+  // the value there sharpened (its first tap).
+  bool filtered = same_surface && moved_length > 1e-6;
+  if (filtered) {
 #if defined(IBFVS_SHARPEN) && defined(IBFVS_MONO_TEXTURE)
     shown = previous + u_sharpen * high_previous;
 #else
     shown = display_tap(start, previous, along);
 #endif
-#ifdef IBFVS_FILTER
-    vec3 sum = shown;
-    float weights = 1.0;
-    float depth_tolerance = 0.05 * abs(previous_depth);
-    for (int side = -1; side <= 1; side += 2) {
-      vec2 p = start, heading = float(side) * along, last = heading;
-      for (int k = 0; k < IBFVS_FILTER; ++k) {  // taps per side, a compile-time constant
-        vec2 turned = heading + 0.5 * (heading - last);
-        p += u_filter_spacing * (dot(turned, turned) > 1e-12 ? normalize(turned) : heading);
-        vec4 t = textureLod(IBFVS_TAPS, p * u_inverse_size, 0.0);
-        if (!(stored_depth(t) > -255.0) || abs(stored_depth(t) - previous_depth) > depth_tolerance)
-          break;
-        vec2 f = stored_flow(t, along);
-        float fl = length(f);
-        if (!(fl > 1e-6)) break;
-        last = heading;
-        heading = float(side) * f / fl;
-        if (dot(heading, last) < 0.0) break;  // a stagnation line: no crossing it
-        float w = u_filter_weights[k];
-        sum += w * display_tap(p, stored_value(t), heading);
-        weights += w;
-      }
-    }
-    shown = sum / weights;
+#if defined(IBFVS_FILTER) && !defined(IBFVS_TAP_TEXTURE)
+    shown = display_filter(start, along, previous_depth, shown);
 #endif
   }
-#endif
-  float shown_mean = (shown.r + shown.g + shown.b) / 3.0;
-#ifdef IBFVS_CONTRAST
-  // Section 3.4's contrast, improved separately: the surface's values moved
-  // to mean 0.5 and standard deviation u_contrast, with the mean and
-  // deviation of the last frame's whole surface: steady over time (no
-  // brightness pumping as with a per-frame min/max stretch).
-  if (v_contrast.y > 0.0) shown = clamp(0.5 + (shown - v_contrast.x) * v_contrast.y, 0.0, 1.0);
 #endif
 
   // F_s: Blinn-Phong with a headlight, lit from both sides (open meshes).
@@ -491,7 +565,16 @@ void main() {
               ? 0.0
               : clamp((v_scalars.y - u_beta_range.x) / (u_beta_range.y - u_beta_range.x), 0.0, 1.0);
 #endif
+#ifdef IBFVS_TAP_TEXTURE
+  o_seed = vec2(shown.r, filtered ? previous_depth : kNoFilter);
+  o_color = vec4((1.0 - beta) * shaded, beta);
+#else
+  float shown_mean = (shown.r + shown.g + shown.b) / 3.0;
+#ifdef IBFVS_CONTRAST
+  shown = contrast(shown, v_contrast);
+#endif
   o_color = vec4(beta * shown + (1.0 - beta) * shaded, shown_mean);
+#endif
 }
 )";
 
@@ -556,7 +639,7 @@ std::string prelude(Dialect dialect) {
   return "#version 450 core\n#define BINDING(n) layout(binding = n)\n";
 }
 
-std::string with_defines(const ShaderFeatures& features, const char* body, bool profile,
+std::string with_defines(const ShaderFeatures& features, const std::string& body, bool profile,
                          Dialect dialect) {
   std::string source = prelude(dialect);
   const auto define = [&](bool on, const char* name) {
@@ -574,6 +657,7 @@ std::string with_defines(const ShaderFeatures& features, const char* body, bool 
     source += "#define IBFVS_FILTER " + std::to_string(features.filter_taps) + "\n";
   define(features.contrast, "IBFVS_CONTRAST");
   define(features.record_flow, "IBFVS_RECORD_FLOW");
+  define(tap_texture(features), "IBFVS_TAP_TEXTURE");
   define(features.sharpen, "IBFVS_SHARPEN");
   if (features.sharpen)
     source += "#define IBFVS_SHARPEN_REACH " + std::to_string(ibfvs::kSharpenReach) + "\n";
@@ -592,15 +676,28 @@ unsigned ShaderFeatures::key() const {
 }
 
 std::string ibfvs_vertex_source(const ShaderFeatures& features, Dialect dialect) {
-  return with_defines(features, kIbfvsVertexBody, false, dialect);
+  return with_defines(features, std::string(kContrast) + kIbfvsVertexBody, false, dialect);
 }
 
 std::string ibfvs_fragment_source(const ShaderFeatures& features, Dialect dialect) {
-  return with_defines(features, kIbfvsFragmentBody, features.object_noise, dialect);
+  return with_defines(
+      features, std::string(kContrast) + kIbfvsFragmentHead + kDisplayFilter + kIbfvsFragmentMain,
+      features.object_noise, dialect);
+}
+
+std::string display_fragment_source(const ShaderFeatures& features, Dialect dialect) {
+  return with_defines(
+      features,
+      std::string(kContrast) + kDisplayFragmentHead + kDisplayFilter + kDisplayFragmentMain, false,
+      dialect);
 }
 
 std::string grid_vertex_source(Dialect dialect) {
   return prelude(dialect) + kGridVertexBody;
+}
+
+std::string display_vertex_source(Dialect dialect) {
+  return prelude(dialect) + "#define IBFVS_FAR\n" + kGridVertexBody;
 }
 
 const char* const kHostFragment = R"(#version 450 core

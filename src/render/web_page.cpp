@@ -203,6 +203,10 @@ std::string look_json(const PreparedScene& q, const std::string& name, std::stri
          json_string(shaders::ibfvs_fragment_source(f, shaders::Dialect::Es300)) +
          ",\"stats_fragment\":" +
          json_string(shaders::stats_fragment_source(!colour_texture, shaders::Dialect::Es300)) +
+         ",\"display_fragment\":" +
+         json_string(shaders::tap_texture(f)
+                         ? shaders::display_fragment_source(f, shaders::Dialect::Es300)
+                         : std::string()) +
          "},\"uniforms\":" + json_uniforms(shaders::settings_uniforms(s, f, phase_size, centre)) +
          ",\"grid_uniforms\":" + json_uniforms(grid_uniforms) + "}";
 }
@@ -431,6 +435,8 @@ std::string web_page(const PreparedScene& p, WebPageReport* report, const WebPag
       ",\"shaders\":{\"grid_vertex\":" +
       json_string(shaders::grid_vertex_source(shaders::Dialect::Es300)) +
       ",\"grid_fragment\":" + json_string(shaders::grid_fragment_source(shaders::Dialect::Es300)) +
+      ",\"display_vertex\":" +
+      json_string(shaders::display_vertex_source(shaders::Dialect::Es300)) +
       "},\"looks\":" + looks_json(p, styles, glm::ivec2(grid.columns(), grid.rows()), centre) +
       ",\"vertex_count\":" + std::to_string(mesh.positions.size()) +
       ",\"steps\":" + std::to_string(steps) +

@@ -1,7 +1,8 @@
 // The one shader generator emits the pass in both dialects: every source it
-// makes, for single features, their combinations and every filter length,
-// compiles as GLSL 4.50 core and as GLSL ES 3.00 (WebGL2) under glslang, the
-// Khronos reference compiler. The 4.50 sources also run in every GL test.
+// makes, for single features, their combinations and every filter length
+// (and the display pass where they have one), compiles as GLSL 4.50 core and
+// as GLSL ES 3.00 (WebGL2) under glslang, the Khronos reference compiler. The 4.50 sources also run
+// in every GL test.
 
 #include <cstdio>
 #include <cstdlib>
@@ -13,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include "helpers.h"
+#include "ibfvs/render/pass_settings.h"
 #include "ibfvs/render/shaders.h"
 
 namespace ibfvs {
@@ -89,8 +91,11 @@ TEST(Shaders, EverySourceCompilesAsGlsl450AndAsEs300) {
       const std::string key = what + "-features" + std::to_string(f.key());
       sources.add(shaders::ibfvs_vertex_source(f, dialect), key, "vert");
       sources.add(shaders::ibfvs_fragment_source(f, dialect), key, "frag");
+      if (shaders::tap_texture(f))  // the display pass that goes with it
+        sources.add(shaders::display_fragment_source(f, dialect), key + "-display", "frag");
     }
     sources.add(shaders::grid_vertex_source(dialect), what + "-grid", "vert");
+    sources.add(shaders::display_vertex_source(dialect), what + "-display", "vert");
     sources.add(shaders::grid_fragment_source(dialect), what + "-grid", "frag");
     sources.add(shaders::stats_fragment_source(true, dialect), what + "-stats-grey", "frag");
     sources.add(shaders::stats_fragment_source(false, dialect), what + "-stats-colour", "frag");

@@ -56,7 +56,8 @@ export interface Look {
   tap_texture: boolean; // beside F_t, the display filter's taps: RGBA16F (sharpened value, depth, displacement)
   advect_previous: boolean;
   phase_size: [number, number]; // its noise grid: the first columns x rows of the page's phases
-  shaders: { vertex: string; fragment: string; stats_fragment: string };
+  // display_fragment: the display pass, with a tap texture (else empty)
+  shaders: { vertex: string; fragment: string; stats_fragment: string; display_fragment: string };
   uniforms: Uniform[];
   grid_uniforms: Uniform[];
 }
@@ -79,7 +80,7 @@ export interface SceneHeader {
   view: number[]; // column-major 4x4
   projection: number[];
   centre: [number, number, number];
-  shaders: { grid_vertex: string; grid_fragment: string };
+  shaders: { grid_vertex: string; grid_fragment: string; display_vertex: string };
   looks: Look[]; // the scene's own first
   vertex_count: number;
   steps: number; // time steps of the field (1: steady)

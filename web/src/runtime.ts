@@ -51,12 +51,19 @@ export class PageRenderer {
   private main!: WebGLProgram;
   private grid: WebGLProgram;
   private stats!: WebGLProgram;
-  private programs = new Map<Look, [WebGLProgram, WebGLProgram]>(); // compiled looks: main, stats
+  private display: WebGLProgram | null = null; // the display pass, with a tap texture
+  // compiled looks: main, stats, display
+  private programs = new Map<Look, [WebGLProgram, WebGLProgram, WebGLProgram | null]>();
   private vao: WebGLVertexArrayObject;
   private empty: WebGLVertexArrayObject;
   private textures: WebGLTexture[] = [];
   private taps: WebGLTexture[] = []; // beside F_t when the look has a tap texture, else none
+  // With a tap texture the IBFVS pass leaves the display pass ((1 - beta) F_s, beta) and the
+  // seed (the filter's first tap, t(x)'s depth): IbfvsRenderer::display_pass.
+  private base: WebGLTexture | null = null;
+  private seed: WebGLTexture | null = null;
   private output: WebGLTexture;
+  private outputFb: WebGLFramebuffer;
   private depth: WebGLTexture;
   private fbs: WebGLFramebuffer[] = [];
   private gridTexture: WebGLTexture | null = null;
@@ -122,6 +129,7 @@ export class PageRenderer {
     // F and the depth; F_t, the grid and the programs come with the look.
     this.output = texture(gl, w, h, gl.RGBA8, gl.RGBA, gl.UNSIGNED_BYTE, false);
     this.depth = texture(gl, w, h, gl.DEPTH_COMPONENT24, gl.DEPTH_COMPONENT, gl.UNSIGNED_INT, false);
+    this.outputFb = framebuffer(gl, [this.output], this.depth);
     const p16 = new Uint16Array(data, a.phases.offset, a.phases.length);
     this.allPhases = new Float32Array(p16.length);
     for (let i = 0; i < p16.length; ++i) this.allPhases[i] = p16[i] / 65535;
@@ -162,24 +170,27 @@ export class PageRenderer {
     let programs = this.programs.get(look);
     if (!programs) {
       programs = [compile(gl, look.shaders.vertex, look.shaders.fragment),
-                  compile(gl, s.shaders.grid_vertex, look.shaders.stats_fragment)];
+                  compile(gl, s.shaders.grid_vertex, look.shaders.stats_fragment),
+                  look.tap_texture ? compile(gl, s.shaders.display_vertex, look.shaders.display_fragment) : null];
       this.programs.set(look, programs);
     }
-    [this.main, this.stats] = programs;
+    [this.main, this.stats, this.display] = programs;
     this.applySettings(look.uniforms);
     gl.useProgram(this.grid);
     for (const u of look.grid_uniforms) setUniform(gl, this.grid, u);
     // F_t ping-pong, in the look's channels.
     if (layout[0] !== look.texture_channels || layout[1] !== look.tap_texture) {
-      [...this.textures, ...this.taps].forEach((t) => gl.deleteTexture(t));
+      [...this.textures, ...this.taps, this.base, this.seed].forEach((t) => t && gl.deleteTexture(t));
       this.fbs.forEach((f) => gl.deleteFramebuffer(f));
       const [internal, format] = look.texture_channels === 4 ? [gl.RGBA16F, gl.RGBA] : [gl.RG16F, gl.RG];
       this.textures = [0, 1].map(() => texture(gl, s.width, s.height, internal, format, gl.HALF_FLOAT, true));
       this.taps = look.tap_texture
         ? [0, 1].map(() => texture(gl, s.width, s.height, gl.RGBA16F, gl.RGBA, gl.HALF_FLOAT, true))
         : [];
+      this.base = look.tap_texture ? texture(gl, s.width, s.height, gl.RGBA16F, gl.RGBA, gl.HALF_FLOAT, false) : null;
+      this.seed = look.tap_texture ? texture(gl, s.width, s.height, gl.RG16F, gl.RG, gl.HALF_FLOAT, false) : null;
       this.fbs = this.textures.map((t, i) =>
-        framebuffer(gl, this.taps.length ? [t, this.output, this.taps[i]] : [t, this.output], this.depth));
+        framebuffer(gl, this.taps.length ? [t, this.base!, this.taps[i], this.seed!] : [t, this.output], this.depth));
     }
     const scale = look.uniforms.find((u) => u.name === "u_noise_scale");
     this.setNoiseScale(scale ? scale.values[0] : 1, look.phase_size);
@@ -228,8 +239,10 @@ export class PageRenderer {
   }
 
   applySettings(uniforms: Uniform[]): void {
-    this.gl.useProgram(this.main);
-    for (const u of uniforms) setUniform(this.gl, this.main, u);
+    for (const p of this.display ? [this.main, this.display] : [this.main]) {
+      this.gl.useProgram(p);
+      for (const u of uniforms) setUniform(this.gl, p, u);
+    }
   }
 
   /// F_t stops as it is and is mapped onto the surface as seen now, while the
@@ -260,9 +273,10 @@ export class PageRenderer {
     const gl = this.gl, b = this.look.background, d = this.scene.no_depth;
     gl.bindFramebuffer(gl.FRAMEBUFFER, fb);
     gl.clearBufferfv(gl.COLOR, 0, this.look.colour_texture ? [b[0], b[1], b[2], d] : [b[0], d, 0, 0]);
-    gl.clearBufferfv(gl.COLOR, 1, [b[0], b[1], b[2], 1]);
     if (this.taps.length) gl.clearBufferfv(gl.COLOR, 2, [b[0], d, 0, 0]);
     gl.clearBufferfi(gl.DEPTH_STENCIL, 0, 1, 0);
+    gl.bindFramebuffer(gl.FRAMEBUFFER, this.outputFb);
+    gl.clearBufferfv(gl.COLOR, 0, [b[0], b[1], b[2], 1]);
   }
 
   /// One frame seen through `view` and `projection`; dt 0 stands still.
@@ -324,6 +338,24 @@ export class PageRenderer {
     gl.bindVertexArray(this.vao);
     gl.drawElements(gl.TRIANGLES, s.index_count, gl.UNSIGNED_INT, 0);
     gl.disable(gl.CULL_FACE);
+    if (this.display) {
+      // The display pass: once per pixel of the surface (a triangle on the far
+      // plane, depth test GREATER), into F.
+      gl.bindFramebuffer(gl.FRAMEBUFFER, this.outputFb);
+      gl.depthFunc(gl.GREATER);
+      gl.depthMask(false);
+      gl.useProgram(this.display);
+      gl.uniform2f(locate(gl, this.display, "u_texture_shift"), 0, 0);
+      bind(0, this.taps[next]);
+      bind(1, this.seed!);
+      bind(2, this.base!);
+      bind(4, this.statsTexture);
+      bind(5, this.taps[this.current]);
+      gl.bindVertexArray(this.empty);
+      gl.drawArrays(gl.TRIANGLES, 0, 3);
+      gl.depthMask(true);
+      gl.depthFunc(gl.LESS);
+    }
     gl.disable(gl.DEPTH_TEST);
     // The statistics of the contrast stage, every few frames, blended into a running average.
     if (this.frame % s.stats.every === 0) {
@@ -353,8 +385,8 @@ export class PageRenderer {
   /// F onto the canvas (same size).
   present(): void {
     const gl = this.gl;
-    gl.bindFramebuffer(gl.READ_FRAMEBUFFER, this.fbs[this.current]);
-    gl.readBuffer(gl.COLOR_ATTACHMENT1);
+    gl.bindFramebuffer(gl.READ_FRAMEBUFFER, this.outputFb);
+    gl.readBuffer(gl.COLOR_ATTACHMENT0);
     gl.bindFramebuffer(gl.DRAW_FRAMEBUFFER, null);
     const w = this.scene.width, h = this.scene.height;
     gl.blitFramebuffer(0, 0, w, h, 0, 0, w, h, gl.COLOR_BUFFER_BIT, gl.NEAREST);

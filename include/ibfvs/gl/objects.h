@@ -183,6 +183,10 @@ void set_viewport(int width, int height);
 /// and clears it to `rgba`.
 void clear_window(int width, int height, const glm::vec4& rgba);
 void enable_depth_test(bool on);
+/// on: draws pass only where something nearer than the far plane was drawn
+/// (a triangle on the far plane, depth test GREATER), the depth left as it
+/// is; off: back to enable_depth_test(true) and depth writes.
+void test_depth_behind_surface(bool on);
 /// weight > 0: draws blend as weight * new + (1 - weight) * old (a running
 /// average); 0: blending off.
 void set_running_average(float weight);

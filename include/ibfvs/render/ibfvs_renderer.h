@@ -190,13 +190,16 @@ class IbfvsRenderer {
   struct Variant {
     gl::Program program;
     Uniforms u{};
+    gl::Program display;  // the display pass, with the tap texture
+    int display_texture_shift = -1;
     std::uint64_t applied = 0;  // settings_version_ last set
   };
   void statistics_pass(int texture_index, int frame);  // for the contrast stage of the next frame
   bool defer_statistics_ = false;
   bool statistics_due_ = false;
   void build_framebuffers();
-  void clear_targets(gl::Framebuffer& fb) const;
+  void clear_targets(gl::Framebuffer& fb);
+  void display_pass(const Variant& v, int next);
   [[nodiscard]] shaders::ShaderFeatures features() const;
   Variant& current_variant();  // the variant for the current features, compiled and up to date
   void apply_settings();       // after settings_ changed
@@ -214,7 +217,7 @@ class IbfvsRenderer {
   };
   [[nodiscard]] TextureLayout texture_layout(bool colour) const;
   void upload_raw(const ImageF& raw);  // read_texture_raw's layout into F_t (and its taps)
-  [[nodiscard]] unsigned flow_attachment() const { return taps_[0] ? 3u : 2u; }
+  [[nodiscard]] unsigned flow_attachment() const { return taps_[0] ? 4u : 2u; }
   bool colour_texture_ = true;
   TextureLayout texture_layout_;
 
@@ -226,8 +229,13 @@ class IbfvsRenderer {
   float field_mix_ = 0.0f;
   gl::Texture2D texture_[2];  // F_t ping-pong
   gl::Texture2D taps_[2];     // the display filter's taps beside a grey F_t (tap_texture), or none
-  gl::Texture2D output_;      // F
-  gl::Texture2D flow_;        // displacement of the last frame, pixels (when recorded)
+  // With the tap texture the IBFVS pass leaves the display pass ((1 - beta)
+  // F_s, beta) and the seed (the filter's first tap, t(x)'s depth).
+  gl::Texture2D base_;
+  gl::Texture2D seed_;
+  gl::Texture2D output_;                // F
+  gl::Framebuffer output_framebuffer_;  // output_ and depth_: the display pass, reading F
+  gl::Texture2D flow_;                  // displacement of the last frame, pixels (when recorded)
   bool record_flow_ = false;
   gl::Texture2D stats_;  // the statistics pass: 1 x 1 (sum l, sum l^2, count)
   gl::Framebuffer stats_framebuffer_;
@@ -244,7 +252,8 @@ class IbfvsRenderer {
   gl::Texture2D depth_;  // a texture: draw_to_host reads it
   gl::Program host_program_;
   int host_origin_ = -1;
-  gl::Framebuffer framebuffer_[2];  // [i] draws into texture_[i], output_ (, taps_[i]) (, flow_)
+  // [i] draws into texture_[i], output_ (or base_, taps_[i], seed_) (, flow_)
+  gl::Framebuffer framebuffer_[2];
   gl::Buffer vertices_;
   gl::Buffer field_;
   gl::Buffer field_next_;

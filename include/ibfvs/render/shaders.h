@@ -35,8 +35,15 @@ enum class Dialect { Gl45, Es300 };
 
 std::string ibfvs_vertex_source(const ShaderFeatures& features, Dialect dialect = Dialect::Gl45);
 std::string ibfvs_fragment_source(const ShaderFeatures& features, Dialect dialect = Dialect::Gl45);
+/// The display pass, where the features have a tap texture (tap_texture in
+/// pass_settings.h): the display filter, the contrast stage and F, once per
+/// pixel of the surface, from what the IBFVS pass left.
+std::string display_fragment_source(const ShaderFeatures& features,
+                                    Dialect dialect = Dialect::Gl45);
 /// One triangle that covers the viewport (the grid and statistics passes).
 std::string grid_vertex_source(Dialect dialect = Dialect::Gl45);
+/// The same on the far plane (the display pass, depth test GREATER).
+std::string display_vertex_source(Dialect dialect = Dialect::Gl45);
 std::string grid_fragment_source(Dialect dialect = Dialect::Gl45);
 /// The statistics pass of the contrast stage (grey F_t in two channels, or colour).
 std::string stats_fragment_source(bool mono_texture, Dialect dialect = Dialect::Gl45);

@@ -449,6 +449,11 @@ void test_depth_behind_surface(bool on) {
   glDepthMask(on ? GL_FALSE : GL_TRUE);
 }
 
+void scissor(bool on, const glm::ivec4& box) {
+  set_capability(GL_SCISSOR_TEST, on);
+  if (on) glScissor(box.x, box.y, box.z, box.w);
+}
+
 void draw_attributeless_triangle(const VertexArray& vao) {
   vao.bind();
   glDrawArrays(GL_TRIANGLES, 0, 3);
@@ -484,8 +489,9 @@ SavedState::SavedState() {
   glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &vertex_array_);
   glGetIntegerv(GL_TEXTURE_BINDING_2D, &texture_);
   glGetIntegerv(GL_VIEWPORT, viewport_);
+  glGetIntegerv(GL_SCISSOR_BOX, scissor_box_);
   glGetIntegerv(GL_ACTIVE_TEXTURE, &active_texture_);
-  for (int u = 0; u < 5; ++u) {
+  for (int u = 0; u < 6; ++u) {
     glActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + u));
     glGetIntegerv(GL_TEXTURE_BINDING_2D, &unit_textures_[u]);
   }
@@ -514,7 +520,7 @@ SavedState::~SavedState() {
   glBindFramebuffer(GL_READ_FRAMEBUFFER, alive(read_framebuffer_, glIsFramebuffer));
   glUseProgram(alive(program_, glIsProgram));
   glBindVertexArray(alive(vertex_array_, glIsVertexArray));
-  for (int u = 0; u < 5; ++u) {
+  for (int u = 0; u < 6; ++u) {
     glActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + u));
     glBindTexture(GL_TEXTURE_2D, alive(unit_textures_[u], glIsTexture));
   }
@@ -528,6 +534,7 @@ SavedState::~SavedState() {
   for (std::size_t i = 0; i < kCapabilities.size(); ++i)
     set_capability(kCapabilities[i], (capabilities_ & (1u << i)) != 0);
   glViewport(viewport_[0], viewport_[1], viewport_[2], viewport_[3]);
+  glScissor(scissor_box_[0], scissor_box_[1], scissor_box_[2], scissor_box_[3]);
   glBlendFuncSeparate(static_cast<GLenum>(blend_func_[0]), static_cast<GLenum>(blend_func_[1]),
                       static_cast<GLenum>(blend_func_[2]), static_cast<GLenum>(blend_func_[3]));
   glBlendColor(blend_color_[0], blend_color_[1], blend_color_[2], blend_color_[3]);

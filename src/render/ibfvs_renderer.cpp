@@ -116,7 +116,7 @@ void IbfvsRenderer::allocate_texture(bool colour) {
     return texture_layout_.taps ? gl::Texture2D(settings_.width, settings_.height, f, false)
                                 : gl::Texture2D();
   };
-  base_ = own(gl::Format::RGBA16F);
+  base_ = own(gl::Format::RGBA8);
   seed_ = own(gl::Format::RG16F);
   build_framebuffers();
 }
@@ -258,7 +258,8 @@ void IbfvsRenderer::set_mesh(const TriMesh& mesh, std::span<const glm::vec3> fie
   vao_.index_buffer(indices_);
   index_count_ = mesh.triangles.size() * 3;
   vertex_count_ = mesh.positions.size();
-  const float diagonal = mesh_bounds(mesh).diagonal();
+  bounds_ = mesh_bounds(mesh);
+  const float diagonal = bounds_.diagonal();
   probe_ = shaders::probe_length(diagonal);
   cull_ = closed_orientation(mesh);
   reset();
@@ -345,6 +346,7 @@ void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
   gl::Framebuffer& fb = framebuffer_[next];
   gl::prepare_own_draw();  // a host's scissor box, masks or stencil test must not apply here
   clear_targets(fb);
+  surface_box_ = screen_box(vp);
   if (index_count_ > 0) {
     const float noise_time = settings_.noise.rate * static_cast<float>(frame_);
     if (!settings_.object_noise) {  // the grid pass: G_ij of this frame
@@ -417,6 +419,7 @@ void IbfvsRenderer::display_pass(const Variant& v, int next) {
   output_framebuffer_.bind();
   gl::set_face_culling(0);
   gl::test_depth_behind_surface(true);
+  gl::scissor(true, surface_box_);  // the depth test rejects the rest, but per pixel
   v.display.use();
   v.display.set(v.display_texture_shift, texture_shift_);
   taps_[next].bind(0);
@@ -425,7 +428,30 @@ void IbfvsRenderer::display_pass(const Variant& v, int next) {
   stats_.bind(4);
   taps_[current_].bind(5);
   gl::draw_attributeless_triangle(empty_vao_);
+  gl::scissor(false);
   gl::test_depth_behind_surface(false);
+}
+
+glm::ivec4 IbfvsRenderer::screen_box(const glm::mat4& view_projection) const {
+  const glm::ivec4 all(0, 0, settings_.width, settings_.height);
+  glm::vec2 lo(1e30f), hi(-1e30f);
+  for (int c = 0; c < 8; ++c) {
+    const glm::vec3 corner((c & 1) ? bounds_.max.x : bounds_.min.x,
+                           (c & 2) ? bounds_.max.y : bounds_.min.y,
+                           (c & 4) ? bounds_.max.z : bounds_.min.z);
+    const glm::vec4 clip = view_projection * glm::vec4(corner, 1.0f);
+    if (!(clip.w > 1e-6f)) return all;
+    const glm::vec2 ndc = glm::vec2(clip) / clip.w;
+    lo = glm::min(lo, ndc);
+    hi = glm::max(hi, ndc);
+  }
+  const glm::vec2 size(settings_.width, settings_.height);
+  // A pixel of margin: rasterisation takes pixel centres, rounding takes the rest.
+  const glm::ivec2 a = glm::clamp(glm::ivec2(glm::floor((lo * 0.5f + 0.5f) * size)) - 1,
+                                  glm::ivec2(0), glm::ivec2(size));
+  const glm::ivec2 b = glm::clamp(glm::ivec2(glm::ceil((hi * 0.5f + 0.5f) * size)) + 1,
+                                  glm::ivec2(0), glm::ivec2(size));
+  return glm::ivec4(a, glm::max(b - a, glm::ivec2(0)));
 }
 
 void IbfvsRenderer::clear_targets(gl::Framebuffer& fb) {
@@ -592,6 +618,9 @@ void IbfvsRenderer::draw_to_host(glm::ivec2 origin) const {
   host_program_.set(host_origin_, origin);
   output_.bind(0);
   depth_.bind(1);
+  // Only where the surface can be: the pass writes gl_FragDepth, so no depth
+  // test spares the rest (on the motorbike, in ParaView, a tenth of a frame).
+  gl::scissor(true, surface_box_ + glm::ivec4(origin, 0, 0));
   gl::draw_attributeless_triangle(empty_vao_);
 }
 

@@ -187,7 +187,7 @@ export class PageRenderer {
       this.taps = look.tap_texture
         ? [0, 1].map(() => texture(gl, s.width, s.height, gl.RGBA16F, gl.RGBA, gl.HALF_FLOAT, true))
         : [];
-      this.base = look.tap_texture ? texture(gl, s.width, s.height, gl.RGBA16F, gl.RGBA, gl.HALF_FLOAT, false) : null;
+      this.base = look.tap_texture ? texture(gl, s.width, s.height, gl.RGBA8, gl.RGBA, gl.UNSIGNED_BYTE, false) : null;
       this.seed = look.tap_texture ? texture(gl, s.width, s.height, gl.RG16F, gl.RG, gl.HALF_FLOAT, false) : null;
       this.fbs = this.textures.map((t, i) =>
         framebuffer(gl, this.taps.length ? [t, this.base!, this.taps[i], this.seed!] : [t, this.output], this.depth));

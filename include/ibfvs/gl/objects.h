@@ -187,6 +187,8 @@ void enable_depth_test(bool on);
 /// (a triangle on the far plane, depth test GREATER), the depth left as it
 /// is; off: back to enable_depth_test(true) and depth writes.
 void test_depth_behind_surface(bool on);
+/// Draws only inside `box` (x, y, width, height in pixels), or everywhere.
+void scissor(bool on, const glm::ivec4& box = glm::ivec4(0));
 /// weight > 0: draws blend as weight * new + (1 - weight) * old (a running
 /// average); 0: blending off.
 void set_running_average(float weight);
@@ -222,8 +224,8 @@ class SavedState {
 
  private:
   int draw_framebuffer_ = 0, read_framebuffer_ = 0, program_ = 0, vertex_array_ = 0;
-  int texture_ = 0, viewport_[4] = {0, 0, 0, 0};
-  int active_texture_ = 0, unit_textures_[5] = {0, 0, 0, 0, 0};  // units 0-4, which ibfvs binds
+  int texture_ = 0, viewport_[4] = {0, 0, 0, 0}, scissor_box_[4] = {0, 0, 0, 0};
+  int active_texture_ = 0, unit_textures_[6] = {0, 0, 0, 0, 0, 0};  // units 0-5, which ibfvs binds
   int depth_func_ = 0, cull_face_mode_ = 0, front_face_ = 0;
   unsigned char depth_mask_ = 1, color_mask_[4] = {1, 1, 1, 1};
   unsigned capabilities_ = 0;  // bit i: kCapabilities[i] (objects.cpp) was on

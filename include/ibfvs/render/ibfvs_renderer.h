@@ -200,6 +200,12 @@ class IbfvsRenderer {
   void build_framebuffers();
   void clear_targets(gl::Framebuffer& fb);
   void display_pass(const Variant& v, int next);
+  // The pixels the mesh can cover in this view: its bounding box projected
+  // (x, y, width, height), or the whole image where a corner is behind the eye.
+  [[nodiscard]] glm::ivec4 screen_box(const glm::mat4& view_projection) const;
+  Bounds bounds_;
+  glm::ivec4 surface_box_{
+      0};  // screen_box of the last frame: the display and host passes draw in it
   [[nodiscard]] shaders::ShaderFeatures features() const;
   Variant& current_variant();  // the variant for the current features, compiled and up to date
   void apply_settings();       // after settings_ changed

@@ -290,28 +290,40 @@ vec3 display_tap(vec2 p, vec3 value, vec2 along) {
 // which is not yet smooth along the flow). The line stops where it leaves
 // the last frame's surface or meets one at another depth. `shown` is the
 // first tap (at t(x): `start`, in pixels), `along` the unit displacement.
+// One tap on one side of the line: false where the line stops.
+bool filter_tap(inout vec2 p, inout vec2 heading, inout vec2 last, float side, float w,
+                float previous_depth, float depth_tolerance, vec2 along, inout vec3 sum,
+                inout float weights) {
+  vec2 turned = heading + 0.5 * (heading - last);
+  p += u_filter_spacing * (dot(turned, turned) > 1e-12 ? normalize(turned) : heading);
+  vec4 t = textureLod(IBFVS_TAPS, p * u_inverse_size, 0.0);
+  if (!(stored_depth(t) > -255.0) || abs(stored_depth(t) - previous_depth) > depth_tolerance)
+    return false;
+  vec2 f = stored_flow(t, along);
+  float fl = length(f);
+  if (!(fl > 1e-6)) return false;
+  last = heading;
+  heading = side * f / fl;
+  if (dot(heading, last) < 0.0) return false;  // a stagnation line: no crossing it
+  sum += w * display_tap(p, stored_value(t), heading);
+  weights += w;
+  return true;
+}
+
 vec3 display_filter(vec2 start, vec2 along, float previous_depth, vec3 shown) {
   vec3 sum = shown;
   float weights = 1.0;
   float depth_tolerance = 0.05 * abs(previous_depth);
-  for (int side = -1; side <= 1; side += 2) {
-    vec2 p = start, heading = float(side) * along, last = heading;
-    for (int k = 0; k < IBFVS_FILTER; ++k) {  // taps per side, a compile-time constant
-      vec2 turned = heading + 0.5 * (heading - last);
-      p += u_filter_spacing * (dot(turned, turned) > 1e-12 ? normalize(turned) : heading);
-      vec4 t = textureLod(IBFVS_TAPS, p * u_inverse_size, 0.0);
-      if (!(stored_depth(t) > -255.0) || abs(stored_depth(t) - previous_depth) > depth_tolerance)
-        break;
-      vec2 f = stored_flow(t, along);
-      float fl = length(f);
-      if (!(fl > 1e-6)) break;
-      last = heading;
-      heading = float(side) * f / fl;
-      if (dot(heading, last) < 0.0) break;  // a stagnation line: no crossing it
-      float w = u_filter_weights[k];
-      sum += w * display_tap(p, stored_value(t), heading);
-      weights += w;
-    }
+  // Both sides in one loop, a tap of each per step: llvmpipe runs a loop
+  // until its last lane stops, and one loop of two taps costs less than two
+  // loops of one (the default look's frame about 5-10% shorter).
+  vec2 pa = start, ha = -along, la = ha, pb = start, hb = along, lb = hb;
+  bool a = true, b = true;
+  for (int k = 0; k < IBFVS_FILTER; ++k) {  // taps per side, a compile-time constant
+    float w = u_filter_weights[k];
+    if (a) a = filter_tap(pa, ha, la, -1.0, w, previous_depth, depth_tolerance, along, sum, weights);
+    if (b) b = filter_tap(pb, hb, lb, 1.0, w, previous_depth, depth_tolerance, along, sum, weights);
+    if (!a && !b) break;
   }
   return sum / weights;
 }

@@ -446,11 +446,14 @@ glm::ivec4 IbfvsRenderer::screen_box(const glm::mat4& view_projection) const {
     hi = glm::max(hi, ndc);
   }
   const glm::vec2 size(settings_.width, settings_.height);
-  // A pixel of margin: rasterisation takes pixel centres, rounding takes the rest.
-  const glm::ivec2 a = glm::clamp(glm::ivec2(glm::floor((lo * 0.5f + 0.5f) * size)) - 1,
-                                  glm::ivec2(0), glm::ivec2(size));
-  const glm::ivec2 b = glm::clamp(glm::ivec2(glm::ceil((hi * 0.5f + 0.5f) * size)) + 1,
-                                  glm::ivec2(0), glm::ivec2(size));
+  // In pixels, clamped before the conversion (a corner near the eye's plane
+  // lies far outside), with a pixel of margin: rasterisation takes pixel
+  // centres, rounding the rest.
+  const glm::vec2 from =
+      glm::clamp(glm::floor((lo * 0.5f + 0.5f) * size) - 1.0f, glm::vec2(0.0f), size);
+  const glm::vec2 to =
+      glm::clamp(glm::ceil((hi * 0.5f + 0.5f) * size) + 1.0f, glm::vec2(0.0f), size);
+  const glm::ivec2 a(from), b(to);
   return glm::ivec4(a, glm::max(b - a, glm::ivec2(0)));
 }
 

@@ -204,8 +204,8 @@ class IbfvsRenderer {
   // (x, y, width, height), or the whole image where a corner is behind the eye.
   [[nodiscard]] glm::ivec4 screen_box(const glm::mat4& view_projection) const;
   Bounds bounds_;
-  glm::ivec4 surface_box_{
-      0};  // screen_box of the last frame: the display and host passes draw in it
+  // screen_box of the last frame: the display and host passes draw inside it.
+  glm::ivec4 surface_box_{0};
   [[nodiscard]] shaders::ShaderFeatures features() const;
   Variant& current_variant();  // the variant for the current features, compiled and up to date
   void apply_settings();       // after settings_ changed
@@ -240,7 +240,7 @@ class IbfvsRenderer {
   gl::Texture2D base_;
   gl::Texture2D seed_;
   gl::Texture2D output_;                // F
-  gl::Framebuffer output_framebuffer_;  // output_ and depth_: the display pass, reading F
+  gl::Framebuffer output_framebuffer_;  // output_ and depth_: the display pass draws F in it
   gl::Texture2D flow_;                  // displacement of the last frame, pixels (when recorded)
   bool record_flow_ = false;
   gl::Texture2D stats_;  // the statistics pass: 1 x 1 (sum l, sum l^2, count)

@@ -363,6 +363,58 @@ TEST_F(RendererGLTest, ShiftImageMovesTheTextureWithThePointer) {
             1e-3);
 }
 
+TEST_F(RendererGLTest, NoiseGridDrawnOnlyWhereTheSurfaceCanReadIt) {
+  // The grid pass draws only the cells that the surface's screen box can
+  // read (with the sharpening's reach and the bilinear footprints). A square
+  // in the middle, and the same square with a speck in a corner that
+  // stretches the box over the whole image, so that the whole grid is drawn:
+  // F_t and F must be equal bit for bit, with pixel-fine and coarser noise,
+  // and after the noise is dragged.
+  constexpr int w = 160, h = 120;
+  const TriMesh square = make_square(0.4f, 16);
+  std::vector<glm::vec3> field(square.vertex_count());
+  for (std::size_t i = 0; i < field.size(); ++i)
+    field[i] = glm::cross(glm::vec3(0, 0, 1.5f), square.positions[i]) + glm::vec3(0.2f, 0, 0);
+  TriMesh speck = square;
+  const auto first = static_cast<std::uint32_t>(speck.positions.size());
+  for (const glm::vec2 p :
+       {glm::vec2(-0.98f, -0.98f), glm::vec2(-0.94f, -0.98f), glm::vec2(-0.98f, -0.94f)}) {
+    speck.positions.emplace_back(p, 0.0f);
+    if (!speck.normals.empty()) speck.normals.emplace_back(0, 0, 1);
+  }
+  speck.triangles.push_back({first, first + 1, first + 2});
+  std::vector<glm::vec3> speck_field = field;
+  speck_field.resize(speck.vertex_count(), glm::vec3(0));
+  for (const float scale : {1.0f, 3.0f}) {
+    RenderSettings settings;  // the default look, without the contrast stage's
+    settings.width = w;       // statistics (the speck's pixels would count)
+    settings.height = h;
+    settings.contrast = 0.0f;
+    settings.noise.scale = scale;
+    IbfvsRenderer a(settings), b(settings);
+    a.set_mesh(square, field);
+    b.set_mesh(speck, speck_field);
+    for (int k = 0; k < 24; ++k) {
+      if (k == 12)
+        for (IbfvsRenderer* r : {&a, &b}) r->shift_image({2.5f, -1.5f});
+      for (IbfvsRenderer* r : {&a, &b}) r->render_frame(flat_view(), 0.01f);
+    }
+    const ImageF ta = a.read_texture(), tb = b.read_texture();
+    const ImageU8 fa = a.read_output(), fb = b.read_output();
+    int texture_differs = 0, output_differs = 0;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        if (x < 12 && y < 12) continue;  // the speck
+        const std::size_t i = static_cast<std::size_t>(y) * w + x;
+        texture_differs += ta.pixels[4 * i] != tb.pixels[4 * i] ? 1 : 0;
+        for (int c = 0; c < 3; ++c)
+          output_differs += fa.pixels[4 * i + c] != fb.pixels[4 * i + c] ? 1 : 0;
+      }
+    EXPECT_EQ(texture_differs, 0) << "noise scale " << scale;
+    EXPECT_EQ(output_differs, 0) << "noise scale " << scale;
+  }
+}
+
 TEST_F(RendererGLTest, LockedTextureStaysOnTheSurface) {
   constexpr int w = 160, h = 160;
   Scene s = sphere_scene("rotate:0,1,0", TangentMode::Project);

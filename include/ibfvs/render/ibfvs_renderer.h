@@ -203,6 +203,10 @@ class IbfvsRenderer {
   // The pixels the mesh can cover in this view: its bounding box projected
   // (x, y, width, height), or the whole image where a corner is behind the eye.
   [[nodiscard]] glm::ivec4 screen_box(const glm::mat4& view_projection) const;
+  // The grid values the IBFVS pass can read inside surface_box_ (its noise
+  // and the sharpening's, with bilinear footprints), in grid cells; the
+  // whole grid where they wrap around its edges.
+  [[nodiscard]] glm::ivec4 grid_box() const;
   Bounds bounds_;
   // screen_box of the last frame: the display and host passes draw inside it.
   glm::ivec4 surface_box_{0};

@@ -208,7 +208,8 @@ class IbfvsRenderer {
   // whole grid where they wrap around its edges.
   [[nodiscard]] glm::ivec4 grid_box() const;
   Bounds bounds_;
-  // screen_box of the last frame: the display and host passes draw inside it.
+  // screen_box of the last frame: the grid (grid_box), display and host passes
+  // draw inside it.
   glm::ivec4 surface_box_{0};
   [[nodiscard]] shaders::ShaderFeatures features() const;
   Variant& current_variant();  // the variant for the current features, compiled and up to date

@@ -103,13 +103,14 @@ void IbfvsRenderer::allocate_texture(bool colour) {
   colour_texture_ = colour;
   // Grey: value and depth, and the displacement when the display filter
   // follows it (the paper's look, without the filter, reads and writes half
-  // the bytes); with sharpening the displacement goes with the taps' image.
+  // the bytes); with sharpening the direction goes with the taps' image, 8
+  // bits a channel (core/texture/display.h).
   texture_layout_ = texture_layout(colour);
   const gl::Format format = texture_layout_.channels == 4 ? gl::Format::RGBA16F : gl::Format::RG16F;
   for (int i = 0; i < 2; ++i) {
     texture_[i] = gl::Texture2D(settings_.width, settings_.height, format, true);
     taps_[i] = texture_layout_.taps
-                   ? gl::Texture2D(settings_.width, settings_.height, gl::Format::RGBA16F, true)
+                   ? gl::Texture2D(settings_.width, settings_.height, gl::Format::RGBA8, true)
                    : gl::Texture2D();
   }
   const auto own = [&](gl::Format f) {
@@ -117,7 +118,7 @@ void IbfvsRenderer::allocate_texture(bool colour) {
                                 : gl::Texture2D();
   };
   base_ = own(gl::Format::RGBA8);
-  seed_ = own(gl::Format::RG16F);
+  seed_ = own(gl::Format::RGBA16F);
   build_framebuffers();
 }
 
@@ -179,10 +180,12 @@ IbfvsRenderer::Variant& IbfvsRenderer::current_variant() {
     v.u.probe = p.location("u_probe");
     v.u.texture_shift = p.location("u_texture_shift");
     v.u.noise_shift = p.location("u_noise_shift");
+    v.u.tap_depth = p.location("u_tap_depth");
     if (shaders::tap_texture(f)) {
       v.display =
           gl::Program(shaders::display_vertex_source(), shaders::display_fragment_source(f));
       v.display_texture_shift = v.display.location("u_texture_shift");
+      v.display_tap_depth = v.display.location("u_tap_depth");
     }
   }
   if (v.applied != settings_version_) {  // the settings changed since it was last used
@@ -392,6 +395,8 @@ void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
     p.set(v.u.noise_shift, noise_shift_);
     p.set(v.u.locked, locked_ ? 1 : 0);
     p.set(v.u.noise_time, noise_time);
+    tap_depth_[next] = tap_depth_map(view.projection);
+    p.set(v.u.tap_depth, tap_depth_[next]);  // -1 without the tap texture: GL ignores it
     texture_[current_].bind(0);
     if (taps_[current_]) taps_[current_].bind(5);
     grid_.bind(1);
@@ -400,7 +405,7 @@ void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
     stats_.bind(4);
     vao_.bind();
     gl::draw_triangles(index_count_, true);
-    if (v.display) display_pass(v, next);
+    if (v.display) display_pass(v);
     // The statistics change slowly: every kStatsEvery frames is enough, and
     // on llvmpipe each extra pass ends the frame's scene early.
     if (settings_.contrast > 0.0f && frame_ % kStatsEvery == 0) {
@@ -420,14 +425,15 @@ void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
   ++frame_;
 }
 
-void IbfvsRenderer::display_pass(const Variant& v, int next) {
+void IbfvsRenderer::display_pass(const Variant& v) {
   output_framebuffer_.bind();
   gl::set_face_culling(0);
   gl::test_depth_behind_surface(true);
   gl::scissor(true, surface_box_);  // the depth test rejects the rest, but per pixel
   v.display.use();
   v.display.set(v.display_texture_shift, texture_shift_);
-  taps_[next].bind(0);
+  // The taps it reads are the last frame's, stored under that frame's map.
+  v.display.set(v.display_tap_depth, tap_depth_[current_]);
   seed_.bind(1);
   base_.bind(2);
   stats_.bind(4);
@@ -487,7 +493,7 @@ void IbfvsRenderer::clear_targets(gl::Framebuffer& fb) {
   const glm::vec3& b = settings_.background;
   fb.clear_color(0, colour_texture_ ? glm::vec4(b, kNoDepth) : glm::vec4(b.r, kNoDepth, 0, 0));
   output_framebuffer_.clear_color(0, glm::vec4(b, 1.0f));
-  if (taps_[0]) fb.clear_color(2, glm::vec4(b.r, kNoDepth, 0, 0));
+  if (taps_[0]) fb.clear_color(2, glm::vec4(0.5f, 0.0f, 0.5f, 0.5f));  // no depth, no direction
   if (record_flow_) fb.clear_color(flow_attachment(), glm::vec4(0.0f));
   fb.clear_depth();  // the depth buffer is shared by both framebuffers
 }
@@ -575,15 +581,23 @@ ImageF IbfvsRenderer::read_texture_raw() const {
     taps = ImageF(w, h, 4);
     taps_[current_].read_float(taps.pixels, 4);
   }
+  const float scale = tap_value_scale(settings_.sharpen);
   const int channels = texture_layout_.channels;  // of two, GL reads (0, 1) after them
   ImageF raw(w, h, kRawChannels, 0.0f);
   for (std::size_t i = 0; i < static_cast<std::size_t>(w) * h; ++i) {
     const float* s = &stored.pixels[4 * i];
     float* r = &raw.pixels[kRawChannels * i];
     std::copy_n(s, channels, r);
+    r[5] = -1.0f;
     if (colour_texture_) continue;
-    if (!taps.pixels.empty()) std::copy_n(&taps.pixels[4 * i + 2], 2, r + 2);
-    r[4] = taps.pixels.empty() ? s[0] : taps.pixels[4 * i];
+    if (taps.pixels.empty()) {
+      r[4] = s[0];
+      continue;
+    }
+    const float* t = &taps.pixels[4 * i];
+    r[2] = 2.0f * t[2] - 1.0f, r[3] = 2.0f * t[3] - 1.0f;  // the unit direction
+    r[4] = decode_tap_value(t[0], scale);
+    r[5] = t[1];
   }
   return raw;
 }
@@ -591,14 +605,27 @@ ImageF IbfvsRenderer::read_texture_raw() const {
 void IbfvsRenderer::upload_raw(const ImageF& raw) {
   const std::size_t n = static_cast<std::size_t>(raw.width) * raw.height;
   const int channels = texture_layout_.channels;
+  const float scale = tap_value_scale(settings_.sharpen);
+  const glm::vec2 map = tap_depth_[current_];
   std::vector<float> stored(n * static_cast<std::size_t>(channels));
   std::vector<float> taps(taps_[current_] ? n * 4 : 0);
   for (std::size_t i = 0; i < n; ++i) {
     const float* r = &raw.pixels[kRawChannels * i];
     std::copy_n(r, channels, &stored[channels * i]);
     if (!taps.empty()) {
+      // As read_texture_raw gives them, the stored tap depth and direction
+      // come back unchanged (a stored direction is unit within 8 bits); a
+      // displacement in pixels becomes its direction.
+      const bool surface = r[1] > -255.0f;
+      const glm::vec2 m(r[2], r[3]);
+      const float length = std::sqrt(glm::dot(m, m));
+      const glm::vec2 d = !surface                           ? glm::vec2(0.5f)
+                          : length > 0.95f && length < 1.05f ? 0.5f + 0.5f * m
+                                                             : encode_tap_direction(m);
       float* t = &taps[4 * i];
-      t[0] = r[4], t[1] = r[1], t[2] = r[2], t[3] = r[3];
+      t[0] = surface ? encode_tap_value(r[4], scale) : 0.5f;
+      t[1] = !surface ? 0.0f : r[5] >= 0.0f ? r[5] : encode_tap_depth(r[1], map);
+      t[2] = d.x, t[3] = d.y;
     }
   }
   texture_[current_].upload_float(stored, channels);

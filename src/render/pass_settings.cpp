@@ -64,6 +64,7 @@ std::vector<UniformValue> settings_uniforms(const RenderSettings& s, const Shade
       {"u_contrast", T::Float, {s.contrast}},
       {"u_sharpen", T::Float, {s.sharpen}},
   };
+  if (tap_texture(f)) u.push_back({"u_tap_value_scale", T::Float, {tap_value_scale(s.sharpen)}});
   if (f.filter_taps > 0) {
     UniformValue weights{"u_filter_weights", T::Float, {}, true};
     for (int k = 0; k < f.filter_taps; ++k)

@@ -153,15 +153,16 @@ layout(location = 1) out vec4 o_color;
 // With the tap texture the display filter and the contrast stage run in the
 // display pass, once per pixel of the surface (kDisplayFragmentHead); this
 // pass leaves it F_s weighted, ((1 - beta) F_s, beta), and a seed: the
-// filter's first tap and t(x)'s depth (or kNoFilter where no line starts).
+// filter's first tap, t(x)'s depth (or kNoFilter where no line starts) and
+// the displacement.
 layout(location = 1) out vec4 o_color;
 // A grey F_t with the display filter and sharpening keeps a second image
-// for the filter's taps: (the sharpened value, depth, displacement). Each
-// pixel sharpens once here, and each tap then reads one texel, where it read
-// three (the tap and its two neighbours across the flow: a third of the
-// frame on llvmpipe). F_t itself is then (value, depth).
+// for the filter's taps, 8 bits a channel: (the sharpened value, depth,
+// direction). Each pixel sharpens once here, and each tap then reads one
+// texel, where it read three (the tap and its two neighbours across the
+// flow: a third of the frame on llvmpipe). F_t itself is then (value, depth).
 layout(location = 2) out vec4 o_taps;
-layout(location = 3) out vec2 o_seed;
+layout(location = 3) out vec4 o_seed;
 #define IBFVS_FLOW_LOCATION 4
 #endif
 #ifdef IBFVS_RECORD_FLOW
@@ -233,6 +234,17 @@ const char* const kDisplayFilter = R"(
 #ifdef IBFVS_TAP_TEXTURE
 BINDING(5) uniform sampler2D u_taps;  // the last frame's tap texture
 #define IBFVS_TAPS u_taps
+// The tap texture in 8 bits a channel (core/texture/display.h, which
+// ReferenceIbfvs shares): the sharpened value spread about 0.5, the log eye
+// depth between the near and far planes (0: no surface), and the unit
+// direction of the displacement as 0.5 + 0.5 d.
+uniform float u_tap_value_scale;
+uniform vec2 u_tap_depth;  // (ln lo, 1 / (ln hi - ln lo)): this frame's map, or the taps' frame's
+float encode_tap_value(float value) { return clamp(0.5 + (value - 0.5) * u_tap_value_scale, 0.0, 1.0); }
+float decode_tap_value(float stored) { return 0.5 + (stored - 0.5) / u_tap_value_scale; }
+float encode_tap_depth(float depth) {
+  return (1.0 + 254.0 * clamp((log(max(depth, 1e-30)) - u_tap_depth.x) * u_tap_depth.y, 0.0, 1.0)) / 255.0;
+}
 #else
 #define IBFVS_TAPS u_previous
 #endif
@@ -297,15 +309,28 @@ bool filter_tap(inout vec2 p, inout vec2 heading, inout vec2 last, float side, f
   vec2 turned = heading + 0.5 * (heading - last);
   p += u_filter_spacing * (dot(turned, turned) > 1e-12 ? normalize(turned) : heading);
   vec4 t = textureLod(IBFVS_TAPS, p * u_inverse_size, 0.0);
+#ifdef IBFVS_TAP_TEXTURE
+  // Depths as stored (previous_depth too); the background holds none, and
+  // its direction 0 stops a line whose footprint it mostly fills.
+  if (abs(t.g - previous_depth) > depth_tolerance) return false;
+  vec2 f = 2.0 * t.ba - 1.0;
+  float fl = length(f);
+  if (!(fl > 0.25)) return false;
+#else
   if (!(stored_depth(t) > -255.0) || abs(stored_depth(t) - previous_depth) > depth_tolerance)
     return false;
   vec2 f = stored_flow(t, along);
   float fl = length(f);
   if (!(fl > 1e-6)) return false;
+#endif
   last = heading;
   heading = side * f / fl;
   if (dot(heading, last) < 0.0) return false;  // a stagnation line: no crossing it
+#ifdef IBFVS_TAP_TEXTURE
+  sum += w * decode_tap_value(t.r);
+#else
   sum += w * display_tap(p, stored_value(t), heading);
+#endif
   weights += w;
   return true;
 }
@@ -313,7 +338,12 @@ bool filter_tap(inout vec2 p, inout vec2 heading, inout vec2 last, float side, f
 vec3 display_filter(vec2 start, vec2 along, float previous_depth, vec3 shown) {
   vec3 sum = shown;
   float weights = 1.0;
+#ifdef IBFVS_TAP_TEXTURE
+  float depth_tolerance = (0.05 * 254.0 * u_tap_depth.y + 1.0) / 255.0;  // tap_depth_tolerance()
+  previous_depth = encode_tap_depth(previous_depth);
+#else
   float depth_tolerance = 0.05 * abs(previous_depth);
+#endif
   // Both sides in one loop, a tap of each per step: llvmpipe runs a loop
   // until its last lane stops, and one loop of two taps costs less than two
   // loops of one (the default look's frame about 5-10% shorter).
@@ -356,8 +386,7 @@ vec3 contrast(vec3 shown, vec2 stage) {
 // on llvmpipe, and in the IBFVS pass it ran for every fragment drawn (small
 // triangles shade whole blocks of pixels, and hidden ones shade too).
 const char* const kDisplayFragmentHead = R"(
-BINDING(0) uniform sampler2D u_moved;  // this frame's tap texture: the displacement in .ba
-BINDING(1) uniform sampler2D u_start;  // (the first tap, t(x)'s depth or kNoFilter)
+BINDING(1) uniform sampler2D u_start;  // (the first tap, t(x)'s depth or kNoFilter, displacement)
 BINDING(2) uniform sampler2D u_base;   // ((1 - beta) F_s, beta)
 #ifdef IBFVS_CONTRAST
 BINDING(4) uniform sampler2D u_stats;  // 1 x 1: (sum l, sum l^2, count)
@@ -371,11 +400,11 @@ layout(location = 0) out vec4 o_color;
 const char* const kDisplayFragmentMain = R"(
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
-  vec2 seed = texelFetch(u_start, p, 0).rg;
+  vec4 seed = texelFetch(u_start, p, 0);
   vec4 base = texelFetch(u_base, p, 0);
   vec3 shown = vec3(seed.x);
 #ifdef IBFVS_FILTER
-  vec2 moved = texelFetch(u_moved, p, 0).ba;  // as the IBFVS pass wrote it: t(x) = x - moved
+  vec2 moved = seed.ba;  // as the IBFVS pass wrote it: t(x) = x - moved
   float moved_length = length(moved);
   if (seed.y > -255.0 && moved_length > 0.0)
     shown = display_filter(gl_FragCoord.xy - moved - u_texture_shift, moved / moved_length,
@@ -523,7 +552,7 @@ void main() {
   o_texture = vec4(ft, depth);
 #endif
 #ifdef IBFVS_TAP_TEXTURE
-  o_taps = vec4(ft.r + u_sharpen * high, depth, moved);
+  o_taps = vec4(encode_tap_value(ft.r + u_sharpen * high), encode_tap_depth(depth), 0.5 + 0.5 * along);
 #endif
 #ifdef IBFVS_RECORD_FLOW
   o_flow = moved;
@@ -578,7 +607,7 @@ void main() {
               : clamp((v_scalars.y - u_beta_range.x) / (u_beta_range.y - u_beta_range.x), 0.0, 1.0);
 #endif
 #ifdef IBFVS_TAP_TEXTURE
-  o_seed = vec2(shown.r, filtered ? previous_depth : kNoFilter);
+  o_seed = vec4(shown.r, filtered ? previous_depth : kNoFilter, moved);
   o_color = vec4((1.0 - beta) * shaded, beta);
 #else
   float shown_mean = (shown.r + shown.g + shown.b) / 3.0;

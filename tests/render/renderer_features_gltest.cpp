@@ -20,6 +20,7 @@
 #include "ibfvs/core/mesh/procedural.h"
 #include "ibfvs/core/scene/camera.h"
 #include "ibfvs/core/support/error.h"
+#include "ibfvs/core/texture/display.h"
 #include "ibfvs/core/texture/reference.h"
 #include "ibfvs/render/ibfvs_renderer.h"
 #include "renderer_scenes.h"
@@ -413,6 +414,50 @@ TEST_F(RendererGLTest, NoiseGridDrawnOnlyWhereTheSurfaceCanReadIt) {
     EXPECT_EQ(texture_differs, 0) << "noise scale " << scale;
     EXPECT_EQ(output_differs, 0) << "noise scale " << scale;
   }
+}
+
+TEST_F(RendererGLTest, TapTextureStoresWhatDisplayHDescribes) {
+  // The shader's 8-bit tap texture and core/texture/display.h, which
+  // ReferenceIbfvs and write_texture_raw use, agree: the depth under the
+  // frame's map, the direction of the recorded displacement, and nothing
+  // off the surface.
+  const Scene s = sphere_scene("rotate:0.3,1,0", TangentMode::Project);
+  RenderSettings settings;
+  settings.width = settings.height = 128;
+  settings.filter_length = 16.0f;
+  settings.sharpen = 4.0f;
+  IbfvsRenderer r(settings);
+  r.set_mesh(s.mesh, s.field);
+  r.record_flow(true);
+  const ViewState view{s.camera.view(), s.camera.projection()};
+  for (int k = 0; k < 12; ++k) r.render_frame(view, step_dt(s, 128, 128, 1.5f));
+  const glm::vec2 map = tap_depth_map(view.projection);
+  ASSERT_GT(map.y, 0.0f);
+  const ImageF raw = r.read_texture_raw();
+  const ImageF flow = r.read_flow();
+  constexpr int c = IbfvsRenderer::kRawChannels;
+  int surface = 0, moving = 0;
+  for (std::size_t i = 0; i < flow.pixels.size() / 2; ++i) {
+    const float* p = &raw.pixels[c * i];
+    if (!(p[1] > -255.0f)) {
+      EXPECT_EQ(p[5], 0.0f) << i;                                 // no depth, no direction
+      EXPECT_LT(glm::length(glm::vec2(p[2], p[3])), 0.01f) << i;  // 0.5 stores as 128/255
+      continue;
+    }
+    ++surface;
+    // F_t's depth is rounded to 16 bits: the stored one within a step
+    // (steps of about 0.3% of the depth here: the planes hug the sphere).
+    const float expected = unorm8(encode_tap_depth(p[1], map));
+    EXPECT_NEAR(p[5], expected, 1.01f / 255.0f) << i;
+    const glm::vec2 f(flow.pixels[2 * i], flow.pixels[2 * i + 1]);
+    if (glm::length(f) < 0.3f) continue;
+    ++moving;
+    const glm::vec2 d(p[2], p[3]);
+    EXPECT_NEAR(glm::length(d), 1.0f, 0.01f) << i;
+    EXPECT_GT(glm::dot(glm::normalize(d), glm::normalize(f)), std::cos(glm::radians(1.0f))) << i;
+  }
+  EXPECT_GT(surface, 128 * 128 / 3);
+  EXPECT_GT(moving, surface / 2);
 }
 
 TEST_F(RendererGLTest, LockedTextureStaysOnTheSurface) {

@@ -53,7 +53,7 @@ export interface Look {
   noise_rate: number;
   colour_texture: boolean;
   texture_channels: 2 | 4; // F_t: RG16F (grey value, depth) or RGBA16F (RGB or grey and displacement, depth)
-  tap_texture: boolean; // beside F_t, the display filter's taps: RGBA16F (sharpened value, depth, displacement)
+  tap_texture: boolean; // beside F_t, the display filter's taps: RGBA8 (sharpened value, log depth, direction)
   advect_previous: boolean;
   phase_size: [number, number]; // its noise grid: the first columns x rows of the page's phases
   // display_fragment: the display pass, with a tap texture (else empty)

@@ -43,6 +43,22 @@ function slider(panel: HTMLElement, label: string, min: number, max: number, val
 
 // ---------------------------------------------------------------- the renderer
 
+/// The tap texture's depth map, (ln lo, 1 / (ln hi - ln lo)) from the projection's near and far
+/// planes, lo at least hi / 1000: tap_depth_map() of core/texture/display.cpp (column-major).
+function tapDepthMap(pr: ArrayLike<number>): [number, number] {
+  let near: number, far: number;
+  if (pr[15] === 0) {
+    near = pr[14] / (pr[10] - 1);
+    far = pr[14] / (pr[10] + 1);
+  } else {
+    near = (pr[14] + 1) / pr[10];
+    far = (pr[14] - 1) / pr[10];
+  }
+  if (!Number.isFinite(far) || !(far > 0)) far = Number.isFinite(near) && near > 0 ? 1e3 * near : 1;
+  const lo = Math.log(Math.max(near, far * 1e-3, 1e-30)), hi = Math.log(far);
+  return [lo, hi > lo ? 1 / (hi - lo) : 1];
+}
+
 export class PageRenderer {
   readonly gl: WebGL2RenderingContext;
   readonly scene: SceneHeader;
@@ -57,9 +73,10 @@ export class PageRenderer {
   private vao: WebGLVertexArrayObject;
   private empty: WebGLVertexArrayObject;
   private textures: WebGLTexture[] = [];
-  private taps: WebGLTexture[] = []; // beside F_t when the look has a tap texture, else none
+  private taps: WebGLTexture[] = []; // beside F_t when the look has a tap texture (RGBA8), else none
+  private tapDepth: [number, number][] = [[0, 0], [0, 0]]; // the depth map taps[i] was written with
   // With a tap texture the IBFVS pass leaves the display pass ((1 - beta) F_s, beta) and the
-  // seed (the filter's first tap, t(x)'s depth): IbfvsRenderer::display_pass.
+  // seed (the filter's first tap, t(x)'s depth, the displacement): IbfvsRenderer::display_pass.
   private base: WebGLTexture | null = null;
   private seed: WebGLTexture | null = null;
   private output: WebGLTexture;
@@ -185,10 +202,10 @@ export class PageRenderer {
       const [internal, format] = look.texture_channels === 4 ? [gl.RGBA16F, gl.RGBA] : [gl.RG16F, gl.RG];
       this.textures = [0, 1].map(() => texture(gl, s.width, s.height, internal, format, gl.HALF_FLOAT, true));
       this.taps = look.tap_texture
-        ? [0, 1].map(() => texture(gl, s.width, s.height, gl.RGBA16F, gl.RGBA, gl.HALF_FLOAT, true))
+        ? [0, 1].map(() => texture(gl, s.width, s.height, gl.RGBA8, gl.RGBA, gl.UNSIGNED_BYTE, true))
         : [];
       this.base = look.tap_texture ? texture(gl, s.width, s.height, gl.RGBA8, gl.RGBA, gl.UNSIGNED_BYTE, false) : null;
-      this.seed = look.tap_texture ? texture(gl, s.width, s.height, gl.RG16F, gl.RG, gl.HALF_FLOAT, false) : null;
+      this.seed = look.tap_texture ? texture(gl, s.width, s.height, gl.RGBA16F, gl.RGBA, gl.HALF_FLOAT, false) : null;
       this.fbs = this.textures.map((t, i) =>
         framebuffer(gl, this.taps.length ? [t, this.base!, this.taps[i], this.seed!] : [t, this.output], this.depth));
     }
@@ -273,7 +290,7 @@ export class PageRenderer {
     const gl = this.gl, b = this.look.background, d = this.scene.no_depth;
     gl.bindFramebuffer(gl.FRAMEBUFFER, fb);
     gl.clearBufferfv(gl.COLOR, 0, this.look.colour_texture ? [b[0], b[1], b[2], d] : [b[0], d, 0, 0]);
-    if (this.taps.length) gl.clearBufferfv(gl.COLOR, 2, [b[0], d, 0, 0]);
+    if (this.taps.length) gl.clearBufferfv(gl.COLOR, 2, [0.5, 0, 0.5, 0.5]); // no depth, no direction
     gl.clearBufferfi(gl.DEPTH_STENCIL, 0, 1, 0);
     gl.bindFramebuffer(gl.FRAMEBUFFER, this.outputFb);
     gl.clearBufferfv(gl.COLOR, 0, [b[0], b[1], b[2], 1]);
@@ -324,6 +341,8 @@ export class PageRenderer {
     gl.uniform2f(at("u_noise_shift"), 0, 0);
     gl.uniform1i(at("u_locked"), this.locked ? 1 : 0);
     gl.uniform1f(at("u_noise_time"), noiseTime);
+    this.tapDepth[next] = tapDepthMap(pr);
+    gl.uniform2f(at("u_tap_depth"), ...this.tapDepth[next]);
     const bind = (unit: number, t: WebGLTexture) => {
       gl.activeTexture(gl.TEXTURE0 + unit);
       gl.bindTexture(gl.TEXTURE_2D, t);
@@ -346,7 +365,7 @@ export class PageRenderer {
       gl.depthMask(false);
       gl.useProgram(this.display);
       gl.uniform2f(locate(gl, this.display, "u_texture_shift"), 0, 0);
-      bind(0, this.taps[next]);
+      gl.uniform2f(locate(gl, this.display, "u_tap_depth"), ...this.tapDepth[this.current]); // the last frame's taps
       bind(1, this.seed!);
       bind(2, this.base!);
       bind(4, this.statsTexture);

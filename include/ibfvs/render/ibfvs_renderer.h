@@ -127,12 +127,15 @@ class IbfvsRenderer {
   /// one-channel F_t is spread to grey RGB with alpha 1).
   [[nodiscard]] ImageF read_texture() const;
   /// F_t as stored, kRawChannels channels: grey value, eye depth, the
-  /// pixel's displacement in its frame (x, y pixels, kept when the display
-  /// filter is on: it follows them; else 0) and the value the filter's taps
-  /// read (sharpened, or the value); or RGB, eye depth and 0. The depth is
-  /// kNoDepth off the surface. write_texture_raw takes the same.
+  /// pixel's motion in its frame (x, y, kept when the display filter is on,
+  /// which follows its direction: the displacement in pixels, or its unit
+  /// direction with the tap texture; else 0) and the value the filter's
+  /// taps read (sharpened, or the value), and the tap texture's depth as
+  /// stored (-1 without one: write_texture_raw then stores the eye depth);
+  /// or RGB, eye depth, 0, 0 and -1. The depth is kNoDepth off the surface.
+  /// write_texture_raw takes the same.
   [[nodiscard]] ImageF read_texture_raw() const;
-  static constexpr int kRawChannels = 5;
+  static constexpr int kRawChannels = 6;
   /// Records every pixel's displacement from now on (for measurements: it
   /// costs a fourth attachment), or stops.
   void record_flow(bool on);
@@ -185,13 +188,13 @@ class IbfvsRenderer {
   struct Uniforms {
     // Those set each frame; the settings' own go by name (shaders::settings_uniforms).
     int view_projection, advect_view_projection, view, clip_to_depth, dt, noise_time, field_mix,
-        locked, probe, texture_shift, noise_shift;
+        locked, probe, texture_shift, noise_shift, tap_depth;
   };
   struct Variant {
     gl::Program program;
     Uniforms u{};
     gl::Program display;  // the display pass, with the tap texture
-    int display_texture_shift = -1;
+    int display_texture_shift = -1, display_tap_depth = -1;
     std::uint64_t applied = 0;  // settings_version_ last set
   };
   void statistics_pass(int texture_index, int frame);  // for the contrast stage of the next frame
@@ -199,7 +202,7 @@ class IbfvsRenderer {
   bool statistics_due_ = false;
   void build_framebuffers();
   void clear_targets(gl::Framebuffer& fb);
-  void display_pass(const Variant& v, int next);
+  void display_pass(const Variant& v);
   // The pixels the mesh can cover in this view: its bounding box projected
   // (x, y, width, height), or the whole image where a corner is behind the eye.
   [[nodiscard]] glm::ivec4 screen_box(const glm::mat4& view_projection) const;
@@ -240,8 +243,10 @@ class IbfvsRenderer {
   float field_mix_ = 0.0f;
   gl::Texture2D texture_[2];  // F_t ping-pong
   gl::Texture2D taps_[2];     // the display filter's taps beside a grey F_t (tap_texture), or none
+  glm::vec2 tap_depth_[2]{};  // the depth map taps_[i] was written with (core/texture/display.h)
   // With the tap texture the IBFVS pass leaves the display pass ((1 - beta)
-  // F_s, beta) and the seed (the filter's first tap, t(x)'s depth).
+  // F_s, beta) and the seed (the filter's first tap, t(x)'s depth, the
+  // displacement).
   gl::Texture2D base_;
   gl::Texture2D seed_;
   gl::Texture2D output_;                // F

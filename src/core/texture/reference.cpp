@@ -84,6 +84,10 @@ void ReferenceIbfvs::step(const BackwardMap& map, int frame, float alpha, Inject
   const int taps = filter_taps(filter_length_);
   const float spacing = filter_spacing(filter_length_);
   const bool display = taps > 0 || sharpen_ > 0.0f;
+  // As the GPU's tap texture (display.h): with the filter and sharpening the
+  // taps read 8-bit values and directions.
+  const bool tap_texture = taps > 0 && sharpen_ > 0.0f;
+  const float scale = tap_value_scale(sharpen_);
   const auto blend = [&](float prev, float g) {
     return mode == InjectMode::Blend ? (1 - alpha) * prev + alpha * g
                                      : std::min(1.0f, (1 - alpha) * prev + g);
@@ -106,8 +110,10 @@ void ReferenceIbfvs::step(const BackwardMap& map, int frame, float alpha, Inject
       next.pixels[i] = blend(prev, g);
       const glm::vec2 here(static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f);
       const glm::vec2 d = here - s;
-      moved.at(x, y, 0) = d.x;
-      moved.at(x, y, 1) = d.y;
+      const glm::vec2 stored = encode_tap_direction(d);
+      const glm::vec2 direction = 2.0f * glm::vec2(unorm8(stored.x), unorm8(stored.y)) - 1.0f;
+      moved.at(x, y, 0) = tap_texture ? direction.x : d.x;
+      moved.at(x, y, 1) = tap_texture ? direction.y : d.y;
       shown.pixels[i] = tap_values.pixels[i] = next.pixels[i];
       const float length = std::sqrt(d.x * d.x + d.y * d.y);
       if (!(length > 1e-6f)) continue;
@@ -126,6 +132,9 @@ void ReferenceIbfvs::step(const BackwardMap& map, int frame, float alpha, Inject
                            : same ? (1 - alpha) * high_previous + alpha * high_noise
                                   : high_noise;
         tap_values.pixels[i] = next.pixels[i] + sharpen_ * high;
+        if (tap_texture)
+          tap_values.pixels[i] =
+              decode_tap_value(unorm8(encode_tap_value(tap_values.pixels[i], scale)), scale);
       }
       if (!display || !same) continue;
       // The display filter, as the fragment shader: along the streamline
@@ -141,7 +150,7 @@ void ReferenceIbfvs::step(const BackwardMap& map, int frame, float alpha, Inject
           if (!footprint_covered(p.x, p.y)) break;
           const glm::vec2 f(sample_bilinear(moved_, p.x, p.y, 0),
                             sample_bilinear(moved_, p.x, p.y, 1));
-          if (!(std::sqrt(f.x * f.x + f.y * f.y) > 1e-6f)) break;
+          if (!(std::sqrt(f.x * f.x + f.y * f.y) > (tap_texture ? 0.25f : 1e-6f))) break;
           last = heading;
           heading = side * normalised(f);
           if (heading.x * last.x + heading.y * last.y < 0.0f) break;

@@ -12,6 +12,8 @@
 //   frames, so the brightness does not pump as a per-frame min/max stretch
 //   does. Tested by its properties (tests/render/quality_gltest.cpp).
 
+#include <glm/glm.hpp>
+
 #include "ibfvs/core/image/image.h"
 
 namespace ibfvs {
@@ -37,6 +39,29 @@ float filter_weight(float length, int k);
 /// are (docs/quality.md, "thin lines"). The shader and ReferenceIbfvs both
 /// read it.
 inline constexpr float kSharpenReach = 1.5f;
+
+/// The tap texture (the display filter's taps, beside a grey F_t when the
+/// filter and sharpening are on) holds 8 bits a channel: llvmpipe filters
+/// RGBA8 texels on a fast path, and the motorbike's ParaView frame is 7%
+/// shorter than with RGBA16F, A and W unchanged (docs/quality.md). Per
+/// texel: the sharpened value, spread by tap_value_scale about 0.5; the log
+/// of the eye depth between the frame's near and far planes (0: no
+/// surface); the unit direction of the pixel's displacement, as 0.5 + 0.5 d
+/// (0.5, 0.5 where it did not move). The shader and ReferenceIbfvs share
+/// these; unorm8() is the 8-bit storage.
+float tap_value_scale(float sharpen);
+float encode_tap_value(float value, float scale);
+float decode_tap_value(float stored, float scale);
+/// (ln lo, 1 / (ln hi - ln lo)) from a projection's near and far planes
+/// (perspective or orthographic), lo at least hi / 1000: a frame's depth map.
+glm::vec2 tap_depth_map(const glm::mat4& projection);
+/// The stored depth of an eye depth under a map: in [1, 255] / 255.
+float encode_tap_depth(float depth, glm::vec2 map);
+/// How far apart two stored depths may lie on one surface: 5% of the depth
+/// and one step of rounding.
+float tap_depth_tolerance(glm::vec2 map);
+glm::vec2 encode_tap_direction(glm::vec2 displacement);
+float unorm8(float value);
 
 /// Bilinear sample of channel c at (x, y) in pixels, texel centres at +0.5,
 /// clamped at the edges (a GL_LINEAR texture with CLAMP_TO_EDGE).

@@ -24,6 +24,7 @@ ShaderFeatures features_for(const RenderSettings& settings, bool colour_texture,
   f.inject_add = settings.inject == InjectMode::Add;
   f.mono_texture = !colour_texture;
   f.cubic = settings.resample == Resample::Cubic;
+  f.compensate = settings.resample == Resample::Compensated;
   f.filter_taps = ibfvs::filter_taps(settings.filter_length);
   f.contrast = settings.contrast > 0.0f;
   f.record_flow = record_flow;
@@ -64,6 +65,10 @@ std::vector<UniformValue> settings_uniforms(const RenderSettings& s, const Shade
       {"u_contrast", T::Float, {s.contrast}},
       {"u_sharpen", T::Float, {s.sharpen}},
   };
+  if (f.compensate)  // c = s v / reach^2 (display.h): the shader multiplies by v
+    u.push_back({"u_compensation",
+                 T::Float,
+                 {compensation_scale(s.alpha) / (kSharpenReach * kSharpenReach)}});
   if (tap_texture(f)) u.push_back({"u_tap_value_scale", T::Float, {tap_value_scale(s.sharpen)}});
   if (f.filter_taps > 0) {
     UniformValue weights{"u_filter_weights", T::Float, {}, true};

@@ -175,6 +175,9 @@ BINDING(0) uniform sampler2D u_previous;  // F_t of the last frame
 BINDING(1) uniform sampler2D u_grid;      // w(v_g k + phi_ij), this frame's grid values
 
 uniform float u_alpha;
+#ifdef IBFVS_COMPENSATE
+uniform float u_compensation;  // s / reach^2 (core/texture/display.h)
+#endif
 uniform vec2 u_texture_shift;  // pixels: F_t moved with the mouse for this frame (3.7)
 uniform vec2 u_noise_shift;    // pixels: G moved with the mouse, accumulated
 uniform float u_beta;
@@ -498,6 +501,30 @@ void main() {
                       (dragged ? previous_depth > -255.0
                                : abs(previous_depth - from_depth) <= tolerance ||
                                      previous_depth >= 65000.0);  // kAnyDepth: put in from outside
+  vec2 moved = ahead && u_locked == 0 ? gl_FragCoord.xy - unshifted / u_inverse_size : vec2(0.0);
+  float moved_length = length(moved);
+  vec2 along = moved_length > 1e-6 ? moved / moved_length : vec2(0.0);
+  vec2 start = texcoord / u_inverse_size;  // t(x) in pixels
+#ifdef IBFVS_COMPENSATE
+  // The compensated warp (core/texture/display.h): the bilinear sample plus
+  // c times its excess over its two neighbours across the flow, c = s v /
+  // reach^2 for v the bilinear weights' variance across the flow, which
+  // takes back the blur the sample adds there. Sharpening reads the same
+  // two neighbours.
+  vec2 across_flow = IBFVS_SHARPEN_REACH * vec2(-along.y, along.x);
+  vec4 across_a = vec4(0.0), across_b = vec4(0.0);
+  if (same_surface && moved_length > 1e-6) {
+    across_a = textureLod(u_previous, (start + across_flow) * u_inverse_size, 0.0);
+    across_b = textureLod(u_previous, (start - across_flow) * u_inverse_size, 0.0);
+    if (stored_depth(across_a) > -255.0 && stored_depth(across_b) > -255.0) {
+      vec2 f = fract(start - 0.5);
+      float v = dot(f * (1.0 - f), along.yx * along.yx);
+      previous = clamp(previous + u_compensation * v *
+                                      (previous - 0.5 * (stored_value(across_a) + stored_value(across_b))),
+                       0.0, 1.0);
+    }
+  }
+#endif
 #ifdef IBFVS_INJECT_ADD
   if (!same_surface && u_locked == 0) previous = vec3(0.0);  // no ink has arrived yet
 #else
@@ -509,10 +536,6 @@ void main() {
   vec3 ft = mix(previous, vec3(g), u_alpha);  // equation 10
 #endif
   if (u_locked != 0) ft = previous;  // a locked texture is only mapped, never changed
-  vec2 moved = ahead && u_locked == 0 ? gl_FragCoord.xy - unshifted / u_inverse_size : vec2(0.0);
-  float moved_length = length(moved);
-  vec2 along = moved_length > 1e-6 ? moved / moved_length : vec2(0.0);
-  vec2 start = texcoord / u_inverse_size;  // t(x) in pixels
 #if defined(IBFVS_SHARPEN) && defined(IBFVS_MONO_TEXTURE)
   // Sharpening once per pixel (display_tap): the high-pass of the last
   // frame's F_t at t(x) across this pixel's flow, and that of this frame's
@@ -526,8 +549,12 @@ void main() {
   float high_previous = 0.0, high_noise = 0.0;
   if (moved_length > 1e-6) {
     if (same_surface) {
+#ifdef IBFVS_COMPENSATE
+      vec4 a = across_a, b = across_b;  // read for the warp, at the same points
+#else
       vec4 a = textureLod(u_previous, (start + across) * u_inverse_size, 0.0);
       vec4 b = textureLod(u_previous, (start - across) * u_inverse_size, 0.0);
+#endif
       if (stored_depth(a) > -255.0 && stored_depth(b) > -255.0)
         high_previous = previous.r - 0.5 * (stored_value(a).r + stored_value(b).r);
     }
@@ -694,13 +721,14 @@ std::string with_defines(const ShaderFeatures& features, const std::string& body
   define(features.inject_add, "IBFVS_INJECT_ADD");
   define(features.mono_texture, "IBFVS_MONO_TEXTURE");
   define(features.cubic, "IBFVS_CUBIC");
+  define(features.compensate, "IBFVS_COMPENSATE");
   if (features.filter_taps > 0)
     source += "#define IBFVS_FILTER " + std::to_string(features.filter_taps) + "\n";
   define(features.contrast, "IBFVS_CONTRAST");
   define(features.record_flow, "IBFVS_RECORD_FLOW");
   define(tap_texture(features), "IBFVS_TAP_TEXTURE");
   define(features.sharpen, "IBFVS_SHARPEN");
-  if (features.sharpen)
+  if (features.sharpen || features.compensate)
     source += "#define IBFVS_SHARPEN_REACH " + std::to_string(ibfvs::kSharpenReach) + "\n";
   if (profile) source += kProfile;
   return source + body;
@@ -713,7 +741,7 @@ unsigned ShaderFeatures::key() const {
          (beta_scalar ? 8u : 0u) | (image_step ? 16u : 0u) | (inject_add ? 32u : 0u) |
          (mono_texture ? 64u : 0u) | (cubic ? 128u : 0u) | (contrast ? 256u : 0u) |
          (record_flow ? 512u : 0u) | (sharpen ? 1024u : 0u) |
-         (static_cast<unsigned>(filter_taps) << 11u);
+         (static_cast<unsigned>(filter_taps) << 11u) | (compensate ? 1u << 16u : 0u);
 }
 
 std::string ibfvs_vertex_source(const ShaderFeatures& features, Dialect dialect) {

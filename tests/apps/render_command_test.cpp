@@ -459,7 +459,8 @@ TEST_F(RenderCommand, QualityOptionsFailCleanly) {
   const std::string m = "render sq.off --frames 2 --size 32x32 --out x.png ";
   expect_error(m + "--filter -1", "--filter: must be between 0 and 32 pixels");
   expect_error(m + "--contrast 0.9", "--contrast: must be between 0 (off) and 0.5");
-  expect_error(m + "--resample nearest", "--resample: expected cubic or linear, got 'nearest'");
+  expect_error(m + "--resample nearest",
+               "--resample: expected compensated, cubic or linear, got 'nearest'");
   expect_error(m + "--profile white",
                "--profile: expected square, sawtooth, sine, spike or random");
   expect_error("quality sq.off --warmup 0", "--warmup");

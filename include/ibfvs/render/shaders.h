@@ -19,6 +19,7 @@ struct ShaderFeatures {
   bool inject_add = false;     ///< add noise (particles) instead of blending (eq. 10)
   bool mono_texture = false;   ///< F_t is grey, stored in one channel (and its depth)
   bool cubic = false;          ///< F_t(t(x)) by Catmull-Rom instead of bilinear interpolation
+  bool compensate = false;     ///< bilinear F_t(t(x)), its blur across the flow taken back
   int filter_taps = 0;         ///< taps per side of the display filter along the flow, 0..16
   bool contrast = false;       ///< the display's contrast stage
   bool record_flow = false;    ///< write each pixel's displacement (measurements)

@@ -178,8 +178,7 @@ IBFVS_SETTING(ImageNormalize, int, image_normalize, value != 0, false)
 IBFVS_SETTING(FilterLength, double, filter, static_cast<float>(std::clamp(value, 0.0, 32.0)), false)
 IBFVS_SETTING(Contrast, double, contrast, static_cast<float>(std::clamp(value, 0.0, 0.5)), false)
 IBFVS_SETTING(Sharpen, double, sharpen, static_cast<float>(std::clamp(value, 0.0, 4.0)), false)
-IBFVS_SETTING(Resample, int, resample,
-              value != 0 ? ibfvs::Resample::Cubic : ibfvs::Resample::Linear, false)
+IBFVS_SETTING(Resample, int, resample, static_cast<ibfvs::Resample>(std::clamp(value, 0, 2)), false)
 IBFVS_SETTING(Seed, int, seed, static_cast<std::uint32_t>(std::max(value, 0)), true)
 #undef IBFVS_SETTING
 

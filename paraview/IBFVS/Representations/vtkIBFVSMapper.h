@@ -38,7 +38,7 @@ class IBFVSREPRESENTATIONS_EXPORT vtkIBFVSMapper : public vtkCompositePolyDataMa
   void SetFilterLength(double pixels);
   void SetContrast(double contrast);
   void SetSharpen(double k);
-  void SetResample(int cubic);
+  void SetResample(int mode);  // ibfvs::Resample
   void SetSeed(int seed);
 
   /// Frames drawn with the texture since it last started afresh.

@@ -38,7 +38,7 @@ class IBFVSREPRESENTATIONS_EXPORT vtkIBFVSRepresentation
   void SetFilterLength(double pixels);
   void SetContrast(double contrast);
   void SetSharpen(double k);
-  void SetResample(int cubic);
+  void SetResample(int mode);  // ibfvs::Resample
   void SetSeed(int seed);
 
   int ProcessViewRequest(vtkInformationRequestKey* request_type, vtkInformation* inInfo,

@@ -35,6 +35,10 @@ float filter_spacing(float length) {
   return n > 0 ? length / (static_cast<float>(n) + 0.5f) : 0.0f;
 }
 
+float compensation_scale(float alpha) {
+  return 1.0f + std::clamp(10.0f * alpha, 0.0f, 1.0f);
+}
+
 float tap_value_scale(float sharpen) {
   // The stored range spans 0.5 +- (0.5 + 3 k / 8) (k the gain), in steps of
   // 1/64 at the default k = 4. On the torus at the defaults 98% of the

@@ -104,18 +104,29 @@ void ReferenceIbfvs::step(const BackwardMap& map, int frame, float alpha, Inject
           noise_.sample(static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f, frame);
       const glm::vec2 s = map.source[i];
       const bool same = on_previous_surface(s.x, s.y) && (map.occluded.empty() || !map.occluded[i]);
-      const float prev = !same    ? (mode == InjectMode::Blend ? g : 0.0f)
-                         : cubic_ ? sample_cubic(s.x, s.y)
-                                  : sample(s.x, s.y);
-      next.pixels[i] = blend(prev, g);
+      float prev = !same    ? (mode == InjectMode::Blend ? g : 0.0f)
+                   : cubic_ ? sample_cubic(s.x, s.y)
+                            : sample(s.x, s.y);
       const glm::vec2 here(static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f);
       const glm::vec2 d = here - s;
+      const float length = std::sqrt(d.x * d.x + d.y * d.y);
+      if (compensation_ > 0.0f && same && length > 1e-6f) {
+        // The compensated warp (display.h), as the fragment shader.
+        const glm::vec2 along = d / length;
+        const glm::vec2 across = kSharpenReach * glm::vec2(-along.y, along.x);
+        const glm::vec2 f = glm::fract(s - 0.5f);
+        const float v =
+            f.x * (1.0f - f.x) * along.y * along.y + f.y * (1.0f - f.y) * along.x * along.x;
+        prev = std::clamp(
+            prev + compensation_ / (kSharpenReach * kSharpenReach) * v * high_pass(s, prev, across),
+            0.0f, 1.0f);
+      }
+      next.pixels[i] = blend(prev, g);
       const glm::vec2 stored = encode_tap_direction(d);
       const glm::vec2 direction = 2.0f * glm::vec2(unorm8(stored.x), unorm8(stored.y)) - 1.0f;
       moved.at(x, y, 0) = tap_texture ? direction.x : d.x;
       moved.at(x, y, 1) = tap_texture ? direction.y : d.y;
       shown.pixels[i] = tap_values.pixels[i] = next.pixels[i];
-      const float length = std::sqrt(d.x * d.x + d.y * d.y);
       if (!(length > 1e-6f)) continue;
       const glm::vec2 along = d / length;
       // Sharpening once per pixel, as the fragment shader: the high-pass of

@@ -132,7 +132,7 @@ TEST(SceneKeys, ErrorsNameTheKeyAndNeverAFlag) {
   EXPECT_EQ(problem("profile", "triangle"),
             "expected square, sawtooth, sine, spike or random, got 'triangle'");
   EXPECT_EQ(problem("filter", "40"), "must be between 0 and 32 pixels");
-  EXPECT_EQ(problem("resample", "nearest"), "expected cubic or linear, got 'nearest'");
+  EXPECT_EQ(problem("resample", "nearest"), "expected compensated, cubic or linear, got 'nearest'");
   EXPECT_EQ(problem("color_map", "jet"), "expected viridis, coolwarm, grey or bronze, got 'jet'");
   EXPECT_NE(problem("size", "-5x10").find("expected WxH"), std::string::npos);
   EXPECT_NE(problem("field", "vortex:1").find("unknown field 'vortex:1'"), std::string::npos);

@@ -30,14 +30,17 @@ struct EnumNames<AdvectView> {
 
 /// How F_t is sampled at t(x) (equation 13) each frame.
 enum class Resample {
-  Linear,  ///< bilinear, as the paper's texture mapping
-  Cubic,   ///< Catmull-Rom: less blur accumulates across the flow (finer grain)
+  Linear,       ///< bilinear, as the paper's texture mapping
+  Cubic,        ///< Catmull-Rom: less blur accumulates across the flow (finer grain)
+  Compensated,  ///< bilinear, its blur across the flow taken back (core/texture/display.h)
 };
 
 template <>
 struct EnumNames<Resample> {
   static constexpr EnumName<Resample> table[] = {
-      {Resample::Cubic, "cubic", "Catmull-Rom: a finer grain, 9 texture taps"},
+      {Resample::Compensated, "compensated",
+       "bilinear, its blur across the flow taken back (2 more taps, shared with sharpening)"},
+      {Resample::Cubic, "cubic", "Catmull-Rom: a finer grain, 6 texture taps"},
       {Resample::Linear, "linear", "bilinear, as the paper (1 tap)"},
   };
 };

@@ -149,7 +149,8 @@ struct Scene {
   // on real CFD data in docs/quality.md: flow normalised in image space
   // (shear spans decades), pixel-fine noise that never repeats (the pattern
   // moves with the flow), a display filter along the curved streamline,
-  // sharpened across it, a fixed RMS contrast, a Catmull-Rom warp, steps of
+  // sharpened across it, a fixed RMS contrast, a bilinear warp whose blur
+  // across the flow is taken back (compensated), steps of
   // 1.5 pixels, the texture strong against the shading (beta 0.65). The crisp
   // style adds a longer filter; the paper style is the 2003 look: scale 4,
   // profile square, vg 0.02, beta 0.5, step 3, bilinear warp, no display
@@ -163,7 +164,7 @@ struct Scene {
   float dt = 0.0f;    ///< world units per frame; > 0 overrides step
   bool image_normalize = true;
   float filter = 16.0f;  ///< display filter length along the flow, pixels (0 off)
-  Resample resample = Resample::Cubic;
+  Resample resample = Resample::Compensated;
   float sharpen = 4.0f;    ///< display taps sharpened across the flow (0 off)
   float contrast = 0.35f;  ///< target RMS contrast of the shown texture (0: as synthesised)
   InjectMode inject = InjectMode::Blend;

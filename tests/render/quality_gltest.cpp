@@ -21,7 +21,6 @@
 #include "ibfvs/core/scene/scene.h"
 #include "ibfvs/core/scene/scene_prep.h"
 #include "ibfvs/core/support/error.h"
-#include "ibfvs/core/texture/display.h"
 #include "ibfvs/core/texture/reference.h"
 #include "ibfvs/render/ibfvs_renderer.h"
 #include "ibfvs/render/quality.h"
@@ -94,7 +93,7 @@ TEST_F(QualityGLTest, DisplayFilterEqualsTheCpuReference) {
     ReferenceIbfvs ref(w, h, settings.background.x, settings.noise);
     ref.set_filter_length(length);
     ref.set_sharpen(sharpen);
-    ref.set_compensation(compensation_scale(settings.alpha));
+    ref.set_compensated(true);
     for (int k = 0; k < 40; ++k) {
       r.render_frame(flat_view(), dt);
       ref.step(flow.map, k, settings.alpha);
@@ -153,7 +152,7 @@ TEST_F(QualityGLTest, CompensatedWarpEqualsTheCpuReferenceAndKeepsTheGrain) {
   // saturate into stripes: far more grain than the Catmull-Rom's).
   const RenderSettings s = flat_settings(kWarpWidth, kWarpHeight);
   ReferenceIbfvs compensated(kWarpWidth, kWarpHeight, s.background.x, s.noise);
-  compensated.set_compensation(compensation_scale(s.alpha));
+  compensated.set_compensated(true);
   ReferenceIbfvs linear(kWarpWidth, kWarpHeight, s.background.x, s.noise);
   ReferenceIbfvs cubic(kWarpWidth, kWarpHeight, s.background.x, s.noise);
   cubic.set_cubic(true);

@@ -88,6 +88,7 @@ void ReferenceIbfvs::step(const BackwardMap& map, int frame, float alpha, Inject
   // taps read 8-bit values and directions.
   const bool tap_texture = taps > 0 && sharpen_ > 0.0f;
   const float scale = tap_value_scale(sharpen_);
+  const float compensation = compensation_scale(alpha);
   const auto blend = [&](float prev, float g) {
     return mode == InjectMode::Blend ? (1 - alpha) * prev + alpha * g
                                      : std::min(1.0f, (1 - alpha) * prev + g);
@@ -110,7 +111,7 @@ void ReferenceIbfvs::step(const BackwardMap& map, int frame, float alpha, Inject
       const glm::vec2 here(static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f);
       const glm::vec2 d = here - s;
       const float length = std::sqrt(d.x * d.x + d.y * d.y);
-      if (compensation_ > 0.0f && same && length > 1e-6f) {
+      if (compensated_ && same && length > 1e-6f) {
         // The compensated warp (display.h), as the fragment shader.
         const glm::vec2 along = d / length;
         const glm::vec2 across = kSharpenReach * glm::vec2(-along.y, along.x);
@@ -118,7 +119,7 @@ void ReferenceIbfvs::step(const BackwardMap& map, int frame, float alpha, Inject
         const float v =
             f.x * (1.0f - f.x) * along.y * along.y + f.y * (1.0f - f.y) * along.x * along.x;
         prev = std::clamp(
-            prev + compensation_ / (kSharpenReach * kSharpenReach) * v * high_pass(s, prev, across),
+            prev + compensation / (kSharpenReach * kSharpenReach) * v * high_pass(s, prev, across),
             0.0f, 1.0f);
       }
       next.pixels[i] = blend(prev, g);

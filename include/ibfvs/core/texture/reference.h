@@ -69,8 +69,8 @@ class ReferenceIbfvs {
   /// the 4 x 4 texels around it were all on the surface, else bilinearly.
   void set_cubic(bool cubic) { cubic_ = cubic; }
   /// The compensated warp (RenderSettings::resample compensated,
-  /// core/texture/display.h) with scale s (compensation_scale(alpha)); 0 off.
-  void set_compensation(float s) { compensation_ = s; }
+  /// core/texture/display.h), its scale from the step's alpha as the GPU's.
+  void set_compensated(bool on) { compensated_ = on; }
 
   /// D(F_t) of the last step before the contrast stage (one channel).
   [[nodiscard]] const ImageF& shown() const { return shown_; }
@@ -92,7 +92,7 @@ class ReferenceIbfvs {
   float filter_length_ = 0.0f;
   float sharpen_ = 0.0f;
   bool cubic_ = false;
-  float compensation_ = 0.0f;
+  bool compensated_ = false;
   ImageF moved_;  // each pixel's displacement in the last frame (2 channels)
   ImageF taps_;   // the values the display taps read: F_t sharpened
   // `value` (F_t at p) less the mean of F_t at p +- across; 0 where one of

@@ -30,6 +30,9 @@ Markdown table. Crops magnified 4x, side by side, go to OUT/crops-VIEW.png.
   --variant N=V[,N=V]   IBFVS with these properties too, measured after the
                         defaults in the same session (repeatable)
   --frames N            IBFVS warm-up frames before the first picture (default 120)
+  --library             also `ibfvs render` at its defaults, same data, camera and
+                        size, after the warm-up frames and 100 later (its own
+                        shading; no frame time: it renders off screen)
 """
 import argparse
 import math
@@ -55,6 +58,7 @@ parser.add_argument("--ibfvs", default=os.path.join(root, "build/ibfvs"))
 parser.add_argument("--set", action="append", default=[])
 parser.add_argument("--variant", action="append", default=[])
 parser.add_argument("--frames", type=int, default=120)
+parser.add_argument("--library", action="store_true")
 args = parser.parse_args()
 os.makedirs(args.out, exist_ok=True)
 w, h = (int(v) for v in args.size.split(","))
@@ -150,6 +154,42 @@ def place_camera(azimuth, elevation):
     return eye, right, true_up, back
 
 
+def library_camera(back):
+    """`ibfvs render --camera` for the eye direction `back`: its azimuth and
+    elevation are about +Y turned onto the up axis (core/scene/camera.cpp,
+    up_frame), its distance in bounding-box diagonals (2 radius)."""
+    u = [c / math.sqrt(math.fsum(c * c for c in up)) for c in up]
+    if u[1] > 0.999999:
+        local = back
+    elif u[1] < -0.999999:
+        local = [back[0], -back[1], -back[2]]
+    else:
+        # Rodrigues: the inverse rotation (angle -acos(u.y)) about Y x u.
+        axis = [u[2], 0.0, -u[0]]
+        n = math.sqrt(math.fsum(c * c for c in axis))
+        k = [c / n for c in axis]
+        c, s = u[1], -math.sqrt(abs(1.0 - u[1] * u[1]))
+        kv = math.fsum(a * b for a, b in zip(k, back))
+        cross = [k[1] * back[2] - k[2] * back[1], k[2] * back[0] - k[0] * back[2],
+                 k[0] * back[1] - k[1] * back[0]]
+        local = [back[i] * c + cross[i] * s + k[i] * kv * (1.0 - c) for i in range(3)]
+    azimuth = math.degrees(math.atan2(local[0], local[2]))
+    # (pvbatch's namespace replaces max and min with numpy's.)
+    elevation = math.degrees(math.asin(local[1] if abs(local[1]) <= 1.0 else math.copysign(1.0, local[1])))
+    distance = args.zoom / math.tan(math.radians(15.0)) / 2.0
+    return "%.6f,%.6f,%.6f" % (azimuth, elevation, distance)
+
+
+def library_shot(name, back, frames):
+    path = os.path.join(args.out, name + ".png")
+    subprocess.run([args.ibfvs, "render", args.data, "--field", "file:" + args.array] +
+                   (["--reverse"] if args.reverse else []) +
+                   ["--up", args.up, "--camera", library_camera(back), "--fov", "30",
+                    "--size", "%dx%d" % (w, h), "--frames", str(frames), "--out", path, "-q"],
+                   check=True)
+    return path
+
+
 def timed(frames):
     """Milliseconds per Render over `frames` frames, the camera nudged each."""
     camera = view.GetActiveCamera()
@@ -230,6 +270,12 @@ for spec in args.views:
     for _ in range(100):
         pv.Render(view)
     pictures.append((label + ", 100 frames later", shot(name + "-ibfvs-later"), ms))
+    if args.library:
+        pictures.append(("ibfvs render, defaults", library_shot(name + "-library", back,
+                                                                 args.frames + 1), float("nan")))
+        pictures.append(("ibfvs render, 100 frames later",
+                         library_shot(name + "-library-later", back, args.frames + 101),
+                         float("nan")))
     for k, variant in enumerate(args.variant):
         settings = variant.split(",")
         before = [s.split("=")[0] + "=" + str(getattr(display, s.split("=")[0])) for s in settings]
@@ -252,7 +298,8 @@ print("\n%s (%s%s), %dx%d, pvbatch, ParaView %s\n" % (
 print("| view | picture | A | W (px) | Z | ms per frame |")
 print("|---|---|---|---|---|---|")
 for name, label, a, wd, z, ms in rows:
-    print("| %s | %s | %.3f | %.2f | %.3f | %.0f |" % (name, label, a, wd, z, ms))
+    print("| %s | %s | %.3f | %.2f | %.3f | %s |" % (name, label, a, wd, z,
+                                                      "-" if math.isnan(ms) else "%.0f" % ms))
 
 # Crops: the middle (or --crop) of LIC and IBFVS, 4x, side by side.
 try:

@@ -89,6 +89,7 @@ IbfvsRenderer::IbfvsRenderer(const RenderSettings& settings) : settings_(setting
   empty_vao_ = gl::VertexArray::create();
   host_program_ = gl::Program(shaders::grid_vertex_source(), shaders::kHostFragment);
   host_origin_ = host_program_.location("u_origin");
+  host_interior_ = host_program_.location("u_interior");
   apply_settings();
   static_cast<void>(current_variant());  // compile now: a shader error shows at construction
   reset();
@@ -667,11 +668,12 @@ std::vector<std::uint8_t> IbfvsRenderer::read_coverage() const {
   return covered;
 }
 
-void IbfvsRenderer::draw_to_host(glm::ivec2 origin) const {
+void IbfvsRenderer::draw_to_host(glm::ivec2 origin, bool interior) const {
   const gl::SavedState saved;
   gl::prepare_host_draw();
   host_program_.use();
   host_program_.set(host_origin_, origin);
+  host_program_.set(host_interior_, interior ? 1 : 0);
   output_.bind(0);
   depth_.bind(1);
   // Only where the surface can be: the pass writes gl_FragDepth, so no depth

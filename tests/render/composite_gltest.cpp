@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <unordered_map>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -189,6 +190,59 @@ TEST_F(CompositeGLTest, WithoutCompositingTheSeamShows) {
   // Each piece advects from its own F_t: along the boundary the other
   // piece's pixels count as background, fresh noise appears there.
   EXPECT_GT(differing(single, pieces), single.size() / 4 / 200);
+}
+
+// ParaView antialiases its picture with FXAA after the opaque geometry; the
+// mapper then draws the texture again, only inside the silhouettes. The host's
+// colour stands for FXAA's result: replaced inside, kept at the silhouettes
+// and off the surface, and the host's depth (the texture's own) lets it pass.
+TEST_F(CompositeGLTest, DrawingAgainInsideTheSilhouettesKeepsTheirAntialiasing) {
+  const auto s = torus();  // (Setup is also gtest's name)
+  const PreparedScene& p = s.scene;
+  const int w = p.width, h = p.height;
+  IbfvsRenderer r(p.settings);
+  r.set_mesh(*p.mesh, p.field);
+  const ViewState view{s.camera.view(), s.camera.projection()};
+  for (int k = 0; k < 10; ++k) r.render_frame(view, p.dt);
+  Host host(w, h);
+  host.fb.bind();
+  gl::set_viewport(w, h);
+  r.draw_to_host({0, 0});
+  const std::vector<std::uint8_t> first = host.read(w, h);
+  host.fb.clear_color(0, glm::vec4(0.0f, 1.0f, 0.0f, 1.0f));  // "FXAA's" picture: green
+  host.fb.bind();
+  r.draw_to_host({0, 0}, true);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  const std::vector<std::uint8_t> again = host.read(w, h);
+  const ImageF depth = r.read_depth();
+  // Surface at (x, y), clamped to the image as the shader's reads are.
+  const auto surface = [&](int x, int y) {
+    x = std::clamp(x, 0, w - 1);
+    y = std::clamp(y, 0, h - 1);
+    return depth.pixels[std::size_t(y) * w + x] < 1.0f;
+  };
+  std::size_t inside = 0, rim = 0, wrong = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const std::size_t i = (std::size_t(y) * w + x) * 4;
+      const bool green = again[i] == 0 && again[i + 1] == 255 && again[i + 2] == 0;
+      // Its 3x3 neighbourhood but two corners (the shader's two gathers).
+      bool interior = true;
+      for (const auto& [dx, dy] :
+           {std::pair{0, 0}, {-1, 0}, {1, 0}, {0, -1}, {0, 1}, {-1, -1}, {1, 1}})
+        interior = interior && surface(x + dx, y + dy);
+      if (interior) {
+        ++inside;
+        wrong += std::abs(int(again[i]) - int(first[i])) > 1 ||
+                 std::abs(int(again[i + 1]) - int(first[i + 1])) > 1;
+      } else {
+        rim += surface(x, y);
+        wrong += !green;
+      }
+    }
+  EXPECT_GT(inside, std::size_t(w) * h / 5);
+  EXPECT_GT(rim, 100u);
+  EXPECT_EQ(wrong, 0u);
 }
 
 TEST(CompositeTest, KeysPickTheNearestSurfaceAndTheLowerRankOnTies) {

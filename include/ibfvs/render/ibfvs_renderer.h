@@ -156,7 +156,10 @@ class IbfvsRenderer {
   /// `origin`: F where the surface is, with the surface's depth, so that the
   /// host's other objects hide it and it hides them as their own would; the
   /// rest of the host's picture stays. Leaves the host's state as it was.
-  void draw_to_host(glm::ivec2 origin) const;
+  /// `interior` draws only the pixels whose four neighbours are surface too:
+  /// the texture again over a host's image-space antialiasing (FXAA), which
+  /// blurs its lines, leaving the host's smoothing of the silhouettes.
+  void draw_to_host(glm::ivec2 origin, bool interior = false) const;
   /// Replaces F_t (as read_texture_raw gives it: same size and channels), for
   /// the depth compositing of a distributed render (core/image/composite.h).
   void write_texture_raw(const ImageF& texture);
@@ -267,7 +270,7 @@ class IbfvsRenderer {
   int grid_noise_time_ = -1, grid_profile_ = -1, grid_spike_width_ = -1, grid_seed_ = -1;
   gl::Texture2D depth_;  // a texture: draw_to_host reads it
   gl::Program host_program_;
-  int host_origin_ = -1;
+  int host_origin_ = -1, host_interior_ = -1;
   // [i] draws into texture_[i], output_ (or base_, taps_[i], seed_) (, flow_)
   gl::Framebuffer framebuffer_[2];
   gl::Buffer vertices_;

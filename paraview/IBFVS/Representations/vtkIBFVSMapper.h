@@ -54,6 +54,9 @@ class IBFVSREPRESENTATIONS_EXPORT vtkIBFVSMapper : public vtkCompositePolyDataMa
   vtkIBFVSMapper(const vtkIBFVSMapper&) = delete;
   void operator=(const vtkIBFVSMapper&) = delete;
 
+  void ObserveRenderer(vtkRenderer* ren);
+  void RedrawAfterFXAA();
+
   class Internals;
   Internals* Internal;
 };

@@ -41,6 +41,8 @@ view.ViewSize = [w, h]
 view.OrientationAxesVisibility = 0
 view.UseColorPaletteForBackground = 0
 view.Background = [0.2, 0.3, 0.4]
+if "fxaa" in cfg:  # ParaView's default: on
+    view.UseFXAA = cfg["fxaa"]
 display = Show(source, view)
 view.CameraPosition = cfg.get("camera", [3.5, 2.1, 2.8])
 view.CameraFocalPoint = cfg.get("focal", [0, 0, 0])

@@ -374,7 +374,7 @@ void vtkIBFVSMapper::ObserveRenderer(vtkRenderer* ren) {
   callback->SetCallback([](vtkObject*, unsigned long, void* self, void*) {
     static_cast<vtkIBFVSMapper*>(self)->RedrawAfterFXAA();
   });
-  in.observer = ren->AddObserver(vtkCommand::EndEvent, callback, 1.0f);
+  in.observer = ren->AddObserver(vtkCommand::EndEvent, callback);
   in.observed = ren;
 }
 
@@ -630,7 +630,7 @@ void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor) {
     in.origin = glm::ivec2(viewport[0], viewport[1]);
     session->renderer().draw_to_host(in.origin);
     this->ObserveRenderer(ren);
-    in.redraw = ren->GetUseFXAA();
+    in.redraw = ranks == 1 && ren->GetUseFXAA();
     // Whatever the library's calls left (pixel store, bindings it restored),
     // ParaView's state cache reads the context again.
     window->GetState()->Reset();

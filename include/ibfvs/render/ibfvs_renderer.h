@@ -156,9 +156,10 @@ class IbfvsRenderer {
   /// `origin`: F where the surface is, with the surface's depth, so that the
   /// host's other objects hide it and it hides them as their own would; the
   /// rest of the host's picture stays. Leaves the host's state as it was.
-  /// `interior` draws only the pixels whose four neighbours are surface too:
-  /// the texture again over a host's image-space antialiasing (FXAA), which
-  /// blurs its lines, leaving the host's smoothing of the silhouettes.
+  /// `interior` draws only the pixels whose 3x3 neighbourhood but two corners
+  /// is surface too: the texture again over a host's image-space
+  /// antialiasing (FXAA), which blurs its lines, leaving the host's
+  /// smoothing of the silhouettes.
   void draw_to_host(glm::ivec2 origin, bool interior = false) const;
   /// Replaces F_t (as read_texture_raw gives it: same size and channels), for
   /// the depth compositing of a distributed render (core/image/composite.h).

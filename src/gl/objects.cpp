@@ -491,7 +491,7 @@ SavedState::SavedState() {
   glGetIntegerv(GL_VIEWPORT, viewport_);
   glGetIntegerv(GL_SCISSOR_BOX, scissor_box_);
   glGetIntegerv(GL_ACTIVE_TEXTURE, &active_texture_);
-  for (int u = 0; u < 6; ++u) {
+  for (int u = 0; u < kSavedUnits; ++u) {
     glActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + u));
     glGetIntegerv(GL_TEXTURE_BINDING_2D, &unit_textures_[u]);
   }
@@ -520,7 +520,7 @@ SavedState::~SavedState() {
   glBindFramebuffer(GL_READ_FRAMEBUFFER, alive(read_framebuffer_, glIsFramebuffer));
   glUseProgram(alive(program_, glIsProgram));
   glBindVertexArray(alive(vertex_array_, glIsVertexArray));
-  for (int u = 0; u < 6; ++u) {
+  for (int u = 0; u < kSavedUnits; ++u) {
     glActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + u));
     glBindTexture(GL_TEXTURE_2D, alive(unit_textures_[u], glIsTexture));
   }

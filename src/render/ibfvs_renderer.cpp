@@ -135,6 +135,18 @@ void IbfvsRenderer::build_framebuffers() {
     if (record_flow_) framebuffer_[i].attach_color(flow_attachment(), flow_);
     framebuffer_[i].attach_depth(depth_);
     framebuffer_[i].finish(record_flow_ ? flow_attachment() + 1 : flow_attachment());
+    // The deferred pass's second half writes F itself, without the seed.
+    resolve_framebuffer_[i] = gl::Framebuffer();
+    if (taps_[i]) {
+      gl::Framebuffer& r = resolve_framebuffer_[i];
+      r = gl::Framebuffer::create();
+      r.attach_color(0, texture_[i]);
+      r.attach_color(1, output_);
+      r.attach_color(2, taps_[i]);
+      if (record_flow_) r.attach_color(3, flow_);
+      r.attach_depth(depth_);
+      r.finish(record_flow_ ? 4 : 3);
+    }
   }
 }
 
@@ -166,23 +178,46 @@ shaders::ShaderFeatures IbfvsRenderer::features() const {
 
 IbfvsRenderer::Variant& IbfvsRenderer::current_variant() {
   const shaders::ShaderFeatures f = features();
-  Variant& v = variants_[f.key()];  // made on first use
+  const bool deferred = deferred_allowed_ && shaders::deferred_pass(f);
+  Variant& v = variants_[f.key() | (deferred ? 1u << 24u : 0u)];  // made on first use
   if (!v.program) {
-    v.program = gl::Program(shaders::ibfvs_vertex_source(f), shaders::ibfvs_fragment_source(f));
-    const gl::Program& p = v.program;
-    v.u.view_projection = p.location("u_view_projection");
-    v.u.advect_view_projection = p.location("u_advect_view_projection");
-    v.u.view = p.location("u_view");
-    v.u.clip_to_depth = p.location("u_clip_to_depth");
-    v.u.dt = p.location("u_dt");
-    v.u.noise_time = p.location("u_noise_time");
-    v.u.field_mix = p.location("u_field_mix");
-    v.u.locked = p.location("u_locked");
-    v.u.probe = p.location("u_probe");
-    v.u.texture_shift = p.location("u_texture_shift");
-    v.u.noise_shift = p.location("u_noise_shift");
-    v.u.tap_depth = p.location("u_tap_depth");
-    if (shaders::tap_texture(f)) {
+    const auto locations = [](const gl::Program& p) {
+      Uniforms u{};
+      u.view_projection = p.location("u_view_projection");
+      u.advect_view_projection = p.location("u_advect_view_projection");
+      u.view = p.location("u_view");
+      u.clip_to_depth = p.location("u_clip_to_depth");
+      u.dt = p.location("u_dt");
+      u.noise_time = p.location("u_noise_time");
+      u.field_mix = p.location("u_field_mix");
+      u.locked = p.location("u_locked");
+      u.probe = p.location("u_probe");
+      u.texture_shift = p.location("u_texture_shift");
+      u.noise_shift = p.location("u_noise_shift");
+      u.tap_depth = p.location("u_tap_depth");
+      u.new_tap_depth = p.location("u_new_tap_depth");
+      return u;
+    };
+    if (deferred) {
+      v.program = gl::Program(shaders::ibfvs_vertex_source(f), shaders::gbuffer_fragment_source(f));
+      v.resolve =
+          gl::Program(shaders::display_vertex_source(), shaders::resolve_fragment_source(f));
+      v.ru = locations(v.resolve);
+      if (!gbuffer_framebuffer_) {
+        gbuffer_framebuffer_ = gl::Framebuffer::create();
+        for (int i = 0; i < 2; ++i) {
+          gbuffer_[i] =
+              gl::Texture2D(settings_.width, settings_.height, gl::Format::RGBA32F, false);
+          gbuffer_framebuffer_.attach_color(i, gbuffer_[i]);
+        }
+        gbuffer_framebuffer_.attach_depth(depth_);
+        gbuffer_framebuffer_.finish(2);
+      }
+    } else {
+      v.program = gl::Program(shaders::ibfvs_vertex_source(f), shaders::ibfvs_fragment_source(f));
+    }
+    v.u = locations(v.program);
+    if (shaders::tap_texture(f) && !v.resolve) {
       v.display =
           gl::Program(shaders::display_vertex_source(), shaders::display_fragment_source(f));
       v.display_texture_shift = v.display.location("u_texture_shift");
@@ -194,6 +229,7 @@ IbfvsRenderer::Variant& IbfvsRenderer::current_variant() {
     for (const shaders::UniformValue& u :
          shaders::settings_uniforms(settings_, f, phase_size_, image_centre_)) {
       set_uniform(p, u);
+      if (v.resolve) set_uniform(v.resolve, u);
       if (v.display) set_uniform(v.display, u);
     }
     v.applied = settings_version_;
@@ -377,27 +413,20 @@ void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
     gl::set_face_culling(cull_);
     const Variant& v = current_variant();
     const gl::Program& p = v.program;
+    if (v.resolve) gbuffer_framebuffer_.bind();  // the first half of the deferred pass
     p.use();
-    p.set(v.u.view_projection, vp);
-    p.set(v.u.advect_view_projection, locked_        ? lock_view_projection_
-                                      : use_previous ? previous_view_projection_
-                                                     : vp);
-    p.set(v.u.view, view.view);
-    // Eye depth d = -z_eye from clip (z, w): w = -z_eye in perspective
-    // (P[2][3] = -1, P[3][3] = 0); z = P[2][2] z_eye + P[3][2] with w = 1 in
-    // orthographic projection.
-    const glm::mat4& pr = view.projection;
-    p.set(v.u.clip_to_depth, pr[3][3] == 0.0f ? glm::vec2(0.0f, 1.0f)
-                                              : glm::vec2(-1.0f / pr[2][2], pr[3][2] / pr[2][2]));
-    p.set(v.u.dt, locked_ ? 0.0f : dt);
-    p.set(v.u.probe, probe_);
-    p.set(v.u.field_mix, field_mix_);
-    p.set(v.u.texture_shift, texture_shift_);
-    p.set(v.u.noise_shift, noise_shift_);
-    p.set(v.u.locked, locked_ ? 1 : 0);
-    p.set(v.u.noise_time, noise_time);
     tap_depth_[next] = tap_depth_map(view.projection);
-    p.set(v.u.tap_depth, tap_depth_[next]);  // -1 without the tap texture: GL ignores it
+    frame_uniforms_ = {locked_        ? lock_view_projection_
+                       : use_previous ? previous_view_projection_
+                                      : vp,
+                       locked_ ? 0.0f : dt, noise_time};
+    set_frame_uniforms(p, v.u, view);
+    if (v.resolve) {
+      set_frame_uniforms(v.resolve, v.ru, view);
+      // It reads the last frame's taps, stored under that frame's map.
+      v.resolve.set(v.ru.tap_depth, tap_depth_[current_]);
+      v.resolve.set(v.ru.new_tap_depth, tap_depth_[next]);
+    }
     texture_[current_].bind(0);
     if (taps_[current_]) taps_[current_].bind(5);
     grid_.bind(1);
@@ -406,6 +435,7 @@ void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
     stats_.bind(4);
     vao_.bind();
     gl::draw_triangles(index_count_, true);
+    if (v.resolve) resolve_pass(v, resolve_framebuffer_[next]);
     if (v.display) display_pass(v);
     // The statistics change slowly: every kStatsEvery frames is enough, and
     // on llvmpipe each extra pass ends the frame's scene early.
@@ -424,6 +454,41 @@ void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
   }
   has_previous_ = true;
   ++frame_;
+}
+
+void IbfvsRenderer::set_frame_uniforms(const gl::Program& p, const Uniforms& u,
+                                       const ViewState& view) const {
+  p.set(u.view_projection, view.projection * view.view);
+  p.set(u.advect_view_projection, frame_uniforms_.advect_view_projection);
+  p.set(u.view, view.view);
+  // Eye depth d = -z_eye from clip (z, w): w = -z_eye in perspective
+  // (P[2][3] = -1, P[3][3] = 0); z = P[2][2] z_eye + P[3][2] with w = 1 in
+  // orthographic projection.
+  const glm::mat4& pr = view.projection;
+  p.set(u.clip_to_depth, pr[3][3] == 0.0f ? glm::vec2(0.0f, 1.0f)
+                                          : glm::vec2(-1.0f / pr[2][2], pr[3][2] / pr[2][2]));
+  p.set(u.dt, frame_uniforms_.dt);
+  p.set(u.probe, probe_);
+  p.set(u.field_mix, field_mix_);
+  p.set(u.texture_shift, texture_shift_);
+  p.set(u.noise_shift, noise_shift_);
+  p.set(u.locked, locked_ ? 1 : 0);
+  p.set(u.noise_time, frame_uniforms_.noise_time);
+  // The map of the frame being drawn; -1 without the tap texture: GL ignores it.
+  p.set(u.tap_depth, tap_depth_[1 - current_]);
+}
+
+void IbfvsRenderer::resolve_pass(const Variant& v, gl::Framebuffer& fb) {
+  fb.bind();
+  gl::set_face_culling(0);
+  gl::test_depth_behind_surface(true);  // the surface's pixels, each once
+  gl::scissor(true, surface_box_);
+  v.resolve.use();  // the IBFVS pass's textures stay bound, units 0-5
+  gbuffer_[0].bind(6);
+  gbuffer_[1].bind(7);
+  gl::draw_attributeless_triangle(empty_vao_);
+  gl::scissor(false);
+  gl::test_depth_behind_surface(false);
 }
 
 void IbfvsRenderer::display_pass(const Variant& v) {

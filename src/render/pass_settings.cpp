@@ -40,6 +40,10 @@ bool tap_texture(const ShaderFeatures& f) {
   return f.mono_texture && f.filter_taps > 0 && f.sharpen;
 }
 
+bool deferred_pass(const ShaderFeatures& f) {
+  return tap_texture(f) && !f.object_noise && !f.surface_image;
+}
+
 std::vector<UniformValue> settings_uniforms(const RenderSettings& s, const ShaderFeatures& f,
                                             glm::ivec2 phase_size, glm::vec3 image_centre) {
   using T = UniformValue::Type;

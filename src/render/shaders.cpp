@@ -1,3 +1,11 @@
+// The passes' GLSL, one generator for desktop GL and WebGL2. Sections: the
+// IBFVS pass's vertex shader (kIbfvsVertexBody); the grid and display
+// passes' full-screen triangle; the noise profile; the IBFVS pass's fragment
+// head (its inputs: the varyings, or the deferred pass's two images; and the
+// deferred pass's first half); the display filter; the contrast stage; the
+// display pass; the IBFVS pass's fragment main (also the deferred pass's
+// second half); the grid and statistics passes; the dialects and the
+// sources put together.
 #include "ibfvs/render/shaders.h"
 
 #include <string>
@@ -130,6 +138,8 @@ float cell_value(ivec3 cell, float t) {
 // Features a renderer does not use are compiled out (ShaderFeatures), not
 // skipped by uniform branches: llvmpipe runs both sides of every branch.
 const char* const kIbfvsFragmentHead = R"(
+uniform vec2 u_inverse_size;  // 1 / image size in pixels
+#ifndef IBFVS_RESOLVE
 in vec4 v_from;
 uniform vec2 u_clip_to_depth;  // (a, b): eye depth = a clip.z + b clip.w (this projection)
 #if defined(IBFVS_COLOR_SCALAR) || defined(IBFVS_BETA_SCALAR)
@@ -140,6 +150,67 @@ in vec3 v_position_eye;
 #if defined(IBFVS_SURFACE_IMAGE) || defined(IBFVS_OBJECT_NOISE)
 in vec3 v_position_object;
 #endif
+#else
+// The deferred pass's second half (deferred_pass in pass_settings.h): what
+// the first half left per pixel of the surface, in place of the varyings.
+BINDING(6) uniform sampler2D u_gbuffer0;  // (t(x) unshifted, or kBehind.., from depth, depth)
+BINDING(7) uniform sampler2D u_gbuffer1;  // (fwidth(depth), diffuse, v_scalars)
+#endif
+// What the pass needs of the surface under this pixel: from the varyings,
+// or in the deferred pass's second half from the first half's two images.
+struct Here {
+  bool ahead;        // T(r - v dt) is in front of the eye: t(x) has an image position
+  vec2 unshifted;    // t(x) in [0, 1]^2 (else this pixel)
+  float from_depth;  // t(x)'s eye depth
+  float depth;       // this pixel's eye depth
+  float depth_width; // fwidth(depth)
+  float diffuse;     // |n . to eye| of the headlight
+  vec2 scalars;      // (colour scalar, beta scalar)
+};
+const float kBehind = -1e9;  // a stored t(x) of a point behind the eye
+Here surface_here() {
+  Here h;
+#ifdef IBFVS_RESOLVE
+  ivec2 p = ivec2(gl_FragCoord.xy);
+  vec4 a = texelFetch(u_gbuffer0, p, 0), b = texelFetch(u_gbuffer1, p, 0);
+  h.ahead = a.x > 0.5 * kBehind;
+  h.unshifted = h.ahead ? a.xy : gl_FragCoord.xy * u_inverse_size;
+  h.from_depth = a.z;
+  h.depth = a.w;
+  h.depth_width = b.x;
+  h.diffuse = b.y;
+  h.scalars = b.zw;
+#else
+  h.ahead = v_from.w > 1e-6;
+  h.unshifted = h.ahead ? v_from.xy / v_from.w * 0.5 + 0.5 : gl_FragCoord.xy * u_inverse_size;
+  // Eye depths from clip coordinates (no extra varyings: llvmpipe pays for
+  // each per pixel): this pixel's from gl_FragCoord, t(x)'s from v_from.
+  h.depth = (u_clip_to_depth.x * (2.0 * gl_FragCoord.z - 1.0) + u_clip_to_depth.y) /
+            gl_FragCoord.w;
+  h.from_depth = u_clip_to_depth.x * v_from.z + u_clip_to_depth.y * v_from.w;
+  h.depth_width = fwidth(h.depth);
+  vec3 n = normalize(v_normal_eye);
+  vec3 to_eye = normalize(-v_position_eye);
+  h.diffuse = min(abs(dot(n, to_eye)), 1.0);
+#if defined(IBFVS_COLOR_SCALAR) || defined(IBFVS_BETA_SCALAR)
+  h.scalars = v_scalars;
+#else
+  h.scalars = vec2(0.0);
+#endif
+#endif
+  return h;
+}
+#ifdef IBFVS_GBUFFER
+// The deferred pass's first half: the surface, once per drawn fragment,
+// cheaply (a fragment of a small triangle shades a whole block on llvmpipe).
+layout(location = 0) out vec4 o_gbuffer0;
+layout(location = 1) out vec4 o_gbuffer1;
+void main() {
+  Here h = surface_here();
+  o_gbuffer0 = vec4(h.ahead ? h.unshifted : vec2(kBehind), h.from_depth, h.depth);
+  o_gbuffer1 = vec4(h.depth_width, h.diffuse, h.scalars);
+}
+#else
 
 // F_t of this frame, its last channel the eye depth (the background holds
 // kNoDepth): the next frame tells by it whether t(x) lands on this surface.
@@ -162,14 +233,23 @@ layout(location = 1) out vec4 o_color;
 // texel, where it read three (the tap and its two neighbours across the
 // flow: a third of the frame on llvmpipe). F_t itself is then (value, depth).
 layout(location = 2) out vec4 o_taps;
+#ifndef IBFVS_RESOLVE
 layout(location = 3) out vec4 o_seed;
 #define IBFVS_FLOW_LOCATION 4
+#else
+// The deferred pass's second half runs once per pixel of the surface, as the
+// display pass does: it does the display pass's work too, and o_color is F.
+#define IBFVS_FLOW_LOCATION 3
+#endif
 #endif
 #ifdef IBFVS_RECORD_FLOW
 layout(location = IBFVS_FLOW_LOCATION) out vec2 o_flow;  // this frame's displacement in pixels (measurements)
 #endif
 #if defined(IBFVS_CONTRAST) && !defined(IBFVS_TAP_TEXTURE)
 flat in vec2 v_contrast;  // (mean, gain) of the contrast stage
+#endif
+#if defined(IBFVS_CONTRAST) && defined(IBFVS_RESOLVE)
+BINDING(4) uniform sampler2D u_stats;  // 1 x 1: (sum l, sum l^2, count)
 #endif
 BINDING(0) uniform sampler2D u_previous;  // F_t of the last frame
 BINDING(1) uniform sampler2D u_grid;      // w(v_g k + phi_ij), this frame's grid values
@@ -184,7 +264,6 @@ uniform float u_beta;
 uniform float u_noise_time;  // v_g k
 uniform float u_noise_scale; // s
 uniform ivec2 u_phase_size;
-uniform vec2 u_inverse_size;  // 1 / image size in pixels
 uniform vec3 u_surface_color;
 uniform int u_locked;        // section 3.7: map F_t, do not update it
 #ifdef IBFVS_SURFACE_IMAGE
@@ -242,11 +321,20 @@ BINDING(5) uniform sampler2D u_taps;  // the last frame's tap texture
 // depth between the near and far planes (0: no surface), and the unit
 // direction of the displacement as 0.5 + 0.5 d.
 uniform float u_tap_value_scale;
-uniform vec2 u_tap_depth;  // (ln lo, 1 / (ln hi - ln lo)): this frame's map, or the taps' frame's
+// (ln lo, 1 / (ln hi - ln lo)): this frame's map, or the taps' frame's (the
+// display pass; the deferred pass's second half reads with it and writes
+// with u_new_tap_depth, this frame's).
+uniform vec2 u_tap_depth;
+#ifdef IBFVS_RESOLVE
+uniform vec2 u_new_tap_depth;
+#define IBFVS_WRITE_TAP_DEPTH u_new_tap_depth
+#else
+#define IBFVS_WRITE_TAP_DEPTH u_tap_depth
+#endif
 float encode_tap_value(float value) { return clamp(0.5 + (value - 0.5) * u_tap_value_scale, 0.0, 1.0); }
 float decode_tap_value(float stored) { return 0.5 + (stored - 0.5) / u_tap_value_scale; }
-float encode_tap_depth(float depth) {
-  return (1.0 + 254.0 * clamp((log(max(depth, 1e-30)) - u_tap_depth.x) * u_tap_depth.y, 0.0, 1.0)) / 255.0;
+float encode_tap_depth(float depth, vec2 map) {
+  return (1.0 + 254.0 * clamp((log(max(depth, 1e-30)) - map.x) * map.y, 0.0, 1.0)) / 255.0;
 }
 #else
 #define IBFVS_TAPS u_previous
@@ -343,7 +431,7 @@ vec3 display_filter(vec2 start, vec2 along, float previous_depth, vec3 shown) {
   float weights = 1.0;
 #ifdef IBFVS_TAP_TEXTURE
   float depth_tolerance = (0.05 * 254.0 * u_tap_depth.y + 1.0) / 255.0;  // tap_depth_tolerance()
-  previous_depth = encode_tap_depth(previous_depth);
+  previous_depth = encode_tap_depth(previous_depth, u_tap_depth);
 #else
   float depth_tolerance = 0.05 * abs(previous_depth);
 #endif
@@ -465,9 +553,10 @@ vec4 sample_cubic(vec2 uv, vec4 bilinear) {
 #endif
 
 void main() {
+  Here here = surface_here();
   // A point that was behind the eye has no image position: no advection there.
-  bool ahead = v_from.w > 1e-6;
-  vec2 unshifted = ahead ? v_from.xy / v_from.w * 0.5 + 0.5 : gl_FragCoord.xy * u_inverse_size;
+  bool ahead = here.ahead;
+  vec2 unshifted = here.unshifted;
   vec2 texcoord = unshifted - u_texture_shift * u_inverse_size;
   vec4 stored = textureLod(u_previous, texcoord, 0.0);
 #ifdef IBFVS_CUBIC
@@ -489,12 +578,9 @@ void main() {
   // of the depth), the depth's change across a pixel and 16-bit storage. While the image is dragged (3.7) only
   // coverage counts: a depth below -255 has a background texel in its
   // footprint (bilinear weights come in steps of 1/256 at the least).
-  // Eye depths from clip coordinates (no extra varyings: llvmpipe pays for
-  // each per pixel): this pixel's from gl_FragCoord, t(x)'s from v_from.
-  float depth = (u_clip_to_depth.x * (2.0 * gl_FragCoord.z - 1.0) + u_clip_to_depth.y) /
-                gl_FragCoord.w;
-  float from_depth = u_clip_to_depth.x * v_from.z + u_clip_to_depth.y * v_from.w;
-  float tolerance = 0.02 * abs(from_depth) + 2.0 * fwidth(depth);
+  float depth = here.depth;
+  float from_depth = here.from_depth;
+  float tolerance = 0.02 * abs(from_depth) + 2.0 * here.depth_width;
   bool inside = all(greaterThanEqual(texcoord, vec2(0.0))) && all(lessThanEqual(texcoord, vec2(1.0)));
   bool dragged = u_texture_shift != vec2(0.0);
   bool same_surface = ahead && inside &&
@@ -579,7 +665,8 @@ void main() {
   o_texture = vec4(ft, depth);
 #endif
 #ifdef IBFVS_TAP_TEXTURE
-  o_taps = vec4(encode_tap_value(ft.r + u_sharpen * high), encode_tap_depth(depth), 0.5 + 0.5 * along);
+  o_taps = vec4(encode_tap_value(ft.r + u_sharpen * high), encode_tap_depth(depth, IBFVS_WRITE_TAP_DEPTH),
+                0.5 + 0.5 * along);
 #endif
 #ifdef IBFVS_RECORD_FLOW
   o_flow = moved;
@@ -604,9 +691,7 @@ void main() {
 #endif
 
   // F_s: Blinn-Phong with a headlight, lit from both sides (open meshes).
-  vec3 n = normalize(v_normal_eye);
-  vec3 to_eye = normalize(-v_position_eye);
-  float diffuse = min(abs(dot(n, to_eye)), 1.0);
+  float diffuse = here.diffuse;
   float d2 = diffuse * diffuse, d8 = d2 * d2 * d2 * d2, d32 = d8 * d8 * d8 * d8;
   float specular = d32 * d8;  // diffuse^40: half vector = view for a headlight
   vec3 albedo = u_surface_color;
@@ -621,29 +706,38 @@ void main() {
   }
 #endif
 #ifdef IBFVS_COLOR_SCALAR
-  if (!isnan(v_scalars.x)) {  // missing data keeps the surface colour
-    float t = clamp((v_scalars.x - u_color_range.x) / (u_color_range.y - u_color_range.x), 0.0, 1.0);
+  if (!isnan(here.scalars.x)) {  // missing data keeps the surface colour
+    float t = clamp((here.scalars.x - u_color_range.x) / (u_color_range.y - u_color_range.x), 0.0, 1.0);
     albedo = textureLod(u_color_map, vec2((t * 255.0 + 0.5) / 256.0, 0.5), 0.0).rgb;
   }
 #endif
   vec3 shaded = albedo * (0.18 + 0.82 * diffuse) + vec3(0.25 * specular);
   float beta = u_beta;
 #ifdef IBFVS_BETA_SCALAR
-  beta *= isnan(v_scalars.y)
+  beta *= isnan(here.scalars.y)
               ? 0.0
-              : clamp((v_scalars.y - u_beta_range.x) / (u_beta_range.y - u_beta_range.x), 0.0, 1.0);
+              : clamp((here.scalars.y - u_beta_range.x) / (u_beta_range.y - u_beta_range.x), 0.0, 1.0);
 #endif
-#ifdef IBFVS_TAP_TEXTURE
+#if defined(IBFVS_TAP_TEXTURE) && !defined(IBFVS_RESOLVE)
   o_seed = vec4(shown.r, filtered ? previous_depth : kNoFilter, moved);
   o_color = vec4((1.0 - beta) * shaded, beta);
 #else
+#if defined(IBFVS_TAP_TEXTURE) && defined(IBFVS_FILTER)
+  // As the display pass (kDisplayFragmentMain) from the seed.
+  if (filtered) shown = display_filter(start, along, previous_depth, vec3(shown.r));
+#endif
   float shown_mean = (shown.r + shown.g + shown.b) / 3.0;
 #ifdef IBFVS_CONTRAST
+#ifdef IBFVS_TAP_TEXTURE
+  shown = contrast(shown, contrast_stage(texelFetch(u_stats, ivec2(0), 0).xyz));
+#else
   shown = contrast(shown, v_contrast);
+#endif
 #endif
   o_color = vec4(beta * shown + (1.0 - beta) * shaded, shown_mean);
 #endif
 }
+#endif  // IBFVS_GBUFFER
 )";
 
 // The grid pass: one fragment per grid point, G_ij = w(v_g k + phi_ij)
@@ -752,6 +846,19 @@ std::string ibfvs_fragment_source(const ShaderFeatures& features, Dialect dialec
   return with_defines(
       features, std::string(kContrast) + kIbfvsFragmentHead + kDisplayFilter + kIbfvsFragmentMain,
       features.object_noise, dialect);
+}
+
+std::string gbuffer_fragment_source(const ShaderFeatures& features, Dialect dialect) {
+  return with_defines(features,
+                      std::string("#define IBFVS_GBUFFER\n") + kIbfvsFragmentHead + "#endif\n",
+                      false, dialect);
+}
+
+std::string resolve_fragment_source(const ShaderFeatures& features, Dialect dialect) {
+  return with_defines(features,
+                      std::string("#define IBFVS_RESOLVE\n") + kContrast + kIbfvsFragmentHead +
+                          kDisplayFilter + kIbfvsFragmentMain,
+                      features.object_noise, dialect);
 }
 
 std::string display_fragment_source(const ShaderFeatures& features, Dialect dialect) {

@@ -19,10 +19,12 @@
 #include "ibfvs/core/mesh/mesh_io.h"
 #include "ibfvs/core/mesh/procedural.h"
 #include "ibfvs/core/scene/camera.h"
+#include "ibfvs/core/scene/scene_prep.h"
 #include "ibfvs/core/support/error.h"
 #include "ibfvs/core/texture/display.h"
 #include "ibfvs/core/texture/reference.h"
 #include "ibfvs/render/ibfvs_renderer.h"
+#include "ibfvs/render/pass_settings.h"
 #include "renderer_scenes.h"
 
 namespace ibfvs::rendertest {
@@ -458,6 +460,66 @@ TEST_F(RendererGLTest, TapTextureStoresWhatDisplayHDescribes) {
   }
   EXPECT_GT(surface, 128 * 128 / 3);
   EXPECT_GT(moving, surface / 2);
+}
+
+TEST_F(RendererGLTest, DeferredPassEqualsTheSinglePass) {
+  // The default look's pass split in two (the surface per pixel, then the
+  // rest once per pixel, the display pass's work included) against the
+  // single pass and the display pass, as the browser page runs them: the
+  // same F_t, and F within the rounding of the seed the single pass hands
+  // the display pass. The camera turns and its clipping planes move every
+  // frame, so the taps' depth map changes from one frame to the next (the
+  // filter reads the last frame's taps under that frame's map); missing
+  // colour scalars keep the surface colour.
+  constexpr int w = 128, h = 128;
+  const Scene s = sphere_scene("rotate:0.3,1,0", TangentMode::Project);
+  RenderSettings settings;
+  settings.width = w;
+  settings.height = h;
+  ibfvs::apply_texture_settings(ibfvs::Scene{}, settings);
+  ASSERT_TRUE(shaders::deferred_pass(shaders::features_for(settings, false, false, false)));
+  settings.use_color = true;
+  settings.color_range = {-1.0f, 1.0f};
+  std::vector<float> height(s.mesh.vertex_count());
+  for (std::size_t i = 0; i < height.size(); ++i)
+    height[i] = s.mesh.positions[i].x > 0.6f ? std::nanf("") : s.mesh.positions[i].y;
+  IbfvsRenderer deferred(settings), single(settings);
+  single.allow_deferred_pass(false);
+  for (IbfvsRenderer* r : {&deferred, &single}) {
+    r->set_mesh(s.mesh, s.field);
+    r->set_scalars(height, {});
+  }
+  const glm::vec3 centre(0.0f);
+  for (int k = 0; k < 40; ++k) {
+    const float a = glm::radians(2.0f * static_cast<float>(k));
+    const glm::vec3 eye(3.0f * std::sin(a), 0.5f, 3.0f * std::cos(a));
+    const float near = k % 2 == 0 ? 1.0f : 1.6f, far = k % 3 == 0 ? 5.0f : 9.0f;
+    const ViewState view{glm::lookAt(eye, centre, glm::vec3(0, 1, 0)),
+                         glm::perspective(glm::radians(40.0f), 1.0f, near, far)};
+    for (IbfvsRenderer* r : {&deferred, &single}) r->render_frame(view, 1.0f);
+  }
+  const ImageF ta = deferred.read_texture_raw(), tb = single.read_texture_raw();
+  int surface = 0;
+  for (std::size_t i = 0; i < ta.pixels.size(); i += IbfvsRenderer::kRawChannels) {
+    if (tb.pixels[i + 1] > -255.0f) ++surface;
+    for (int c = 0; c < IbfvsRenderer::kRawChannels; ++c)
+      ASSERT_NEAR(ta.pixels[i + c], tb.pixels[i + c], 1e-3f) << i << " " << c;
+  }
+  EXPECT_GT(surface, w * h / 3);
+  const ImageU8 fa = deferred.read_output(), fb = single.read_output();
+  int close = 0, far_off = 0;
+  double sum = 0.0;
+  for (std::size_t i = 0; i < fa.pixels.size(); i += 4) {
+    int d = 0;
+    for (int c = 0; c < 3; ++c) d = std::max(d, std::abs(fa.pixels[i + c] - fb.pixels[i + c]));
+    sum += d;
+    close += d <= 6 ? 1 : 0;
+    far_off += d > 40 ? 1 : 0;
+  }
+  const int pixels = w * h;
+  EXPECT_GT(close, pixels * 99 / 100);
+  EXPECT_LT(far_off, pixels / 500);
+  EXPECT_LT(sum / pixels, 1.0);
 }
 
 TEST_F(RendererGLTest, LockedTextureStaysOnTheSurface) {

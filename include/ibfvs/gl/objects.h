@@ -225,7 +225,8 @@ class SavedState {
  private:
   int draw_framebuffer_ = 0, read_framebuffer_ = 0, program_ = 0, vertex_array_ = 0;
   int texture_ = 0, viewport_[4] = {0, 0, 0, 0}, scissor_box_[4] = {0, 0, 0, 0};
-  int active_texture_ = 0, unit_textures_[6] = {0, 0, 0, 0, 0, 0};  // units 0-5, which ibfvs binds
+  static constexpr int kSavedUnits = 8;  // units 0-7, which ibfvs binds
+  int active_texture_ = 0, unit_textures_[kSavedUnits] = {};
   int depth_func_ = 0, cull_face_mode_ = 0, front_face_ = 0;
   unsigned char depth_mask_ = 1, color_mask_[4] = {1, 1, 1, 1};
   unsigned capabilities_ = 0;  // bit i: kCapabilities[i] (objects.cpp) was on

@@ -173,6 +173,11 @@ class IbfvsRenderer {
   /// contrast statistics must then read the composited images: with `on`,
   /// render_frame leaves its statistics pass for run_deferred_statistics().
   void defer_statistics(bool on) { defer_statistics_ = on; }
+  /// Whether the IBFVS pass may run split in two where the features allow
+  /// (shaders::deferred_pass; the default): the same F_t, F within the
+  /// rounding of the single pass's seed. Off: the single pass, as the
+  /// browser page runs it (tests compare the two).
+  void allow_deferred_pass(bool on) { deferred_allowed_ = on; }
   /// The statistics pass render_frame left (nothing when none is due).
   void run_deferred_statistics();
   /// True when render_frame left a statistics pass (contrast on, every
@@ -192,21 +197,34 @@ class IbfvsRenderer {
   struct Uniforms {
     // Those set each frame; the settings' own go by name (shaders::settings_uniforms).
     int view_projection, advect_view_projection, view, clip_to_depth, dt, noise_time, field_mix,
-        locked, probe, texture_shift, noise_shift, tap_depth;
+        locked, probe, texture_shift, noise_shift, tap_depth, new_tap_depth;
   };
   struct Variant {
+    // The IBFVS pass; where it is deferred (shaders::deferred_pass) its first
+    // half, the second in `resolve` with its own uniforms.
     gl::Program program;
     Uniforms u{};
+    gl::Program resolve;
+    Uniforms ru{};
     gl::Program display;  // the display pass, with the tap texture
     int display_texture_shift = -1, display_tap_depth = -1;
     std::uint64_t applied = 0;  // settings_version_ last set
   };
   void statistics_pass(int texture_index, int frame);  // for the contrast stage of the next frame
   bool defer_statistics_ = false;
+  bool deferred_allowed_ = true;
   bool statistics_due_ = false;
   void build_framebuffers();
   void clear_targets(gl::Framebuffer& fb);
   void display_pass(const Variant& v);
+  void resolve_pass(const Variant& v, gl::Framebuffer& fb);  // the deferred pass's second half
+  // The IBFVS pass's per-frame uniforms (both halves' where it is deferred).
+  struct FrameUniforms {
+    glm::mat4 advect_view_projection{1.0f};
+    float dt = 0.0f;
+    float noise_time = 0.0f;
+  } frame_uniforms_;
+  void set_frame_uniforms(const gl::Program& p, const Uniforms& u, const ViewState& view) const;
   // The pixels the mesh can cover in this view: its bounding box projected
   // (x, y, width, height), or the whole image where a corner is behind the eye.
   [[nodiscard]] glm::ivec4 screen_box(const glm::mat4& view_projection) const;
@@ -269,11 +287,18 @@ class IbfvsRenderer {
   gl::Program grid_program_;
   gl::VertexArray empty_vao_;  // for the attributeless grid pass
   int grid_noise_time_ = -1, grid_profile_ = -1, grid_spike_width_ = -1, grid_seed_ = -1;
+  // The deferred IBFVS pass's first half leaves the surface here, per pixel
+  // (made with the first deferred variant): t(x), its depth and this pixel's;
+  // fwidth of that depth, the headlight's diffuse term and the scalars.
+  gl::Texture2D gbuffer_[2];
+  gl::Framebuffer gbuffer_framebuffer_;
   gl::Texture2D depth_;  // a texture: draw_to_host reads it
   gl::Program host_program_;
   int host_origin_ = -1, host_interior_ = -1;
   // [i] draws into texture_[i], output_ (or base_, taps_[i], seed_) (, flow_)
   gl::Framebuffer framebuffer_[2];
+  // [i]: texture_[i], output_, taps_[i] (, flow_): the deferred pass's second half
+  gl::Framebuffer resolve_framebuffer_[2];
   gl::Buffer vertices_;
   gl::Buffer field_;
   gl::Buffer field_next_;

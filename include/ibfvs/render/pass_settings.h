@@ -43,6 +43,16 @@ namespace ibfvs::shaders {
 /// and each tap reads one texel (the fragment shader's IBFVS_TAP_TEXTURE).
 [[nodiscard]] bool tap_texture(const ShaderFeatures& features);
 
+/// Whether the desktop renderer splits the IBFVS pass in two (the default
+/// look's features): the triangles leave only what the pass needs of the
+/// surface per pixel (gbuffer_fragment_source), and a pass over the surface's
+/// pixels does the rest once each (resolve_fragment_source). On llvmpipe a
+/// fragment of a small triangle shades a whole block of pixels, and hidden
+/// ones shade too: on the motorbike the single pass was most of a frame. Not
+/// with the solid noise or a surface image (they read object positions and
+/// their derivatives per fragment); the browser page keeps the single pass.
+[[nodiscard]] bool deferred_pass(const ShaderFeatures& features);
+
 /// One uniform's value: 1-4 components of a float, int or uint uniform, or
 /// (array) a float array.
 struct UniformValue {

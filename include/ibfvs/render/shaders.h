@@ -36,6 +36,15 @@ enum class Dialect { Gl45, Es300 };
 
 std::string ibfvs_vertex_source(const ShaderFeatures& features, Dialect dialect = Dialect::Gl45);
 std::string ibfvs_fragment_source(const ShaderFeatures& features, Dialect dialect = Dialect::Gl45);
+/// The IBFVS pass split in two (deferred_pass in pass_settings.h): the
+/// triangles' half, with ibfvs_vertex_source, writes (t(x), t(x)'s depth,
+/// the depth) and (fwidth of the depth, the diffuse term, the scalars); the
+/// other, with display_vertex_source over the surface's pixels, reads them
+/// and writes what ibfvs_fragment_source writes.
+std::string gbuffer_fragment_source(const ShaderFeatures& features,
+                                    Dialect dialect = Dialect::Gl45);
+std::string resolve_fragment_source(const ShaderFeatures& features,
+                                    Dialect dialect = Dialect::Gl45);
 /// The display pass, where the features have a tap texture (tap_texture in
 /// pass_settings.h): the display filter, the contrast stage and F, once per
 /// pixel of the surface, from what the IBFVS pass left.

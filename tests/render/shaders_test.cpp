@@ -93,6 +93,10 @@ TEST(Shaders, EverySourceCompilesAsGlsl450AndAsEs300) {
       sources.add(shaders::ibfvs_fragment_source(f, dialect), key, "frag");
       if (shaders::tap_texture(f))  // the display pass that goes with it
         sources.add(shaders::display_fragment_source(f, dialect), key + "-display", "frag");
+      if (shaders::deferred_pass(f)) {  // the two halves of the deferred pass
+        sources.add(shaders::gbuffer_fragment_source(f, dialect), key + "-gbuffer", "frag");
+        sources.add(shaders::resolve_fragment_source(f, dialect), key + "-resolve", "frag");
+      }
     }
     sources.add(shaders::grid_vertex_source(dialect), what + "-grid", "vert");
     sources.add(shaders::display_vertex_source(dialect), what + "-display", "vert");

@@ -416,13 +416,13 @@ void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
     if (v.resolve) gbuffer_framebuffer_.bind();  // the first half of the deferred pass
     p.use();
     tap_depth_[next] = tap_depth_map(view.projection);
-    frame_uniforms_ = {locked_        ? lock_view_projection_
-                       : use_previous ? previous_view_projection_
-                                      : vp,
-                       locked_ ? 0.0f : dt, noise_time};
-    set_frame_uniforms(p, v.u, view);
+    const FrameUniforms frame{locked_        ? lock_view_projection_
+                              : use_previous ? previous_view_projection_
+                                             : vp,
+                              locked_ ? 0.0f : dt, noise_time};
+    set_frame_uniforms(p, v.u, view, frame);
     if (v.resolve) {
-      set_frame_uniforms(v.resolve, v.ru, view);
+      set_frame_uniforms(v.resolve, v.ru, view, frame);
       // It reads the last frame's taps, stored under that frame's map.
       v.resolve.set(v.ru.tap_depth, tap_depth_[current_]);
       v.resolve.set(v.ru.new_tap_depth, tap_depth_[next]);
@@ -457,9 +457,9 @@ void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
 }
 
 void IbfvsRenderer::set_frame_uniforms(const gl::Program& p, const Uniforms& u,
-                                       const ViewState& view) const {
+                                       const ViewState& view, const FrameUniforms& frame) const {
   p.set(u.view_projection, view.projection * view.view);
-  p.set(u.advect_view_projection, frame_uniforms_.advect_view_projection);
+  p.set(u.advect_view_projection, frame.advect_view_projection);
   p.set(u.view, view.view);
   // Eye depth d = -z_eye from clip (z, w): w = -z_eye in perspective
   // (P[2][3] = -1, P[3][3] = 0); z = P[2][2] z_eye + P[3][2] with w = 1 in
@@ -467,13 +467,13 @@ void IbfvsRenderer::set_frame_uniforms(const gl::Program& p, const Uniforms& u,
   const glm::mat4& pr = view.projection;
   p.set(u.clip_to_depth, pr[3][3] == 0.0f ? glm::vec2(0.0f, 1.0f)
                                           : glm::vec2(-1.0f / pr[2][2], pr[3][2] / pr[2][2]));
-  p.set(u.dt, frame_uniforms_.dt);
+  p.set(u.dt, frame.dt);
   p.set(u.probe, probe_);
   p.set(u.field_mix, field_mix_);
   p.set(u.texture_shift, texture_shift_);
   p.set(u.noise_shift, noise_shift_);
   p.set(u.locked, locked_ ? 1 : 0);
-  p.set(u.noise_time, frame_uniforms_.noise_time);
+  p.set(u.noise_time, frame.noise_time);
   // The map of the frame being drawn; -1 without the tap texture: GL ignores it.
   p.set(u.tap_depth, tap_depth_[1 - current_]);
 }

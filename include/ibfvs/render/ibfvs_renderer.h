@@ -223,8 +223,9 @@ class IbfvsRenderer {
     glm::mat4 advect_view_projection{1.0f};
     float dt = 0.0f;
     float noise_time = 0.0f;
-  } frame_uniforms_;
-  void set_frame_uniforms(const gl::Program& p, const Uniforms& u, const ViewState& view) const;
+  };
+  void set_frame_uniforms(const gl::Program& p, const Uniforms& u, const ViewState& view,
+                          const FrameUniforms& frame) const;
   // The pixels the mesh can cover in this view: its bounding box projected
   // (x, y, width, height), or the whole image where a corner is behind the eye.
   [[nodiscard]] glm::ivec4 screen_box(const glm::mat4& view_projection) const;

@@ -267,6 +267,7 @@ struct PlyProperty {
   int size = 0;        // bytes of a scalar, or of a list's items
   int count_size = 0;  // lists: bytes of the length; 0: a scalar
   bool integer = false;
+  bool is_unsigned = false;  // uchar, uint8, ushort, ...: the integer types named u...
 };
 
 struct PlyElement {
@@ -358,11 +359,13 @@ void precheck_ply(const fs::path& path) {
       PlyProperty p;
       if (w.size() == 3) {
         p.size = type_size(w[1], p.integer);
+        p.is_unsigned = p.integer && w[1].starts_with('u');
         p.name = w[2];
       } else if (w.size() == 5 && w[1] == "list") {
         bool count_integer = false;
         p.count_size = type_size(w[2], count_integer);
         p.size = type_size(w[3], p.integer);
+        p.is_unsigned = p.integer && w[3].starts_with('u');
         if (!count_integer) p.count_size = 0, p.size = 0;
         p.name = w[4];
       }
@@ -421,6 +424,12 @@ void precheck_ply(const fs::path& path) {
             } else if (p.integer ? !to_integer(w, v) : !is_number(w)) {
               c.fail(e.name + " " + std::to_string(item) + ": " + excerpt(w) + " is not a " +
                      (p.integer ? "whole number" : "number"));
+            } else if (p.is_unsigned && v < 0) {
+              // OpenMesh's ASCII reader stops reading at the sign and then
+              // loops on what follows, growing a list without end (the
+              // fuzzers found it with a colour of -255).
+              c.fail(e.name + " " + std::to_string(item) + ": " + excerpt(w) +
+                     " is negative, but " + p.name + " is unsigned");
             }
           }
         }

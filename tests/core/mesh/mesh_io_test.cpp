@@ -215,6 +215,14 @@ TEST(MeshIo, FuzzerFindingsFailCleanly) {
                                "property float y\nproperty float z\nelement junk 99999999\n"
                                "end_header\n0 0 0\n"),
                     "the header declares 99999999 junk items, more than a file of");
+  // A negative value of an unsigned colour (OpenMesh's ASCII reader stopped
+  // at the sign and grew a list of faces until memory ran out).
+  expect_read_error(write_file(dir / "sign.ply",
+                               "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+                               "property float y\nproperty float z\nproperty uchar red\n"
+                               "element face 1\nproperty list uchar int vertex_indices\n"
+                               "end_header\n0 0 0 255\n1 0 0 0\n0 1 0 -1\n3 0 1 2\n"),
+                    "vertex 2: '-1' is negative, but red is unsigned");
   // An OBJ face naming a normal given after it (OpenMesh read past its array).
   expect_read_error(
       write_file(dir / "normal.obj", "v 1 0 0\nv 1 0 0\nv 0 1 0\nf -3//1 -2//1 -1//1\nvn 0 0 1\n"),

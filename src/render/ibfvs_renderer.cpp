@@ -172,8 +172,10 @@ void IbfvsRenderer::use_colour_texture() {
 }
 
 shaders::ShaderFeatures IbfvsRenderer::features() const {
-  return shaders::features_for(settings_, colour_texture_, static_cast<bool>(surface_image_),
-                               record_flow_);
+  shaders::ShaderFeatures f = shaders::features_for(
+      settings_, colour_texture_, static_cast<bool>(surface_image_), record_flow_);
+  f.moving = moving_;
+  return f;
 }
 
 IbfvsRenderer::Variant& IbfvsRenderer::current_variant() {
@@ -196,6 +198,7 @@ IbfvsRenderer::Variant& IbfvsRenderer::current_variant() {
       u.noise_shift = p.location("u_noise_shift");
       u.tap_depth = p.location("u_tap_depth");
       u.new_tap_depth = p.location("u_new_tap_depth");
+      u.drawn_mix = p.location("u_drawn_mix");
       return u;
     };
     if (deferred) {
@@ -268,88 +271,6 @@ void IbfvsRenderer::update_settings(const RenderSettings& settings) {
   apply_settings();
 }
 
-void IbfvsRenderer::set_mesh(const TriMesh& mesh, std::span<const glm::vec3> field) {
-  validate_mesh(mesh, "mesh");
-  if (mesh.normals.size() != mesh.positions.size())
-    throw InputError("renderer: the mesh needs vertex normals");
-  if (field.size() != mesh.positions.size())
-    throw InputError("renderer: the field needs one vector per vertex");
-  // Interleaved position + normal; the field in its own buffer so that an
-  // unsteady field can be replaced without touching the geometry.
-  std::vector<float> interleaved;
-  interleaved.reserve(mesh.positions.size() * 6);
-  for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
-    const glm::vec3& p = mesh.positions[i];
-    const glm::vec3& n = mesh.normals[i];
-    interleaved.insert(interleaved.end(), {p.x, p.y, p.z, n.x, n.y, n.z});
-  }
-  vertices_ = gl::Buffer(bytes_of(std::span<const float>(interleaved)));
-  field_ = gl::Buffer(bytes_of(field), true);
-  field_next_ = gl::Buffer(bytes_of(field), true);
-  const std::vector<glm::vec2> zeros(mesh.positions.size(), glm::vec2(0.0f));
-  scalars_ = gl::Buffer(bytes_of(std::span<const glm::vec2>(zeros)), true);
-  indices_ = gl::Buffer(bytes_of(std::span<const Triangle>(mesh.triangles)));
-  vao_ = gl::VertexArray::create();
-  vao_.attribute(0, vertices_, 0, 3, 0, 6 * sizeof(float));
-  vao_.attribute(1, vertices_, 1, 3, 3 * sizeof(float), 6 * sizeof(float));
-  vao_.attribute(2, field_, 2, 3, 0, sizeof(glm::vec3));
-  vao_.attribute(4, field_next_, 4, 3, 0, sizeof(glm::vec3));
-  vao_.attribute(3, scalars_, 3, 2, 0, sizeof(glm::vec2));
-  vao_.index_buffer(indices_);
-  index_count_ = mesh.triangles.size() * 3;
-  vertex_count_ = mesh.positions.size();
-  bounds_ = mesh_bounds(mesh);
-  const float diagonal = bounds_.diagonal();
-  probe_ = shaders::probe_length(diagonal);
-  cull_ = closed_orientation(mesh);
-  reset();
-}
-
-void IbfvsRenderer::set_field(std::span<const glm::vec3> field) {
-  if (field.size() != vertex_count_)
-    throw InputError("renderer: the field needs one vector per vertex");
-  field_.update(0, bytes_of(field));
-  field_next_.update(0, bytes_of(field));
-  field_mix_ = 0.0f;
-}
-
-void IbfvsRenderer::set_field_steps(std::span<const glm::vec3> current,
-                                    std::span<const glm::vec3> next) {
-  if (current.size() != vertex_count_ || next.size() != vertex_count_)
-    throw InputError("renderer: each field step needs one vector per vertex");
-  field_.update(0, bytes_of(current));
-  field_next_.update(0, bytes_of(next));
-}
-
-void IbfvsRenderer::set_field_mix(float mix) {
-  field_mix_ = std::clamp(mix, 0.0f, 1.0f);
-}
-
-void IbfvsRenderer::set_surface_image(const ImageU8& image, const glm::vec3& centre) {
-  if (image.pixels.empty()) {
-    surface_image_ = gl::Texture2D();
-    return;
-  }
-  if (image.channels != 4) throw InputError("renderer: the surface image must be RGBA");
-  gl::check_image_size(image.width, image.height, "surface_image");
-  std::vector<float> rgba(image.pixels.size());
-  for (std::size_t i = 0; i < rgba.size(); ++i) rgba[i] = image.pixels[i] / 255.0f;
-  surface_image_ = gl::Texture2D(image.width, image.height, gl::Format::RGBA8, true);
-  surface_image_.upload_float(rgba, 4);
-  image_centre_ = centre;
-  ++settings_version_;
-}
-
-void IbfvsRenderer::set_scalars(std::span<const float> color, std::span<const float> beta) {
-  if ((!color.empty() && color.size() != vertex_count_) ||
-      (!beta.empty() && beta.size() != vertex_count_))
-    throw InputError("renderer: scalars need one value per vertex");
-  std::vector<glm::vec2> packed(vertex_count_, glm::vec2(0.0f));
-  for (std::size_t i = 0; i < vertex_count_; ++i)
-    packed[i] = {color.empty() ? 0.0f : color[i], beta.empty() ? 0.0f : beta[i]};
-  scalars_.update(0, bytes_of(std::span<const glm::vec2>(packed)));
-}
-
 void IbfvsRenderer::reset() {
   gl::prepare_own_draw();
   if (colour_texture_ != shaders::colour_background(settings_) ||
@@ -416,10 +337,17 @@ void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
     if (v.resolve) gbuffer_framebuffer_.bind();  // the first half of the deferred pass
     p.use();
     tap_depth_[next] = tap_depth_map(view.projection);
+    // A moving surface: where the last frame drew each vertex (the pair of
+    // steps it drew and its mix; the current ones where no motion enters).
+    float drawn_mix = field_mix_;
+    if (moving_) {
+      point_drawn_attributes();
+      if (use_previous && !locked_) drawn_mix = drawn_mix_;
+    }
     const FrameUniforms frame{locked_        ? lock_view_projection_
                               : use_previous ? previous_view_projection_
                                              : vp,
-                              locked_ ? 0.0f : dt, noise_time};
+                              locked_ ? 0.0f : dt, noise_time, drawn_mix};
     set_frame_uniforms(p, v.u, view, frame);
     if (v.resolve) {
       set_frame_uniforms(v.resolve, v.ru, view, frame);
@@ -451,6 +379,12 @@ void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
   if (!locked_) {  // a locked F_t stays where it is; the output is shared
     current_ = next;
     previous_view_projection_ = vp;
+    last_view_ = view;
+    // This frame's surface is the one the next frame's texture comes from.
+    drawn_ = gl::Buffer();
+    drawn_next_ = gl::Buffer();
+    drawn_elsewhere_ = false;
+    drawn_mix_ = field_mix_;
   }
   has_previous_ = true;
   ++frame_;
@@ -470,6 +404,7 @@ void IbfvsRenderer::set_frame_uniforms(const gl::Program& p, const Uniforms& u,
   p.set(u.dt, frame.dt);
   p.set(u.probe, probe_);
   p.set(u.field_mix, field_mix_);
+  p.set(u.drawn_mix, frame.drawn_mix);
   p.set(u.texture_shift, texture_shift_);
   p.set(u.noise_shift, noise_shift_);
   p.set(u.locked, locked_ ? 1 : 0);
@@ -754,6 +689,30 @@ void IbfvsRenderer::write_texture_raw(const ImageF& texture) {
                      "x" + std::to_string(settings_.height) + " image of " +
                      std::to_string(kRawChannels) + " channels");
   upload_raw(texture);
+}
+
+void IbfvsRenderer::take_texture(const ImageF& raw, const ViewState& view) {
+  if (raw.channels != kRawChannels || raw.width < 1 || raw.height < 1)
+    throw InputError("renderer: take_texture needs an image of " + std::to_string(kRawChannels) +
+                     " channels");
+  // Nearest texel, in the image's own coordinates: the texture coordinates
+  // T(r - v dt) are in [0, 1]^2 whatever the size. The taps' depth is
+  // encoded again from the eye depth under this renderer's map.
+  const int w = settings_.width, h = settings_.height;
+  ImageF resampled(w, h, kRawChannels);
+  for (int y = 0; y < h; ++y) {
+    const int sy = std::min(raw.height - 1, static_cast<int>((y + 0.5) * raw.height / h));
+    for (int x = 0; x < w; ++x) {
+      const int sx = std::min(raw.width - 1, static_cast<int>((x + 0.5) * raw.width / w));
+      for (int c = 0; c < kRawChannels; ++c) resampled.at(x, y, c) = raw.at(sx, sy, c);
+      resampled.at(x, y, 5) = -1.0f;
+    }
+  }
+  tap_depth_[current_] = tap_depth_map(view.projection);
+  upload_raw(resampled);
+  previous_view_projection_ = view.projection * view.view;
+  last_view_ = view;
+  has_previous_ = true;
 }
 
 ImageF IbfvsRenderer::read_output_raw() const {

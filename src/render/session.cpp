@@ -9,15 +9,35 @@
 
 namespace ibfvs {
 
-// Plays an unsteady field: the current and next steps on the GPU and the mix
-// between them. Does nothing for a steady field.
-class Session::FieldPlayer {
+namespace {
+
+// The positions and normals a step's surface has.
+const std::vector<glm::vec3>& positions_of(const StepData& d, const TriMesh& mesh) {
+  return d.positions.empty() ? mesh.positions : d.positions;
+}
+const std::vector<glm::vec3>& normals_of(const StepData& d, const TriMesh& mesh) {
+  return d.normals.empty() ? mesh.normals : d.normals;
+}
+
+void set_scene_scalars(const PreparedScene& scene, IbfvsRenderer& renderer,
+                       const std::vector<float>& colour, const std::vector<float>& beta) {
+  if (scene.settings.use_color || scene.settings.use_beta) renderer.set_scalars(colour, beta);
+}
+
+}  // namespace
+
+// Plays an unsteady scene: the current and next steps on the GPU and the mix
+// between them; the surface too where it moves (the same triangles: points
+// interpolated like the field) or changes (a step with triangles of its own
+// replaces the mesh, keeping the texture). Does nothing for a steady scene.
+class Session::StepPlayer {
  public:
-  FieldPlayer(const PreparedScene& scene, IbfvsRenderer& renderer) : scene_(scene) {
+  StepPlayer(const PreparedScene& scene, IbfvsRenderer& renderer) : scene_(scene) {
     if (scene.step_count < 2) return;
-    field_ = scene.field;
-    next_ = scene.step_field(1 % scene.step_count);
-    renderer.set_field_steps(field_, next_);
+    current_ = scene.step_data(0);
+    next_ = scene.step_data(1 % scene.step_count);
+    on_renderer_ = scene.mesh.get();
+    apply(renderer);
   }
 
   // Time t in steps (looping); evaluates a step only when t leaves the current one.
@@ -28,18 +48,41 @@ class Session::FieldPlayer {
     const auto s = static_cast<std::size_t>(t) % n;
     if (s != step_) {
       // Playing on, the next step is already at hand; a jump evaluates both.
-      field_ = s == (step_ + 1) % n ? std::move(next_) : scene_.step_field(s);
-      next_ = scene_.step_field((s + 1) % n);
+      current_ = s == (step_ + 1) % n ? std::move(next_) : scene_.step_data(s);
+      next_ = scene_.step_data((s + 1) % n);
       step_ = s;
-      renderer.set_field_steps(field_, next_);
+      apply(renderer);
     }
     renderer.set_field_mix(static_cast<float>(t - std::floor(t)));
   }
 
  private:
+  const TriMesh& mesh_of(const StepData& d) const { return d.mesh ? *d.mesh : *scene_.mesh; }
+
+  void apply(IbfvsRenderer& renderer) {
+    const TriMesh& mesh = mesh_of(current_);
+    if (&mesh != on_renderer_) {
+      // Other triangles: the image-space path (the texture stays in the image).
+      renderer.replace_mesh(mesh, current_.field);
+      held_ = current_.mesh;  // keeps a step's own mesh while the renderer shows it
+      on_renderer_ = &mesh;
+    }
+    // Between steps of one surface the points and field are interpolated;
+    // into a step with other triangles the current one holds to the end.
+    const bool pair = &mesh_of(next_) == &mesh;
+    const StepData& to = pair ? next_ : current_;
+    if (scene_.moving)
+      renderer.set_surface_steps(positions_of(current_, mesh), normals_of(current_, mesh),
+                                 positions_of(to, mesh), normals_of(to, mesh));
+    renderer.set_field_steps(current_.field, to.field);
+    set_scene_scalars(scene_, renderer, current_.color_scalar, current_.beta_scalar);
+  }
+
   const PreparedScene& scene_;
   std::size_t step_ = 0;
-  std::vector<glm::vec3> field_, next_;
+  StepData current_, next_;
+  const TriMesh* on_renderer_ = nullptr;
+  std::shared_ptr<const TriMesh> held_;
 };
 
 namespace {
@@ -66,21 +109,41 @@ void Session::load() {
   player_.reset();
   renderer_ = std::make_unique<IbfvsRenderer>(scene_.settings);
   renderer_->set_mesh(*scene_.mesh, scene_.field);
-  if (scene_.settings.use_color || scene_.settings.use_beta)
-    renderer_->set_scalars(scene_.color_scalar, scene_.beta_scalar);
+  set_scene_scalars(scene_, *renderer_, scene_.color_scalar, scene_.beta_scalar);
   if (!scene_.surface_image.pixels.empty())
     renderer_->set_surface_image(scene_.surface_image, mesh_bounds(*scene_.mesh).centre());
   if (scene_.scene.init == InitMode::RandomCells)
     renderer_->fill_texture_with_cell_colors(scene_.scene.seed);
-  player_ = std::make_unique<FieldPlayer>(scene_, *renderer_);
+  player_ = std::make_unique<StepPlayer>(scene_, *renderer_);
 }
 
-void Session::rebuild() {
+void Session::rebuild(bool restart) {
+  if (restart) {
+    load();
+    frame_ = 0;
+    return;
+  }
+  // The texture as it is, and the camera that drew it, into the new renderer.
+  const gl::SavedState saved;
+  const bool drawn = renderer_->frame() > 0;
+  const ImageF raw = drawn ? renderer_->read_texture_raw() : ImageF();
+  const ViewState view = renderer_->last_view();
   load();
-  frame_ = 0;
+  if (scene_.step_count > 1) player_->seek(time_, *renderer_);
+  if (drawn) renderer_->take_texture(raw, view);
+}
+
+void Session::resize(int width, int height) {
+  if (width == scene_.width && height == scene_.height) return;
+  scene_ = resized(scene_, width, height);
+  dt_ = scene_.dt;
+  camera_.set_aspect(aspect_of(scene_));
+  if (lock_camera_) lock_camera_->set_aspect(aspect_of(scene_));
+  rebuild(false);
 }
 
 void Session::seek(double t) {
+  time_ = t;
   player_->seek(t, *renderer_);
 }
 
@@ -112,6 +175,46 @@ void Session::set_field(std::vector<glm::vec3> field) {
   scene_.field = std::move(field);
   const gl::SavedState saved;
   renderer_->set_field(scene_.field);
+}
+
+void Session::change_data(PreparedScene next) {
+  if (!next.mesh) throw InputError("change_data: no mesh");
+  const gl::SavedState saved;
+  const TriMesh& from = *scene_.mesh;
+  const TriMesh& to = *next.mesh;
+  // A series played so far gives way to the new data.
+  player_.reset();
+  if (to.vertex_count() == from.vertex_count() && to.triangles == from.triangles) {
+    // The same surface: its points move from where the last frame drew
+    // them (the renderer's pair at its mix) to the new ones.
+    if (to.positions != from.positions || renderer_->moving())
+      renderer_->set_surface_steps(from.positions, from.normals, to.positions, to.normals);
+    renderer_->set_field_steps(scene_.field, next.field);
+  } else {
+    renderer_->replace_mesh(to, next.field);
+    renderer_->set_field_steps(next.field, next.field);
+  }
+  renderer_->set_field_mix(1.0f);
+  set_scene_scalars(scene_, *renderer_, next.color_scalar, next.beta_scalar);
+  // The data is the new scene's; the settings, camera and dt stay this session's.
+  scene_.mesh = std::move(next.mesh);
+  scene_.field = std::move(next.field);
+  scene_.color_scalar = std::move(next.color_scalar);
+  scene_.beta_scalar = std::move(next.beta_scalar);
+  scene_.source_vertices = next.source_vertices;
+  scene_.source_topology = next.source_topology;
+  scene_.vertex_order = std::move(next.vertex_order);
+  scene_.step_count = next.step_count;
+  scene_.step_data = std::move(next.step_data);
+  scene_.moving = next.moving;
+  player_ = std::make_unique<StepPlayer>(scene_, *renderer_);
+}
+
+void Session::render_transition(const ViewState& view, int frames) {
+  for (int k = 1; k <= frames; ++k) {
+    renderer_->set_field_mix(static_cast<float>(k) / static_cast<float>(frames));
+    render(view);
+  }
 }
 
 }  // namespace ibfvs

@@ -29,6 +29,17 @@ layout(location = 1) in vec3 a_normal;
 layout(location = 2) in vec3 a_vector;       // the field at the current time step
 layout(location = 4) in vec3 a_vector_next;  // and at the next one (unsteady flow)
 layout(location = 3) in vec2 a_scalars;  // (colour scalar, beta scalar)
+#ifdef IBFVS_MOVING
+// A moving or deforming surface: its positions and normals at the current
+// (a_position, a_normal) and the next time step, mixed like the field, and
+// where the last frame drew each vertex (between a_drawn and a_drawn_next
+// at u_drawn_mix: the pair of steps that frame drew).
+layout(location = 5) in vec3 a_position_next;
+layout(location = 6) in vec3 a_normal_next;
+layout(location = 7) in vec3 a_drawn;
+layout(location = 8) in vec3 a_drawn_next;
+uniform float u_drawn_mix;
+#endif
 
 uniform mat4 u_view_projection;          // T_k: where the vertex is drawn
 uniform mat4 u_advect_view_projection;   // T_k or T_{k-1}: where its texture comes from
@@ -68,29 +79,40 @@ void main() {
 #if defined(IBFVS_CONTRAST) && !defined(IBFVS_TAP_TEXTURE)
   v_contrast = contrast_stage(texelFetch(u_stats, ivec2(0), 0).xyz);
 #endif
-  gl_Position = u_view_projection * vec4(a_position, 1.0);
+#ifdef IBFVS_MOVING
+  vec3 position = mix(a_position, a_position_next, u_field_mix);
+  vec3 normal = mix(a_normal, a_normal_next, u_field_mix);
+  // The surface's own motion enters the advection as the camera's does:
+  // the texture comes from where the last frame drew this point.
+  vec3 drawn = mix(a_drawn, a_drawn_next, u_drawn_mix);
+#else
+  vec3 position = a_position;
+  vec3 normal = a_normal;
+  vec3 drawn = a_position;
+#endif
+  gl_Position = u_view_projection * vec4(position, 1.0);
   vec3 v = mix(a_vector, a_vector_next, u_field_mix);
   vec3 step = v * u_dt;
 #ifdef IBFVS_IMAGE_STEP
   {  // as image_normalized_step() in core/scene/camera.cpp
     step = vec3(0.0);
     float speed = length(v);
-    vec4 a = u_advect_view_projection * vec4(a_position, 1.0);
-    vec4 b = u_advect_view_projection * vec4(a_position - v / max(speed, 1e-30) * u_probe, 1.0);
+    vec4 a = u_advect_view_projection * vec4(drawn, 1.0);
+    vec4 b = u_advect_view_projection * vec4(drawn - v / max(speed, 1e-30) * u_probe, 1.0);
     if (speed > 0.0 && u_dt > 0.0 && a.w > 1e-6 && b.w > 1e-6) {
       float moved = length((a.xy / a.w - b.xy / b.w) * 0.5 * u_size);
       if (moved > 0.0) step = v / speed * (u_probe * min(u_image_step / moved, 50.0));
     }
   }
 #endif
-  v_from = u_advect_view_projection * vec4(a_position - step, 1.0);
+  v_from = u_advect_view_projection * vec4(drawn - step, 1.0);
 #if defined(IBFVS_COLOR_SCALAR) || defined(IBFVS_BETA_SCALAR)
   v_scalars = a_scalars;
 #endif
-  v_normal_eye = mat3(u_view) * a_normal;
-  v_position_eye = (u_view * vec4(a_position, 1.0)).xyz;
+  v_normal_eye = mat3(u_view) * normal;
+  v_position_eye = (u_view * vec4(position, 1.0)).xyz;
 #if defined(IBFVS_SURFACE_IMAGE) || defined(IBFVS_OBJECT_NOISE)
-  v_position_object = a_position;
+  v_position_object = position;
 #endif
 }
 )";
@@ -629,6 +651,7 @@ std::string with_defines(const ShaderFeatures& features, const std::string& body
   define(features.record_flow, "IBFVS_RECORD_FLOW");
   define(tap_texture(features), "IBFVS_TAP_TEXTURE");
   define(features.sharpen, "IBFVS_SHARPEN");
+  define(features.moving, "IBFVS_MOVING");
   if (features.sharpen || features.compensate)
     source += "#define IBFVS_SHARPEN_REACH " + std::to_string(ibfvs::kSharpenReach) + "\n";
   if (profile) source += kProfile;
@@ -642,7 +665,8 @@ unsigned ShaderFeatures::key() const {
          (beta_scalar ? 8u : 0u) | (image_step ? 16u : 0u) | (inject_add ? 32u : 0u) |
          (mono_texture ? 64u : 0u) | (cubic ? 128u : 0u) | (contrast ? 256u : 0u) |
          (record_flow ? 512u : 0u) | (sharpen ? 1024u : 0u) |
-         (static_cast<unsigned>(filter_taps) << 11u) | (compensate ? 1u << 16u : 0u);
+         (static_cast<unsigned>(filter_taps) << 11u) | (compensate ? 1u << 16u : 0u) |
+         (moving ? 1u << 17u : 0u);
 }
 
 std::string ibfvs_vertex_source(const ShaderFeatures& features, Dialect dialect) {

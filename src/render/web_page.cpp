@@ -322,7 +322,7 @@ std::string web_page(const PreparedScene& p, WebPageReport* report, const WebPag
   // Every time step of an unsteady field, one after the other.
   vectors.reserve(steps * mesh.positions.size() * 4);
   for (std::size_t step = 0; step < steps; ++step) {
-    const std::vector<glm::vec3> field = step == 0 ? p.field : p.step_field(step);
+    const std::vector<glm::vec3> field = step == 0 ? p.field : p.step_data(step).field;
     for (const glm::vec3& v : field) {
       for (int c = 0; c < 3; ++c) vectors.push_back(glm::packHalf1x16(v[c]));
       vectors.push_back(0);

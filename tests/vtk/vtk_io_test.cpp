@@ -212,7 +212,7 @@ TEST_F(VtkIo, PvdSeriesIsUnsteady) {
   scene.tangent = TangentMode::Full3D;
   const PreparedScene p = prepare_scene(scene);
   EXPECT_EQ(p.step_count, 3u);
-  EXPECT_NEAR(p.step_field(1)[0].x, 2.0f, 1e-6f);
+  EXPECT_NEAR(p.step_data(1).field[0].x, 2.0f, 1e-6f);
   scene.time = TimeRange::parse("1");
   scene.reverse = true;
   const PreparedScene one = prepare_scene(scene);
@@ -230,7 +230,7 @@ TEST_F(VtkIo, NumberedFilesAreASeries) {
   scene.tangent = TangentMode::Full3D;
   const PreparedScene p = prepare_scene(scene);
   EXPECT_EQ(p.step_count, 3u);
-  EXPECT_NEAR(p.step_field(2)[0].x, 3.0f, 1e-6f);
+  EXPECT_NEAR(p.step_data(2).field[0].x, 3.0f, 1e-6f);
 }
 
 TEST_F(VtkIo, JsonFileSeriesIsUnsteady) {

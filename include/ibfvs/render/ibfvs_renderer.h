@@ -25,7 +25,10 @@
 // texture coordinates on the GPU (moving camera costs nothing), evaluated
 // exactly per fragment so large triangles in perspective do not bend the warp
 // (section 3.9), F_t in 16-bit float, and an option to advect with the
-// previous frame's transform (section 3.7).
+// previous frame's transform (section 3.7), which takes a moving surface's
+// points where the last frame drew them too: t = T_{k-1}(r_{k-1} - v dt),
+// so the texture follows the camera's motion and the surface's alike
+// (set_surface_steps; replace_mesh for a surface whose triangles change).
 
 #include <array>
 #include <cstdint>
@@ -70,12 +73,30 @@ class IbfvsRenderer {
   /// Uploads positions, normals and the per-vertex field `field` (one vector
   /// per vertex, already projected or not). Resets the texture.
   void set_mesh(const TriMesh& mesh, std::span<const glm::vec3> field);
+  /// Another surface (other triangles or another vertex count: a topology
+  /// change, adaptive refinement, an unrelated mesh), keeping the texture:
+  /// F_t stays where it is in the image and the flow takes it on (the
+  /// image-space path). Same arguments as set_mesh.
+  void replace_mesh(const TriMesh& mesh, std::span<const glm::vec3> field);
+  /// The surface moves (the same triangles: a moving or deforming mesh,
+  /// rigid-body motion): its positions and normals at the current and the
+  /// next time step, interpolated with set_field_mix as the field is. The
+  /// advection of F_t then includes the surface's own motion between two
+  /// frames as it includes the camera's (with AdvectView::Previous): each
+  /// pixel's texture comes from where the last frame drew its surface point,
+  /// moved back along the flow. Keeps the texture. One vector per vertex each.
+  void set_surface_steps(std::span<const glm::vec3> positions, std::span<const glm::vec3> normals,
+                         std::span<const glm::vec3> next_positions,
+                         std::span<const glm::vec3> next_normals);
+  /// Whether set_surface_steps made the surface move (until set_mesh or replace_mesh).
+  [[nodiscard]] bool moving() const { return moving_; }
   /// Replaces the field (same vertex count); keeps the texture.
   void set_field(std::span<const glm::vec3> field);
   /// An unsteady field: two time steps, interpolated linearly on the GPU with
   /// set_field_mix (paper section 1: "it can handle ... unsteady flow").
   void set_field_steps(std::span<const glm::vec3> current, std::span<const glm::vec3> next);
-  /// Position between the two steps, in [0, 1].
+  /// Position between the two steps, in [0, 1] (of the field, and of the
+  /// surface where it moves).
   void set_field_mix(float mix);
   /// An image that stands in for the surface colour (paper 3.3 step 7: "a
   /// geographical map"), mapped by longitude and latitude of the direction
@@ -178,6 +199,13 @@ class IbfvsRenderer {
   /// rounding of the single pass's seed. Off: the single pass, as the
   /// browser page runs it (tests compare the two).
   void allow_deferred_pass(bool on) { deferred_allowed_ = on; }
+  /// The camera the last frame was drawn with (identity before the first).
+  [[nodiscard]] const ViewState& last_view() const { return last_view_; }
+  /// Takes over the texture of another renderer of the same scene (a new
+  /// size, a new noise grid): `raw` as its read_texture_raw gives it, of any
+  /// size (resampled to this one, nearest texel), last drawn with `view`.
+  /// The next frame advects from it as from this renderer's own last frame.
+  void take_texture(const ImageF& raw, const ViewState& view);
   /// The statistics pass render_frame left (nothing when none is due).
   void run_deferred_statistics();
   /// True when render_frame left a statistics pass (contrast on, every
@@ -197,7 +225,7 @@ class IbfvsRenderer {
   struct Uniforms {
     // Those set each frame; the settings' own go by name (shaders::settings_uniforms).
     int view_projection, advect_view_projection, view, clip_to_depth, dt, noise_time, field_mix,
-        locked, probe, texture_shift, noise_shift, tap_depth, new_tap_depth;
+        locked, probe, texture_shift, noise_shift, tap_depth, new_tap_depth, drawn_mix;
   };
   struct Variant {
     // The IBFVS pass; where it is deferred (shaders::deferred_pass) its first
@@ -223,6 +251,7 @@ class IbfvsRenderer {
     glm::mat4 advect_view_projection{1.0f};
     float dt = 0.0f;
     float noise_time = 0.0f;
+    float drawn_mix = 0.0f;
   };
   void set_frame_uniforms(const gl::Program& p, const Uniforms& u, const ViewState& view,
                           const FrameUniforms& frame) const;
@@ -300,7 +329,19 @@ class IbfvsRenderer {
   gl::Framebuffer framebuffer_[2];
   // [i]: texture_[i], output_, taps_[i] (, flow_): the deferred pass's second half
   gl::Framebuffer resolve_framebuffer_[2];
+  // The mesh's positions and normals, interleaved: at the current time step,
+  // and at the next where the surface moves (set_surface_steps).
   gl::Buffer vertices_;
+  gl::Buffer vertices_next_;
+  bool moving_ = false;
+  // The pair of steps the last frame drew, where set_surface_steps replaced
+  // it since (drawn_next_ empty: the one static buffer), and its mix.
+  gl::Buffer drawn_;
+  gl::Buffer drawn_next_;
+  bool drawn_elsewhere_ = false;
+  float drawn_mix_ = 0.0f;
+  void upload_mesh(const TriMesh& mesh, std::span<const glm::vec3> field);
+  void point_drawn_attributes();  // attributes 7, 8 at the pair the last frame drew
   gl::Buffer field_;
   gl::Buffer field_next_;
   gl::Buffer scalars_;       // (colour, beta) per vertex
@@ -321,6 +362,7 @@ class IbfvsRenderer {
   bool locked_ = false;
   glm::mat4 lock_view_projection_{1.0f};
   glm::mat4 previous_view_projection_{1.0f};
+  ViewState last_view_;
 };
 
 }  // namespace ibfvs

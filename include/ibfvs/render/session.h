@@ -1,9 +1,12 @@
 #pragma once
 // A session: one prepared scene on the GPU. It owns the renderer, the player
-// of an unsteady field, the camera and the frame count, and steps the
-// animation the way `ibfvs render` does (lock at the scene's frame, then the
-// lock camera; orbit; the time steps). `ibfvs render`, `ibfvs view`, `ibfvs
-// bench`, Python and ParaView all drive one.
+// of an unsteady scene (its field, and its surface where that moves or
+// changes), the camera and the frame count, and steps the animation the way
+// `ibfvs render` does (lock at the scene's frame, then the lock camera;
+// orbit; the time steps). `ibfvs render`, `ibfvs view`, `ibfvs bench`,
+// Python and ParaView all drive one. The texture outlives any change of data
+// (change_data, a step of a series), of size (resize) or of the noise grid
+// (rebuild): only a restart starts it from noise again.
 //
 // It needs a current OpenGL 4.5 context for its whole life and never makes
 // one: ibfvs's own (gl::HeadlessContext, the viewer's window) or the host's
@@ -56,20 +59,38 @@ class Session {
 
   /// Replaces the field (same vertex count), keeping the texture.
   void set_field(std::vector<glm::vec3> field);
-  /// A new renderer with the scene's current settings (size or noise scale
-  /// changed); the texture starts afresh.
-  void rebuild();
+  /// Goes on with new data: a host's next time step, moved points, a changed
+  /// array, another mesh; `next` is the scene prepared for it
+  /// (prepare_change). The texture goes on from where it is: with the same
+  /// triangles the surface moves from where the last frame drew it (its
+  /// motion enters the advection, as the camera's does); with other
+  /// triangles it is replaced and the texture stays where it is in the image
+  /// until the flow takes it on. The next frame shows the new data;
+  /// render_transition spreads the change over several.
+  void change_data(PreparedScene next);
+  /// `frames` frames seen with `view`, the data going from the last frame's
+  /// to change_data's in equal steps (points and field interpolated where
+  /// the triangles stayed): the texture frames a change of data is owed
+  /// (ParaView's Frames Per Step). The last one shows the new data.
+  void render_transition(const ViewState& view, int frames);
+  /// A new image size: the texture is resampled to it and goes on.
+  void resize(int width, int height);
+  /// A new renderer with the scene's current settings (a new noise scale):
+  /// the texture carries over, or with `restart` starts afresh from the
+  /// scene's initial state (a new seed, or the user asking).
+  void rebuild(bool restart = false);
 
   /// The displayed image F, RGBA, rows bottom-up.
   [[nodiscard]] ImageU8 read_output() const { return renderer_->read_output(); }
 
  private:
-  class FieldPlayer;
+  class StepPlayer;
   void load();
 
   PreparedScene scene_;
   std::unique_ptr<IbfvsRenderer> renderer_;
-  std::unique_ptr<FieldPlayer> player_;
+  std::unique_ptr<StepPlayer> player_;
+  double time_ = 0.0;  // the last seek
   Camera camera_;
   std::optional<Camera> lock_camera_;
   float dt_ = 0.0f;

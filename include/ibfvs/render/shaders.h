@@ -24,6 +24,9 @@ struct ShaderFeatures {
   bool contrast = false;       ///< the display's contrast stage
   bool record_flow = false;    ///< write each pixel's displacement (measurements)
   bool sharpen = false;        ///< display taps sharpened across the flow
+  /// The surface moves: positions and normals per time step, and the
+  /// advection from where the last frame drew each vertex
+  bool moving = false;
   /// A distinct number per combination.
   [[nodiscard]] unsigned key() const;
 };

@@ -173,6 +173,20 @@ Topology analyze_topology(const TriMesh& mesh) {
   return top;
 }
 
+std::uint64_t topology_hash(const TriMesh& mesh) {
+  // splitmix64's finaliser on each word, folded in order: every index and
+  // its position count (not a checksum that swapped triangles would keep).
+  const auto mix = [](std::uint64_t z) {
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    return z ^ (z >> 31);
+  };
+  std::uint64_t h = mix(mesh.vertex_count() + 0x9e3779b97f4a7c15ull);
+  for (const Triangle& t : mesh.triangles)
+    for (int c = 0; c < 3; ++c) h = mix(h ^ (t[c] + 0x9e3779b97f4a7c15ull)) + (h << 6);
+  return h;
+}
+
 std::size_t remove_degenerate_triangles(TriMesh& mesh) {
   const std::size_t before = mesh.triangles.size();
   std::erase_if(mesh.triangles, [&](const Triangle& t) {

@@ -246,6 +246,7 @@ std::string format_count(double n) {
 // After reading: subdivision (errors name the mesh) and the GPU's vertex order.
 void finish_loaded(LoadedMesh& out, int subdivide, bool gpu_order) {
   out.file_vertices = out.mesh.vertex_count();
+  out.file_topology = topology_hash(out.mesh);
   if (subdivide > 0) {
     // Refused before subdividing: each level makes four triangles of one.
     const double triangles = subdivided_triangles(out.mesh.triangle_count(), subdivide);
@@ -338,13 +339,9 @@ LoadedMesh load_mesh(const std::string& path, int subdivide, bool gpu_order,
     if (files.size() > 1) {
       for (std::size_t k = 0; k < files.size(); ++k)
         out.step_times.push_back(static_cast<double>(k));
-      out.read_step = [files, blocks, n = out.mesh.vertex_count()](std::size_t k) {
-        TriMesh step = read_any_mesh(files.at(k), blocks);
-        if (step.vertex_count() != n)
-          throw InputError(files[k] + ": " + std::to_string(step.vertex_count()) +
-                           " vertices, the series' first file has " + std::to_string(n));
-        return step;
-      };
+      // Each file its own surface: the points may move and the triangles
+      // change from file to file (scene_prep takes either on).
+      out.read_step = [files, blocks](std::size_t k) { return read_any_mesh(files.at(k), blocks); };
     }
   } else if (is_dataset_path(path)) {
     Dataset d = read_dataset({path, blocks});

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <mutex>
 #include <set>
 #include <string_view>
 
@@ -49,6 +50,130 @@ void take_arrays(TriMesh& mesh, const TriMesh& step, const std::vector<unsigned>
   for (const auto& [name, c] : step.other_arrays) mesh.other_arrays[name] = c;
 }
 
+// What a step's surface is put on the prepared mesh with.
+struct StepContext {
+  std::shared_ptr<const TriMesh> mesh;  // the prepared mesh (the first step's)
+  // Its points as read, in its order, before any displacement: a step whose
+  // points equal these stands still.
+  std::shared_ptr<const std::vector<glm::vec3>> still;
+  std::vector<unsigned> order;  // new index of each vertex as given
+  std::size_t source_vertices = 0;
+  std::uint64_t source_topology = 0;
+  FieldSpec spec;
+  TangentMode tangent = TangentMode::Project;
+  bool reverse = false;
+  std::string color_by, beta_by;
+};
+
+// A step's surface as given (the caller's order: a series file, a host's
+// data) on the prepared mesh: the same triangles take its order and
+// triangles, with its points and arrays; other triangles are a mesh of
+// their own (checked, normals, GPU order). `arrays_only`: only its arrays
+// count (a field_step file on the scene's mesh, the same vertices).
+// `moved`: the points differ from the prepared mesh's; `same`: its triangles.
+TriMesh mesh_on(const StepContext& c, TriMesh given, const std::string& where, bool arrays_only,
+                bool& same, bool& moved) {
+  for (std::size_t i = 0; i < given.positions.size() && !arrays_only; ++i) {
+    const glm::vec3& r = given.positions[i];
+    if (!std::isfinite(r.x) || !std::isfinite(r.y) || !std::isfinite(r.z))
+      throw InputError(where + ": point " + std::to_string(i) + " is not a finite number (" +
+                       std::to_string(r.x) + ", " + std::to_string(r.y) + ", " +
+                       std::to_string(r.z) + ")");
+  }
+  const auto put = [&](const auto& values) {
+    return c.order.empty() ? values : remap_vertex_data(values, c.order);
+  };
+  moved = false;
+  same = arrays_only ||
+         (given.vertex_count() == c.source_vertices && topology_hash(given) == c.source_topology);
+  if (!same) {
+    if (given.triangles.empty()) throw InputError(where + ": no triangles");
+    return load_mesh(std::move(given), where, 0, true).mesh;  // checked, normals, GPU order
+  }
+  TriMesh on;
+  on.positions = arrays_only ? *c.still : put(given.positions);
+  on.triangles = c.mesh->triangles;
+  if (on.positions == *c.still) {
+    on.positions = c.mesh->positions;
+    on.normals = c.mesh->normals;
+  } else {
+    moved = true;
+    if (given.normals.size() == given.vertex_count())
+      on.normals = put(given.normals);
+    else
+      compute_vertex_normals(on);
+  }
+  on.scalars = c.mesh->scalars;  // what a step does not carry (curvature, netCDF scalars)
+  take_arrays(on, given, c.order);
+  return on;
+}
+
+// The field and scalars of a surface, as the scene evaluates them.
+void evaluate_step(const StepContext& c, const TriMesh& on, StepData& d) {
+  d.field = evaluate_field(on, c.spec, c.tangent);
+  if (c.reverse)
+    for (glm::vec3& v : d.field) v = -v;
+  if (!c.color_by.empty()) d.color_scalar = vertex_scalar(on, d.field, c.color_by);
+  if (!c.beta_by.empty()) d.beta_scalar = vertex_scalar(on, d.field, c.beta_by);
+}
+
+StepData step_on_mesh(const StepContext& c, TriMesh given, const std::string& where,
+                      bool arrays_only = false) {
+  bool same = true, moved = false;
+  TriMesh on = mesh_on(c, std::move(given), where, arrays_only, same, moved);
+  StepData d;
+  evaluate_step(c, on, d);
+  if (!same) {
+    d.mesh = std::make_shared<const TriMesh>(std::move(on));
+  } else if (moved) {
+    d.positions = std::move(on.positions);
+    d.normals = std::move(on.normals);
+  }
+  return d;
+}
+
+std::size_t step_bytes(const StepData& d) {
+  return (d.field.size() + d.positions.size() + d.normals.size()) * sizeof(glm::vec3) +
+         (d.color_scalar.size() + d.beta_scalar.size()) * sizeof(float) +
+         (d.mesh ? d.mesh->vertex_count() * 3 * sizeof(glm::vec3) +
+                       d.mesh->triangle_count() * sizeof(Triangle)
+                 : 0);
+}
+
+// The steps, each read once while they fit in a share of the memory (the
+// scan for dt and the colour range reads them all, the animation again).
+std::function<StepData(std::size_t)> cached_steps(std::function<StepData(std::size_t)> read,
+                                                  std::size_t count) {
+  struct Cache {
+    std::mutex mutex;
+    std::vector<std::shared_ptr<const StepData>> steps;
+    std::size_t bytes = 0, budget = 0;
+  };
+  auto cache = std::make_shared<Cache>();
+  cache->steps.resize(count);
+  const std::uint64_t memory = memory_limit();
+  cache->budget = memory > 0 ? std::min<std::uint64_t>(memory / 8, 2ull << 30) : 512ull << 20;
+  return [cache, read = std::move(read)](std::size_t k) {
+    {
+      const std::lock_guard lock(cache->mutex);
+      if (k < cache->steps.size() && cache->steps[k]) return *cache->steps[k];
+    }
+    StepData d = read(k);
+    const std::lock_guard lock(cache->mutex);
+    const std::size_t bytes = step_bytes(d);
+    if (k < cache->steps.size() && cache->bytes + bytes <= cache->budget) {
+      cache->steps[k] = std::make_shared<const StepData>(d);
+      cache->bytes += bytes;
+    }
+    return d;
+  };
+}
+
+// The positions a step's surface has.
+const std::vector<glm::vec3>& step_positions(const StepData& d, const TriMesh& mesh) {
+  return d.mesh ? d.mesh->positions : !d.positions.empty() ? d.positions : mesh.positions;
+}
+
 bool wants_curvature(const std::string& name) {
   const std::string n = !name.empty() && name[0] == '-' ? name.substr(1) : name;
   return n == "kmin" || n == "kmax";
@@ -80,8 +205,15 @@ float fit_to_image(PreparedScene& p, int width, int height) {
   p.height = p.settings.height = height;
   const Camera camera(mesh_bounds(*p.mesh), p.camera,
                       static_cast<float>(width) / static_cast<float>(height));
-  const float speed =
+  // The fastest vertex of every step played, not only of the first (a run
+  // from rest has no flow there).
+  float speed =
       max_pixel_speed(p.mesh->positions, p.field, camera.view_projection(), width, height);
+  for (std::size_t k = 1; k < p.step_count && p.step_data; ++k) {
+    const StepData d = p.step_data(k);
+    speed = std::max(speed, max_pixel_speed(step_positions(d, *p.mesh), d.field,
+                                            camera.view_projection(), width, height));
+  }
   p.dt = s.dt > 0.0f ? s.dt : (speed > 0.0f ? s.step / speed : 0.0f);
   p.max_px = s.image_normalize && speed > 0.0f ? s.step : speed * p.dt;
   if (p.settings.object_noise) {
@@ -211,6 +343,11 @@ PreparedScene prepare(const Scene& s, std::optional<LoadedMesh> given) {
   p.mesh_name = loaded.demo || in_memory ? loaded.name : fs::path(s.mesh).filename().string();
   // Messages about the mesh's data name the file as given.
   const std::string mesh_label = loaded.demo || in_memory ? p.mesh_name : s.mesh;
+  p.source_vertices = loaded.file_vertices;
+  p.source_topology = loaded.file_topology;
+  p.vertex_order = loaded.vertex_order;
+  // The points as read: a later state whose points equal these stands still.
+  const auto still = std::make_shared<const std::vector<glm::vec3>>(mesh.positions);
 
   // ---- a series: its steps (all, or the time key's range or step)
   const bool series = !loaded.step_times.empty();
@@ -338,74 +475,82 @@ PreparedScene prepare(const Scene& s, std::optional<LoadedMesh> given) {
                                               : FieldSpec::parse("rotate:0,1,0");
   }
   const TangentMode tangent = s.tangent;
-  // The field at a step from a mesh file's arrays (file order) on this mesh.
-  const auto arrays_on_mesh = [spec = *field_spec, order = loaded.vertex_order,
-                               mesh_ptr = std::shared_ptr<const TriMesh>(mesh_ptr),
-                               tangent](const TriMesh& step) {
-    TriMesh on_mesh;
-    on_mesh.positions = mesh_ptr->positions;
-    on_mesh.normals = mesh_ptr->normals;
-    on_mesh.triangles = mesh_ptr->triangles;
-    take_arrays(on_mesh, step, order);
-    return evaluate_field(on_mesh, spec, tangent);
-  };
+  // The data at a step on this mesh: a series' surfaces (points that move,
+  // triangles that change), another file's arrays, a field at another time.
+  StepContext context;
+  context.mesh = mesh_ptr;
+  context.still = still;
+  context.order = loaded.vertex_order;
+  context.source_vertices = loaded.file_vertices;
+  context.source_topology = loaded.file_topology;
+  context.spec = *field_spec;
+  context.tangent = tangent;
+  context.reverse = s.reverse;
+  context.color_by = s.color_by;
+  context.beta_by = s.beta_by;
   if (!s.field_steps.empty()) {
     // An unsteady field: its steps, evaluated when the animation reaches them.
     p.step_count = s.field_steps.size();
-    p.step_field = [files = s.field_steps, expected = loaded.file_vertices, blocks = s.blocks,
-                    arrays_on_mesh](std::size_t k) {
+    p.step_data = [files = s.field_steps, expected = loaded.file_vertices, blocks = s.blocks,
+                   context](std::size_t k) {
       const std::string& file = files[k];
-      const TriMesh step = read_any_mesh(file, blocks);
+      TriMesh step = read_any_mesh(file, blocks);
       if (step.vertex_count() != expected)
         throw SettingError("field_step", file + ": " + std::to_string(step.vertex_count()) +
                                              " vertices, the mesh has " + std::to_string(expected));
       try {
-        return arrays_on_mesh(step);
+        return step_on_mesh(context, std::move(step), file, true);
       } catch (const InputError& e) {
-        throw SettingError("field_step", file + ": " + e.what());
+        throw SettingError("field_step", e.what());
       }
     };
   } else if (series && field_spec->kind == FieldKind::File && series_last > series_first) {
     p.step_count = series_last - series_first + 1;
-    p.step_field = [read = loaded.read_step, first = series_first, arrays_on_mesh,
-                    label = mesh_label](std::size_t k) {
+    p.step_data = [read = loaded.read_step, first = series_first, context,
+                   label = mesh_label](std::size_t k) {
+      const std::string where = label + ": step " + std::to_string(first + k);
       try {
-        return arrays_on_mesh(read(first + k));
+        return step_on_mesh(context, read(first + k), where);
       } catch (const SettingError&) {
         throw;
       } catch (const InputError& e) {
-        throw SettingError("field",
-                           label + ": step " + std::to_string(first + k) + ": " + e.what());
+        const std::string what = e.what();
+        throw SettingError("field", what.rfind(where, 0) == 0 ? what : where + ": " + what);
       }
     };
   } else if (s.time && s.time->last > s.time->first) {
     p.step_count = s.time->last - s.time->first + 1;
     if (field_spec->kind == FieldKind::Wind)
       read_lonlat_grid(field_spec->path, field_spec->east, s.time->last);  // the range exists
-    p.step_field = [spec = *field_spec, first = s.time->first,
-                    mesh_ptr = std::shared_ptr<const TriMesh>(mesh_ptr), tangent](std::size_t k) {
-      FieldSpec at = spec;
+    p.step_data = [context, first = s.time->first](std::size_t k) {
+      StepData d;
+      FieldSpec at = context.spec;
       at.time = first + k;
-      return evaluate_field(*mesh_ptr, at, tangent);
+      d.field = evaluate_field(*context.mesh, at, context.tangent);
+      if (context.reverse)
+        for (glm::vec3& v : d.field) v = -v;
+      if (!context.color_by.empty())
+        d.color_scalar = vertex_scalar(*context.mesh, d.field, context.color_by);
+      if (!context.beta_by.empty())
+        d.beta_scalar = vertex_scalar(*context.mesh, d.field, context.beta_by);
+      return d;
     };
   }
-  if (s.reverse && p.step_field)
-    p.step_field = [inner = std::move(p.step_field)](std::size_t k) {
-      std::vector<glm::vec3> v = inner(k);
-      for (glm::vec3& x : v) x = -x;
-      return v;
-    };
+  if (p.step_data) p.step_data = cached_steps(std::move(p.step_data), p.step_count);
   FieldReport field_report;
   try {
-    p.field =
-        p.step_field ? p.step_field(0) : evaluate_field(mesh, *field_spec, tangent, &field_report);
+    if (p.step_data) {
+      p.field = p.step_data(0).field;
+    } else {
+      p.field = evaluate_field(mesh, *field_spec, tangent, &field_report);
+      if (s.reverse)
+        for (glm::vec3& x : p.field) x = -x;
+    }
   } catch (const SettingError&) {
     throw;
   } catch (const InputError& e) {
     throw SettingError("field", mesh_label + ": " + e.what());
   }
-  if (s.reverse && !p.step_field)
-    for (glm::vec3& x : p.field) x = -x;
   if (field_report.outside_volume > 0)
     p.warnings.push_back(field_spec->path + ": " + std::to_string(field_report.outside_volume) +
                          " of " + std::to_string(mesh.vertex_count()) +
@@ -413,6 +558,13 @@ PreparedScene prepare(const Scene& s, std::optional<LoadedMesh> given) {
   if (field_report.non_finite_zeroed > 0)
     p.warnings.push_back(mesh_label + ": " + std::to_string(field_report.non_finite_zeroed) +
                          " vectors were NaN or infinite and are set to zero");
+
+  // ---- the steps: does the surface move (each step read once, and kept
+  // while the steps fit in memory)
+  for (std::size_t k = 0; k < p.step_count && p.step_data; ++k) {
+    const StepData d = p.step_data(k);
+    p.moving = p.moving || !d.positions.empty() || d.mesh;
+  }
 
   // ---- camera and dt
   p.mesh = mesh_ptr;
@@ -456,26 +608,37 @@ PreparedScene prepare(const Scene& s, std::optional<LoadedMesh> given) {
   // ---- scalars for colour and beta, and their ranges
   const auto scalar_range = [&](const std::string& name, const char* key,
                                 const std::optional<ScalarRange>& range, const char* range_key,
-                                std::vector<float>& values) {
+                                std::vector<float>& values, bool colour) {
     try {
       values = vertex_scalar(mesh, p.field, name);
     } catch (const InputError& e) {
       throw SettingError(key, mesh_label + ": " + e.what());
     }
-    if (!range) return quantile_range(values);
-    if (range->percentile) return quantile_range(values, range->lo / 100.0f, range->hi / 100.0f);
+    // Percentiles of every step played (a run from rest has none at the first).
+    std::vector<float> all;
+    if (p.step_data && p.step_count > 1 && (!range || range->percentile)) {
+      all = values;
+      for (std::size_t k = 1; k < p.step_count; ++k) {
+        const StepData d = p.step_data(k);
+        const std::vector<float>& v = colour ? d.color_scalar : d.beta_scalar;
+        all.insert(all.end(), v.begin(), v.end());
+      }
+    }
+    const std::vector<float>& sample = all.empty() ? values : all;
+    if (!range) return quantile_range(sample);
+    if (range->percentile) return quantile_range(sample, range->lo / 100.0f, range->hi / 100.0f);
     if (!(range->hi > range->lo)) throw SettingError(range_key, "expected LO < HI");
     return glm::vec2(range->lo, range->hi);
   };
   if (!s.color_by.empty()) {
     settings.use_color = true;
     settings.color_range =
-        scalar_range(s.color_by, "color_by", s.color_range, "color_range", p.color_scalar);
+        scalar_range(s.color_by, "color_by", s.color_range, "color_range", p.color_scalar, true);
   }
   if (!s.beta_by.empty()) {
     settings.use_beta = true;
     settings.beta_range =
-        scalar_range(s.beta_by, "beta_by", s.beta_range, "beta_range", p.beta_scalar);
+        scalar_range(s.beta_by, "beta_by", s.beta_range, "beta_range", p.beta_scalar, false);
   }
   settings.validate();
 
@@ -498,6 +661,43 @@ PreparedScene prepare_scene(const Scene& scene, TriMesh mesh, const std::string&
   return prepare(scene, for_key("mesh", [&] {
                    return load_mesh(std::move(mesh), name, scene.subdivide, true);
                  }));
+}
+
+}  // namespace ibfvs
+
+namespace ibfvs {
+
+PreparedScene prepare_change(const PreparedScene& prepared, TriMesh mesh, const std::string& name) {
+  const Scene& s = prepared.scene;
+  // Subdivided or displaced, the prepared mesh is not the given one moved.
+  if (s.subdivide > 0 || s.displace || !prepared.mesh ||
+      mesh.vertex_count() != prepared.source_vertices ||
+      topology_hash(mesh) != prepared.source_topology)
+    return prepare_scene(s, std::move(mesh), name);
+  StepContext c;
+  c.mesh = prepared.mesh;
+  c.still = std::shared_ptr<const std::vector<glm::vec3>>(prepared.mesh, &prepared.mesh->positions);
+  c.order = prepared.vertex_order;
+  c.source_vertices = prepared.source_vertices;
+  c.source_topology = prepared.source_topology;
+  c.spec = prepared.field_spec;
+  c.tangent = s.tangent;
+  c.reverse = s.reverse;
+  if (prepared.settings.use_color) c.color_by = s.color_by;
+  if (prepared.settings.use_beta) c.beta_by = s.beta_by;
+  bool same = true, moved = false;
+  TriMesh on = mesh_on(c, std::move(mesh), name, false, same, moved);
+  StepData d;
+  evaluate_step(c, on, d);
+  PreparedScene next = prepared;
+  next.step_count = 1;
+  next.step_data = nullptr;
+  next.moving = false;
+  next.field = std::move(d.field);
+  next.color_scalar = std::move(d.color_scalar);
+  next.beta_scalar = std::move(d.beta_scalar);
+  next.mesh = std::make_shared<const TriMesh>(std::move(on));
+  return next;
 }
 
 }  // namespace ibfvs

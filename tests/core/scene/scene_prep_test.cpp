@@ -247,8 +247,8 @@ TEST(ScenePrep, NumberedFilesAreTheStepsOfAnUnsteadyField) {
   s.mesh = (dir / "step_*.ply").string();
   const PreparedScene p = prepare_scene(s);
   ASSERT_EQ(p.step_count, 3u);
-  EXPECT_FLOAT_EQ(p.step_field(1)[0].x, 2.0f);
-  EXPECT_FLOAT_EQ(p.step_field(2)[0].x, 10.0f);  // step_10 after step_2
+  EXPECT_FLOAT_EQ(p.step_data(1).field[0].x, 2.0f);
+  EXPECT_FLOAT_EQ(p.step_data(2).field[0].x, 10.0f);  // step_10 after step_2
   // One step by the time key, reversed.
   s.time = TimeRange::parse("2");
   s.reverse = true;

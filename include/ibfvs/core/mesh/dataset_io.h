@@ -36,8 +36,10 @@ struct Dataset {
   TriMesh mesh;
   std::vector<std::string> blocks;  ///< the blocks read, for messages
   std::vector<double> times;        ///< the steps' time values; fewer than 2: steady
-  /// The arrays at step k (0 <= k < times.size()) on the same vertices, in
-  /// the same order as `mesh`; throws InputError naming the file.
+  /// The surface at step k (0 <= k < times.size()) with its arrays: the
+  /// same vertices in the same order as `mesh` where the mesh is fixed or
+  /// moves (its points may differ), others where it changes; throws
+  /// InputError naming the file.
   std::function<TriMesh(std::size_t)> step;
   std::vector<std::string> warnings;  ///< what was repaired or skipped, naming the file
 };

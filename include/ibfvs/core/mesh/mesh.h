@@ -67,6 +67,11 @@ std::vector<glm::vec3> triangle_to_vertex(const TriMesh& mesh,
 /// Drops triangles with a repeated vertex index or zero area; returns how many.
 std::size_t remove_degenerate_triangles(TriMesh& mesh);
 
+/// A 64-bit digest of the vertex count and the triangles, in their order:
+/// equal for two states of one surface whose points moved (a time step of a
+/// moving mesh), different where the connectivity changed.
+std::uint64_t topology_hash(const TriMesh& mesh);
+
 /// Edge and vertex counts that say whether a mesh is closed and manifold.
 struct Topology {
   std::size_t edges = 0;              ///< distinct undirected edges

@@ -17,13 +17,17 @@ struct LoadedMesh {
   bool demo = false;                 ///< no path was given
   bool generated_landscape = false;  ///< made by `landscape[:SEED[:CONTROLS[:RESOLUTION]]]`
   std::size_t file_vertices = 0;     ///< vertex count as read, before subdivision
+  /// topology_hash of the mesh as read (before subdivision and GPU order):
+  /// a later state of it with this hash has the same triangles.
+  std::uint64_t file_topology = 0;
   std::vector<unsigned> vertex_order;  ///< new index of each vertex (GPU order); empty: unchanged
   std::vector<std::string> warnings;   ///< what the reader repaired, or the demo's fallback
   /// A series (a .pvd, an OpenFOAM case's time folders, numbered files):
   /// the steps' times (2 or more), else empty.
   std::vector<double> step_times;
-  /// The arrays at step k on the file's vertices (file order, before
-  /// subdivision and GPU order); set with step_times.
+  /// The surface at step k as read (file order, before subdivision and GPU
+  /// order): its points (which may move), triangles (which may differ from
+  /// the first step's) and arrays; set with step_times.
   std::function<TriMesh(std::size_t)> read_step;
 };
 

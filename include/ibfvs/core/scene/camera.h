@@ -32,6 +32,8 @@ class Camera {
   /// Turns the camera about the vertical axis through the centre (the paper's
   /// "rotating object", seen from the object).
   void orbit(float degrees) { params_.azimuth_deg += degrees; }
+  /// A new image shape (width / height), the same view.
+  void set_aspect(float aspect) { aspect_ = aspect; }
 
   [[nodiscard]] glm::mat4 view() const;
   [[nodiscard]] glm::mat4 projection() const;

@@ -5,6 +5,7 @@
 // field (and the steps of an unsteady one), the colour and beta scalars with
 // their ranges, the camera, dt from the step in pixels, the surface image.
 
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -22,6 +23,20 @@
 
 namespace ibfvs {
 
+/// The data at one time step of an unsteady scene, on the prepared mesh.
+struct StepData {
+  std::vector<glm::vec3> field;  ///< per vertex of the step's surface
+  /// Where the surface moved (the first step's triangles, other points: a
+  /// moving or deforming mesh): positions and normals per vertex, in the
+  /// prepared mesh's order; empty: the prepared mesh's own.
+  std::vector<glm::vec3> positions, normals;
+  /// Where the step's triangles differ from the first step's (a topology
+  /// change, refinement, another vertex count): its own prepared mesh, with
+  /// `field` and the scalars on its vertices; null: the prepared mesh's.
+  std::shared_ptr<const TriMesh> mesh;
+  std::vector<float> color_scalar, beta_scalar;  ///< per vertex, where coloured (else empty)
+};
+
 struct PreparedScene {
   Scene scene;  ///< as given
   int width = 512, height = 512;
@@ -34,7 +49,18 @@ struct PreparedScene {
   FieldSpec field_spec;          ///< the field in force (with the elements)
   std::vector<glm::vec3> field;  ///< per vertex, at the first time step
   std::size_t step_count = 1;    ///< > 1: an unsteady field with this many steps
-  std::function<std::vector<glm::vec3>(std::size_t)> step_field;  ///< the field at a step
+  /// The data at a step (0 <= k < step_count; step 0 is `field` and `mesh`
+  /// with the scalars). Throws SettingError naming the file and the step.
+  std::function<StepData(std::size_t)> step_data;
+  /// Some step's surface moves or has other triangles (StepData).
+  bool moving = false;
+  /// The mesh as given, before subdivision and GPU order: its vertex count,
+  /// topology_hash, and the new index of each of its vertices (empty:
+  /// unchanged). A later state of it (prepare_change) with the same
+  /// triangles maps onto the prepared mesh with them.
+  std::size_t source_vertices = 0;
+  std::uint64_t source_topology = 0;
+  std::vector<unsigned> vertex_order;
   std::vector<float> color_scalar, beta_scalar;
   CameraParams camera;
   std::optional<CameraParams> lock_camera;
@@ -64,6 +90,16 @@ PreparedScene prepare_scene(const Scene& scene);
 /// normals computed when it has none, subdivided and ordered like a file's.
 /// `name` is what messages call it.
 PreparedScene prepare_scene(const Scene& scene, TriMesh mesh, const std::string& name);
+
+/// The next state of the prepared scene's mesh, given as the caller has it
+/// (a host's next time step, moved points, changed arrays: `mesh` in the
+/// order and with the meaning of the mesh the scene was prepared from). With
+/// the same triangles (topology_hash) it takes the prepared mesh's order and
+/// triangles, its points and arrays its own (normals from `mesh` where it has
+/// them, else computed); otherwise it is prepared afresh. The field and the
+/// colour and beta scalars follow the scene (their ranges stay the prepared
+/// scene's); camera, dt and settings stay. Throws InputError naming `name`.
+PreparedScene prepare_change(const PreparedScene& prepared, TriMesh mesh, const std::string& name);
 
 /// The prepared scene for another image size: the same mesh (shared, not read
 /// again), field and scalars, with dt from the step in pixels (unless the

@@ -210,11 +210,12 @@ void Session::change_data(PreparedScene next) {
   player_ = std::make_unique<StepPlayer>(scene_, *renderer_);
 }
 
-void Session::render_transition(const ViewState& view, int frames) {
-  for (int k = 1; k <= frames; ++k) {
-    renderer_->set_field_mix(static_cast<float>(k) / static_cast<float>(frames));
-    render(view);
-  }
+void Session::render_transition(const ViewState& view, int k, int frames) {
+  if (frames < 1 || k < 1 || k > frames)
+    throw InputError("render_transition: frame " + std::to_string(k) + " of " +
+                     std::to_string(frames));
+  renderer_->set_field_mix(static_cast<float>(k) / static_cast<float>(frames));
+  render(view);
 }
 
 }  // namespace ibfvs

@@ -271,7 +271,8 @@ TEST_F(RendererGLTest, ChangedDataGoesOnFromTheTexture) {
   Session unchanged(prepared);
   for (int k = 0; k < 34; ++k) unchanged.advance();
   session.change_data(std::move(next));
-  session.render_transition({session.camera().view(), session.camera().projection()}, 4);
+  for (int k = 1; k <= 4; ++k)
+    session.render_transition({session.camera().view(), session.camera().projection()}, k, 4);
   EXPECT_TRUE(session.renderer().moving());
   const auto with_before = [&](const Session& s) {
     return correlation(before, grey(s.read_output()), mask, s.renderer().read_coverage());

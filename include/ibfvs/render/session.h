@@ -23,6 +23,13 @@
 
 namespace ibfvs {
 
+/// Texture frames a host gives each change of its data (a time step) at
+/// least, where its renders since the last change fell short (ParaView's
+/// Frames Per Step): enough for the texture to take on the new flow
+/// (docs/paraview.md, "Time").
+inline constexpr int kDefaultFramesPerStep = 10;
+inline constexpr int kMaxFramesPerStep = 200;
+
 class Session {
  public:
   /// Uploads the mesh, field, scalars and surface image and initialises F_t
@@ -68,11 +75,12 @@ class Session {
   /// until the flow takes it on. The next frame shows the new data;
   /// render_transition spreads the change over several.
   void change_data(PreparedScene next);
-  /// `frames` frames seen with `view`, the data going from the last frame's
-  /// to change_data's in equal steps (points and field interpolated where
-  /// the triangles stayed): the texture frames a change of data is owed
-  /// (ParaView's Frames Per Step). The last one shows the new data.
-  void render_transition(const ViewState& view, int frames);
+  /// Frame `k` (1..frames) of a change of data spread over `frames` frames
+  /// seen with `view`: the data k/frames of the way from the last frame's
+  /// to change_data's (points and field interpolated where the triangles
+  /// stayed). Frame `frames` shows the new data. A host owes the texture
+  /// such frames at a change (kDefaultFramesPerStep).
+  void render_transition(const ViewState& view, int k, int frames);
   /// A new image size: the texture is resampled to it and goes on.
   void resize(int width, int height);
   /// A new renderer with the scene's current settings (a new noise scale):

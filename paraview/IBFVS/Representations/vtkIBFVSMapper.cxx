@@ -55,12 +55,17 @@ vtkStandardNewMacro(vtkIBFVSMapper);
 namespace {
 
 // The values each rank contributes to the frame's first reduction (a
-// maximum): whether some rank cannot draw the texture, whether some rank's
-// surface or settings changed (all then start afresh, so that the frame
-// counters and noise stay equal), and the whole surface's speed and bounds.
+// maximum): whether some rank cannot draw the texture; whether the texture
+// starts afresh (a new seed, a first surface), the view's size changed, the
+// noise grid changed, or some rank's data changed (all then do alike, so
+// that the frame counters and noise stay equal); the whole surface's speed
+// and bounds.
 enum Header {
   kBad,
-  kRebuild,
+  kRestart,
+  kResize,
+  kRegrid,
+  kChanged,
   kSpeed,
   kMinX,
   kMinY,
@@ -89,7 +94,9 @@ class vtkIBFVSMapper::Internals {
   int association = 0;
   std::string vectors;
   bool settings_changed = false;  // live settings: applied without starting afresh
-  bool restart = true;            // noise scale or seed: a new renderer
+  bool restart = true;            // a new seed, or asked: the texture starts afresh
+  bool regrid = false;            // a new noise scale: a new renderer, the texture goes on
+  int frames_per_step = ibfvs::kDefaultFramesPerStep;
 
   // ---- the surface
   vtkMTimeType input_time = 0;
@@ -100,8 +107,11 @@ class vtkIBFVSMapper::Internals {
   std::string problem;                   // why this rank cannot draw the texture
   float speed = 0.0f;                    // fastest vector of this piece
   glm::vec3 lower{0.0f}, upper{0.0f};    // its bounds (the header's, every frame)
-  bool retake = true;            // take the surface again (the vectors were set)
-  bool geometry_changed = true;  // a new surface: the session is made again
+  bool retake = true;        // take the surface again (the vectors were set)
+  bool data_changed = true;  // a new surface or array: the session takes it on
+  // Render() calls that drew the data as it is now: a change owes the
+  // texture the frames these fell short of frames_per_step.
+  int renders_at_data = 0;
 
   // ---- colour by ParaView's lookup table
   std::string colour_key;
@@ -111,7 +121,8 @@ class vtkIBFVSMapper::Internals {
   // ---- drawing
   std::unique_ptr<ibfvs::Session> session;
   int width = 0, height = 0;
-  int frame = 0;
+  int frame = 0;           // texture frames since the texture started afresh
+  int renderer_frame = 0;  // since the renderer was made (its statistics' schedule)
   vtkWeakPointer<vtkOpenGLRenderWindow> window;
   std::string warned;  // the last problem warned about
   std::string last_problem;
@@ -188,7 +199,26 @@ void vtkIBFVSMapper::SetVectors(int association, const char* name) {
   }
 IBFVS_SETTING(Alpha, double, alpha, static_cast<float>(std::clamp(value, 0.0, 1.0)), false)
 IBFVS_SETTING(Beta, double, beta, static_cast<float>(std::clamp(value, 0.0, 1.0)), false)
-IBFVS_SETTING(NoiseScale, double, scale, static_cast<float>(std::clamp(value, 1.0, 64.0)), true)
+void vtkIBFVSMapper::SetNoiseScale(double pixels) {
+  const auto v = static_cast<float>(std::clamp(pixels, 1.0, 64.0));
+  if (this->Internal->scene.scale == v) return;
+  this->Internal->scene.scale = v;
+  this->Internal->regrid = true;
+  this->Modified();
+}
+
+void vtkIBFVSMapper::SetFramesPerStep(int frames) {
+  const int v = std::clamp(frames, 1, ibfvs::kMaxFramesPerStep);
+  if (this->Internal->frames_per_step == v) return;
+  this->Internal->frames_per_step = v;
+  this->Modified();
+}
+
+void vtkIBFVSMapper::Restart() {
+  this->Internal->restart = true;
+  this->Modified();
+}
+
 IBFVS_SETTING(StepPixels, double, step, static_cast<float>(std::clamp(value, 0.0, 64.0)), false)
 IBFVS_SETTING(TimeProfile, int, profile,
               static_cast<ibfvs::NoiseProfile>(
@@ -399,6 +429,51 @@ void vtkIBFVSMapper::RedrawAfterFXAA() {
   in.window->GetState()->Reset();
 }
 
+// ------------------------------------------------------------ under MPI
+
+// After each frame, F_t (and F, where the contrast statistics are due) is
+// composited by nearest depth across the ranks; an empty piece takes part
+// with empty images.
+void vtkIBFVSMapper::CompositeFrame(vtkMultiProcessController* controller) {
+  Internals& in = *this->Internal;
+  ibfvs::Session* session = in.session.get();
+  const ibfvs::gl::SavedState saved;  // the reads bind the library's framebuffers
+  const int w = in.width, h = in.height;
+  ibfvs::ImageF depth = session ? session->renderer().read_depth() : ibfvs::ImageF(w, h, 1, 1.0f);
+  ibfvs::ImageF texture = session ? session->renderer().read_texture_raw()
+                                  : ibfvs::ImageF(w, h, ibfvs::IbfvsRenderer::kRawChannels, 0.0f);
+  // Every rank counts its renderer's frames alike: the statistics are due on the same ones.
+  const bool statistics = in.scene.contrast > 0.0f &&
+                          in.renderer_frame % ibfvs::IbfvsRenderer::kStatsEvery == 0;
+  ibfvs::ImageF output;
+  std::vector<ibfvs::ImageF*> images{&texture};
+  if (statistics) {
+    output = session ? session->renderer().read_output_raw() : ibfvs::ImageF(w, h, 4, 0.0f);
+    images.push_back(&output);
+  }
+  ibfvs::CompositeGroup group;
+  group.rank = controller->GetLocalProcessId();
+  group.size = controller->GetNumberOfProcesses();
+  group.min_all = [controller](std::span<std::uint64_t> values) {
+    std::vector<unsigned long> send(values.begin(), values.end());
+    controller->AllReduce(send.data(), reinterpret_cast<unsigned long*>(values.data()),
+                          static_cast<vtkIdType>(values.size()), vtkCommunicator::MIN_OP);
+  };
+  group.sum_all = [controller](std::span<float> values) {
+    std::vector<float> send(values.begin(), values.end());
+    controller->AllReduce(send.data(), values.data(), static_cast<vtkIdType>(values.size()),
+                          vtkCommunicator::SUM_OP);
+  };
+  ibfvs::composite_nearest(images, depth, group);
+  if (session) {
+    session->renderer().write_texture_raw(texture);
+    if (statistics) {
+      session->renderer().write_output_raw(output);
+      session->renderer().run_deferred_statistics();
+    }
+  }
+}
+
 // ------------------------------------------------------------ one frame
 
 void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor) {
@@ -417,7 +492,6 @@ void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor) {
 
   vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
   const int ranks = controller ? controller->GetNumberOfProcesses() : 1;
-  const int rank = controller ? controller->GetLocalProcessId() : 0;
 
   // ---- this rank's surface (again only when the data or the vectors changed)
   vtkDataObject* input = this->GetInputDataObject(0, 0);
@@ -442,7 +516,7 @@ void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor) {
       }
     }
     in.colour_key.clear();
-    in.geometry_changed = true;
+    in.data_changed = true;
   }
   if (in.problem.empty() && epoxy_gl_version() < 45) {
     in.problem = "needs OpenGL 4.5 (this context has " + std::to_string(epoxy_gl_version() / 10) +
@@ -451,13 +525,16 @@ void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor) {
 
   int width = 0, height = 0, x0 = 0, y0 = 0;
   ren->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
-  const bool resized = width != in.width || height != in.height;
+  width = std::max(width, 1);
+  height = std::max(height, 1);
 
-  // ---- the ranks agree: all draw the texture or none, all start afresh together
+  // ---- the ranks agree: all draw the texture or none, all take a change alike
   double header[kHeaderSize];
   header[kBad] = in.problem.empty() ? 0.0 : 1.0;
-  header[kRebuild] =
-      in.geometry_changed || in.restart || resized || (in.mesh && !in.session) ? 1.0 : 0.0;
+  header[kRestart] = in.restart || (in.mesh && !in.session) ? 1.0 : 0.0;
+  header[kResize] = width != in.width || height != in.height ? 1.0 : 0.0;
+  header[kRegrid] = in.regrid ? 1.0 : 0.0;
+  header[kChanged] = in.data_changed ? 1.0 : 0.0;
   header[kSpeed] = in.speed;
   for (int k = 0; k < 3; ++k) {
     header[kMinX + k] = -1e300;
@@ -492,37 +569,67 @@ void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor) {
   in.warned.clear();
   in.last_problem.clear();
 
-  if (header[kRebuild] > 0.0) {
-    in.session.reset();
-    in.width = width;
-    in.height = height;
-    in.frame = 0;
-    in.geometry_changed = in.restart = in.settings_changed = false;
-    in.colour_key.clear();
-    if (in.mesh) {
-      try {
+  // ---- the session: made, or taking on a new size, noise grid or data
+  // (the texture goes on from where it is; only a restart starts afresh).
+  // The texture frames of this render: one; where the data changed or the
+  // texture started, also the frames_per_step that the renders since the
+  // last change fell short of (Save Animation renders each time step once,
+  // Play between steps renders on).
+  const bool restart = header[kRestart] > 0.0;
+  const bool changed = header[kChanged] > 0.0 || restart;
+  const bool new_renderer = restart || header[kResize] > 0.0 || header[kRegrid] > 0.0;
+  const int frames =
+      changed ? 1 + std::max(0, in.frames_per_step - std::max(in.renders_at_data, 1)) : 1;
+  try {
+    if (restart || (!in.mesh && in.session)) {
+      in.session.reset();
+      in.frame = 0;
+      in.restart = false;
+      if (in.mesh) {
         ibfvs::Scene s = in.scene;
-        s.width = std::max(width, 1);
-        s.height = std::max(height, 1);
+        s.width = width;
+        s.height = height;
         s.field = ibfvs::FieldSpec::parse("file");
         in.session =
             std::make_unique<ibfvs::Session>(ibfvs::prepare_scene(s, *in.mesh, "the input"));
-        const double dx = header[kMaxX] + header[kMinX], dy = header[kMaxY] + header[kMinY],
-                     dz = header[kMaxZ] + header[kMinZ];
-        const double diagonal = std::sqrt(dx * dx + dy * dy + dz * dz);
-        if (diagonal > 0.0 && std::isfinite(diagonal))
-          in.session->renderer().set_probe_length(static_cast<float>(1e-3 * diagonal));
-      } catch (const std::exception& e) {
-        // This rank still takes part in the compositing (as an empty
-        // piece); the next frame's agreement turns every rank plain.
-        in.problem = e.what();
-        in.session.reset();
       }
+    } else if (in.session) {
+      if (header[kResize] > 0.0) in.session->resize(width, height);
+      if (header[kRegrid] > 0.0) {
+        in.session->scene().scene.scale = in.scene.scale;
+        in.session->scene().settings.noise.scale = in.scene.scale;
+        in.session->rebuild(false);
+      }
+      if (in.data_changed && in.mesh)
+        in.session->change_data(ibfvs::prepare_change(in.session->scene(), *in.mesh, "the input"));
     }
+  } catch (const std::exception& e) {
+    // This rank still takes part in the compositing (as an empty piece);
+    // the next frame's agreement turns every rank plain.
+    in.problem = e.what();
+    in.session.reset();
   }
+  if (new_renderer || changed) {
+    // A new renderer, or new data: the settings and colours again.
+    in.settings_changed = true;
+    in.colour_key.clear();
+  }
+  if (new_renderer) in.renderer_frame = 0;
+  in.width = width;
+  in.height = height;
+  in.regrid = false;
+  in.data_changed = false;
+  if (changed) in.renders_at_data = 0;
+  ++in.renders_at_data;
 
   ibfvs::Session* session = in.session.get();
+  ibfvs::ViewState view;
   if (session) {
+    const double dx = header[kMaxX] + header[kMinX], dy = header[kMaxY] + header[kMinY],
+                 dz = header[kMaxZ] + header[kMinZ];
+    const double diagonal = std::sqrt(dx * dx + dy * dy + dz * dz);
+    if (diagonal > 0.0 && std::isfinite(diagonal))
+      session->renderer().set_probe_length(static_cast<float>(1e-3 * diagonal));
     ibfvs::RenderSettings settings = session->renderer().settings();
     const ibfvs::RenderSettings before = settings;
     ibfvs::apply_texture_settings(in.scene, settings);
@@ -559,7 +666,7 @@ void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor) {
     vtkMatrix3x3* normal = nullptr;
     auto* camera = vtkOpenGLCamera::SafeDownCast(ren->GetActiveCamera());
     camera->GetKeyMatrices(ren, wcvc, normal, vcdc, wcdc);
-    ibfvs::ViewState view{from_vtk_transposed(wcvc), from_vtk_transposed(vcdc)};
+    view = ibfvs::ViewState{from_vtk_transposed(wcvc), from_vtk_transposed(vcdc)};
     if (!actor->GetIsIdentity()) {
       vtkMatrix4x4* mcwc = nullptr;
       vtkMatrix3x3* actor_normal = nullptr;
@@ -582,46 +689,14 @@ void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor) {
                : static_cast<float>(in.scene.step * world_per_pixel / header[kSpeed]);
     session->set_dt(dt);
     session->renderer().defer_statistics(ranks > 1);
-    session->render(view);
   }
 
-  // ---- under MPI: F_t (and F for the statistics) composited by nearest depth
-  if (ranks > 1) {
-    const ibfvs::gl::SavedState saved;  // the reads bind the library's framebuffers
-    const int w = in.width, h = in.height;
-    ibfvs::ImageF depth = session ? session->renderer().read_depth() : ibfvs::ImageF(w, h, 1, 1.0f);
-    ibfvs::ImageF texture =
-        session ? session->renderer().read_texture_raw()
-                : ibfvs::ImageF(w, h, ibfvs::IbfvsRenderer::kRawChannels, 0.0f);
-    // Every rank counts frames alike; the statistics are due on the same ones.
-    const bool statistics = in.scene.contrast > 0.0f && in.frame % 4 == 0;
-    ibfvs::ImageF output;
-    std::vector<ibfvs::ImageF*> images{&texture};
-    if (statistics) {
-      output = session ? session->renderer().read_output_raw() : ibfvs::ImageF(w, h, 4, 0.0f);
-      images.push_back(&output);
-    }
-    ibfvs::CompositeGroup group;
-    group.rank = rank;
-    group.size = ranks;
-    group.min_all = [controller](std::span<std::uint64_t> values) {
-      std::vector<unsigned long> send(values.begin(), values.end());
-      controller->AllReduce(send.data(), reinterpret_cast<unsigned long*>(values.data()),
-                            static_cast<vtkIdType>(values.size()), vtkCommunicator::MIN_OP);
-    };
-    group.sum_all = [controller](std::span<float> values) {
-      std::vector<float> send(values.begin(), values.end());
-      controller->AllReduce(send.data(), values.data(), static_cast<vtkIdType>(values.size()),
-                            vtkCommunicator::SUM_OP);
-    };
-    ibfvs::composite_nearest(images, depth, group);
-    if (session) {
-      session->renderer().write_texture_raw(texture);
-      if (statistics) {
-        session->renderer().write_output_raw(output);
-        session->renderer().run_deferred_statistics();
-      }
-    }
+  // ---- the frames, each composited under MPI (every rank renders alike)
+  for (int k = 1; k <= frames; ++k) {
+    if (session) session->render_transition(view, k, frames);
+    if (ranks > 1) this->CompositeFrame(controller);
+    ++in.frame;
+    ++in.renderer_frame;
   }
 
   if (session) {
@@ -635,5 +710,4 @@ void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor) {
     // ParaView's state cache reads the context again.
     window->GetState()->Reset();
   }
-  ++in.frame;
 }

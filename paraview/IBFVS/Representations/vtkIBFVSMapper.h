@@ -16,6 +16,8 @@
 #include "IBFVSRepresentationsModule.h"  // export macro
 #include "vtkCompositePolyDataMapper2.h"
 
+class vtkMultiProcessController;
+
 class IBFVSREPRESENTATIONS_EXPORT vtkIBFVSMapper : public vtkCompositePolyDataMapper2 {
  public:
   static vtkIBFVSMapper* New();
@@ -40,6 +42,12 @@ class IBFVSREPRESENTATIONS_EXPORT vtkIBFVSMapper : public vtkCompositePolyDataMa
   void SetSharpen(double k);
   void SetResample(int mode);  // ibfvs::Resample
   void SetSeed(int seed);
+  /// At least this many texture frames for each change of the data (a time
+  /// step): a change adds the frames that the renders since the last one
+  /// fell short of (Save Animation renders a step once; Play renders on).
+  void SetFramesPerStep(int frames);
+  /// Starts the texture afresh from noise at the next render.
+  void Restart();
 
   /// Frames drawn with the texture since it last started afresh.
   int GetFrame();
@@ -55,6 +63,7 @@ class IBFVSREPRESENTATIONS_EXPORT vtkIBFVSMapper : public vtkCompositePolyDataMa
   void operator=(const vtkIBFVSMapper&) = delete;
 
   void ObserveRenderer(vtkRenderer* ren);
+  void CompositeFrame(vtkMultiProcessController* controller);
   void RedrawAfterFXAA();
 
   class Internals;

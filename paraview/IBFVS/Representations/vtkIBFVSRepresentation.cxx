@@ -66,4 +66,10 @@ IBFVS_FORWARD(Contrast, double)
 IBFVS_FORWARD(Sharpen, double)
 IBFVS_FORWARD(Resample, int)
 IBFVS_FORWARD(Seed, int)
+IBFVS_FORWARD(FramesPerStep, int)
 #undef IBFVS_FORWARD
+
+void vtkIBFVSRepresentation::RestartTexture() {
+  this->IBFVSMapper->Restart();
+  this->IBFVSLODMapper->Restart();
+}

@@ -40,6 +40,10 @@ class IBFVSREPRESENTATIONS_EXPORT vtkIBFVSRepresentation
   void SetSharpen(double k);
   void SetResample(int mode);  // ibfvs::Resample
   void SetSeed(int seed);
+  /// Texture frames a change of the data (a time step) is given at least.
+  void SetFramesPerStep(int frames);
+  /// Starts the texture afresh (the panel's Restart Texture button).
+  void RestartTexture();
 
   int ProcessViewRequest(vtkInformationRequestKey* request_type, vtkInformation* inInfo,
                          vtkInformation* outInfo) override;

@@ -16,6 +16,10 @@
 #   calculator [name, function, later function]: colour by an array computed
 #              from the data, its function changed after the frames, then
 #              frames again (-changed.png) and Surface's (-reference-changed.png)
+#   animation  a series played after the frames: {"mode": "save"} File > Save
+#              Animation, one frame per time step (OUT.0000.png, ...); or
+#              {"mode": "play", "renders": R}: R renders at each time step, the
+#              first and the last two saved (-stepK-rJ.png)
 import json
 import sys
 
@@ -122,6 +126,22 @@ if calculator is not None:
         Render(view)
     SaveScreenshot(cfg["out"] + "-changed.png", view, ImageResolution=[w, h])
     reference("-changed")
+animation = cfg.get("animation")
+if animation:
+    scene = GetAnimationScene()
+    scene.UpdateAnimationUsingDataTimeSteps()
+    times = list(GetTimeKeeper().TimestepValues)
+    if animation["mode"] == "save":
+        SaveAnimation(cfg["out"] + ".png", view, ImageResolution=[w, h])
+    else:
+        renders = animation["renders"]
+        for k, t in enumerate(times):
+            view.ViewTime = t  # as Play's next step, without the scene's own extra render
+            for r in range(renders):
+                Render(view)
+                if r in (0, renders - 2, renders - 1):
+                    SaveScreenshot("%s-step%d-r%d.png" % (cfg["out"], k, r), view,
+                                   ImageResolution=[w, h])
 with open(cfg["out"] + ".json", "w") as f:
     json.dump({"available": available}, f)
 print("rendered", cfg["frames"], "frames")

@@ -551,10 +551,19 @@ Dataset read(const DatasetRequest& request) {
     // Each step's whole surface: a moving mesh's points move, a changing
     // mesh's triangles differ (scene_prep takes either on).
     d.step = [request](std::size_t k) {
-      const IsolatedBytes step_bytes =
-          read_in_child(request.path, [&](ByteWriter& out) { read_step_bytes(request, k, out); });
-      ByteReader step_in(step_bytes.view(), request.path.string());
-      return get_mesh(step_in);
+      try {
+        const IsolatedBytes step_bytes =
+            read_in_child(request.path, [&](ByteWriter& out) { read_step_bytes(request, k, out); });
+        ByteReader step_in(step_bytes.view(), request.path.string());
+        return get_mesh(step_in);
+      } catch (const InputError& e) {
+        // "PATH: problem" becomes "PATH: step K: problem".
+        const std::string path = request.path.string(), what = e.what();
+        const std::string step = "step " + std::to_string(k) + ": ";
+        if (what.rfind(path + ": ", 0) == 0)
+          throw InputError(path + ": " + step + what.substr(path.size() + 2));
+        throw InputError(path + ": " + step + what);
+      }
     };
   }
   return d;

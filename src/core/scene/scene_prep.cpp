@@ -343,11 +343,6 @@ PreparedScene prepare(const Scene& s, std::optional<LoadedMesh> given) {
   p.mesh_name = loaded.demo || in_memory ? loaded.name : fs::path(s.mesh).filename().string();
   // Messages about the mesh's data name the file as given.
   const std::string mesh_label = loaded.demo || in_memory ? p.mesh_name : s.mesh;
-  p.source_vertices = loaded.file_vertices;
-  p.source_topology = loaded.file_topology;
-  p.vertex_order = loaded.vertex_order;
-  // The points as read: a later state whose points equal these stands still.
-  const auto still = std::make_shared<const std::vector<glm::vec3>>(mesh.positions);
 
   // ---- a series: its steps (all, or the time key's range or step)
   const bool series = !loaded.step_times.empty();
@@ -365,8 +360,34 @@ PreparedScene prepare(const Scene& s, std::optional<LoadedMesh> given) {
       throw SettingError("time", mesh_label + ": has " + std::to_string(count) + " steps (0.." +
                                      std::to_string(count - 1) + "), asked for " +
                                      s.time->to_string());
+    // The series' step k as the prepared mesh: its points in the first
+    // step's order where its triangles are the first step's, else its own
+    // mesh (what a moving or changing mesh is at that step).
+    const auto adopt = [&](std::size_t k, TriMesh step) {
+      const std::string where = mesh_label + ": step " + std::to_string(k);
+      if (step.vertex_count() != loaded.file_vertices ||
+          topology_hash(step) != loaded.file_topology) {
+        LoadedMesh own = for_key("mesh", [&] { return load_mesh(std::move(step), where, 0); });
+        mesh = std::move(own.mesh);
+        loaded.vertex_order = std::move(own.vertex_order);
+        loaded.file_vertices = own.file_vertices;
+        loaded.file_topology = own.file_topology;
+        return;
+      }
+      std::vector<glm::vec3> moved = loaded.vertex_order.empty()
+                                         ? step.positions
+                                         : remap_vertex_data(step.positions, loaded.vertex_order);
+      if (moved != mesh.positions) {
+        TriMesh check;
+        check.positions = moved;
+        for_key("mesh", [&] { validate_mesh(check, where); });
+        mesh.positions = std::move(moved);
+        compute_vertex_normals(mesh);
+      }
+      take_arrays(mesh, step, loaded.vertex_order);
+    };
     if (series_first == series_last && series_first > 0)
-      take_arrays(mesh, loaded.read_step(series_first), loaded.vertex_order);
+      adopt(series_first, loaded.read_step(series_first));
     // A solver's fields that start later than the mesh (OpenFOAM writes
     // wallShearStress from the first iteration on, not at time 0): with no
     // time asked for, the series starts at the first step that has the array.
@@ -376,9 +397,9 @@ PreparedScene prepare(const Scene& s, std::optional<LoadedMesh> given) {
     if (!s.time && field_spec && field_spec->kind == FieldKind::File &&
         !field_spec->array.empty() && !has(mesh, field_spec->array)) {
       for (std::size_t k = 1; k < count; ++k) {
-        const TriMesh step = loaded.read_step(k);
+        TriMesh step = loaded.read_step(k);
         if (!has(step, field_spec->array)) continue;
-        take_arrays(mesh, step, loaded.vertex_order);
+        adopt(k, std::move(step));
         p.warnings.push_back(
             mesh_label + ": " +
             (k == 1 ? "step 0 has" : "steps 0.." + std::to_string(k - 1) + " have") + " no '" +
@@ -388,6 +409,11 @@ PreparedScene prepare(const Scene& s, std::optional<LoadedMesh> given) {
       }
     }
   }
+  p.source_vertices = loaded.file_vertices;
+  p.source_topology = loaded.file_topology;
+  p.vertex_order = loaded.vertex_order;
+  // The points as read: a later state whose points equal these stands still.
+  const auto still = std::make_shared<const std::vector<glm::vec3>>(mesh.positions);
   const bool field_is_file =
       (field_spec && field_spec->kind == FieldKind::File) ||
       (!field_spec && (!mesh.vector_arrays.empty() || mesh.vectors.size() == mesh.vertex_count()));

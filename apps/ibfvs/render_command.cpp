@@ -264,6 +264,11 @@ int run_render(const Scene& o, const std::string& scene_file) {
           out.c_str(), report.page, report.scene, report.runtime, mesh_name.c_str(),
           prepared.mesh->vertex_count(), prepared.mesh->triangle_count(),
           field_spec.to_string().c_str());
+    if (!o.quiet && report.moving_vertices > 0)
+      std::printf(
+          "ibfvs: the surface moves: %zu of its vertices, %zu sets of their points for "
+          "%zu steps, %zu bytes\n",
+          report.moving_vertices, report.motion_sets, prepared.step_count, report.motion);
     return 0;
   }
 

@@ -181,8 +181,9 @@ std::string look_json(const PreparedScene& q, const std::string& name, std::stri
   // Random-cell colours make F_t a colour texture, as in the renderer.
   const bool colour_texture =
       shaders::colour_background(s) || q.scene.init == InitMode::RandomCells;
-  const shaders::ShaderFeatures f =
+  shaders::ShaderFeatures f =
       shaders::features_for(s, colour_texture, !q.surface_image.pixels.empty(), false);
+  f.moving = q.moving;
   const NoiseGrid grid(q.width, q.height, s.noise);
   const glm::ivec2 phase_size = glm::min(glm::ivec2(grid.columns(), grid.rows()), finest);
   const std::vector<shaders::UniformValue> grid_uniforms = {
@@ -283,6 +284,19 @@ std::string web_page(const PreparedScene& p, WebPageReport* report, const WebPag
                      " triangles, more than a page takes (" + std::to_string(limits.triangles) +
                      "); subdivide less or decimate the mesh");
   const std::size_t steps = std::max<std::size_t>(p.step_count, 1);
+  // A surface that moves: every step's points and normals (a step with
+  // triangles of its own is not a page's yet).
+  std::vector<StepData> motion;
+  if (p.moving && p.step_data) {
+    for (std::size_t k = 0; k < steps; ++k) {
+      StepData d = p.step_data(k);
+      if (d.mesh)
+        throw InputError(what + ": step " + std::to_string(k) +
+                         " has other triangles than the first (a changing mesh); a page takes "
+                         "a series whose points move, on one set of triangles");
+      motion.push_back(std::move(d));
+    }
+  }
   if (steps * mesh.vertex_count() > limits.vectors)
     throw InputError(what + ": " + std::to_string(steps) + " time steps of " +
                      std::to_string(mesh.vertex_count()) + " vectors, more than a page takes (" +
@@ -300,6 +314,13 @@ std::string web_page(const PreparedScene& p, WebPageReport* report, const WebPag
   const NoiseGrid grid(p.width, p.height, finest_noise);
   const Bounds bounds = mesh_bounds(mesh);
   const Camera camera(bounds, p.camera, static_cast<float>(p.width) / static_cast<float>(p.height));
+  // The box the positions are stored in: every step's points.
+  glm::vec3 lo = bounds.min, hi = bounds.max;
+  for (const StepData& d : motion)
+    for (const glm::vec3& r : d.positions) {
+      lo = glm::min(lo, r);
+      hi = glm::max(hi, r);
+    }
 
   Block block;
   // Positions in 16 bits within the box; normals in 8-bit snorm; vectors in
@@ -307,18 +328,21 @@ std::string web_page(const PreparedScene& p, WebPageReport* report, const WebPag
   std::vector<std::uint16_t> positions;
   std::vector<std::int8_t> normals;
   std::vector<std::uint16_t> vectors;
-  positions.reserve(mesh.positions.size() * 3);
-  const glm::vec3 lo = bounds.min, extent = bounds.max - bounds.min;
-  for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+  positions.reserve(mesh.positions.size() * 4);
+  const glm::vec3 extent = hi - lo;
+  // Four per vertex: the codec's stride is a multiple of 4 bytes.
+  const auto put_vertex = [&](const glm::vec3& r, const glm::vec3& n, std::vector<std::uint16_t>& q,
+                              std::vector<std::int8_t>& m) {
     for (int c = 0; c < 3; ++c) {
-      const float t = extent[c] > 0.0f ? (mesh.positions[i][c] - lo[c]) / extent[c] : 0.0f;
-      positions.push_back(
-          static_cast<std::uint16_t>(std::lround(std::clamp(t, 0.0f, 1.0f) * 65535.0f)));
-      normals.push_back(snorm8(mesh.normals[i][c]));
+      const float t = extent[c] > 0.0f ? (r[c] - lo[c]) / extent[c] : 0.0f;
+      q.push_back(static_cast<std::uint16_t>(std::lround(std::clamp(t, 0.0f, 1.0f) * 65535.0f)));
+      m.push_back(snorm8(n[c]));
     }
-    positions.push_back(0);  // four per vertex: the codec's stride is a multiple of 4 bytes
-    normals.push_back(0);
-  }
+    q.push_back(0);
+    m.push_back(0);
+  };
+  for (std::size_t i = 0; i < mesh.positions.size(); ++i)
+    put_vertex(mesh.positions[i], mesh.normals[i], positions, normals);
   // Every time step of an unsteady field, one after the other.
   vectors.reserve(steps * mesh.positions.size() * 4);
   for (std::size_t step = 0; step < steps; ++step) {
@@ -326,6 +350,65 @@ std::string web_page(const PreparedScene& p, WebPageReport* report, const WebPag
     for (const glm::vec3& v : field) {
       for (int c = 0; c < 3; ++c) vectors.push_back(glm::packHalf1x16(v[c]));
       vectors.push_back(0);
+    }
+  }
+  // The motion: the vertices whose stored point or normal differs from the
+  // first step's at some step, and for each step theirs, a step the same as
+  // the one before it stored once.
+  std::string motion_json;
+  if (!motion.empty()) {
+    std::vector<std::vector<std::uint16_t>> step_q(steps);
+    std::vector<std::vector<std::int8_t>> step_n(steps);
+    std::vector<std::uint8_t> moves(mesh.vertex_count(), 0);
+    for (std::size_t k = 0; k < steps; ++k) {
+      const StepData& d = motion[k];
+      const std::vector<glm::vec3>& r = d.positions.empty() ? mesh.positions : d.positions;
+      const std::vector<glm::vec3>& n = d.normals.empty() ? mesh.normals : d.normals;
+      step_q[k].reserve(r.size() * 4);
+      step_n[k].reserve(r.size() * 4);
+      for (std::size_t i = 0; i < r.size(); ++i) put_vertex(r[i], n[i], step_q[k], step_n[k]);
+      for (std::size_t i = 0; i < r.size(); ++i)
+        for (int c = 0; c < 3; ++c)
+          moves[i] |= step_q[k][4 * i + c] != positions[4 * i + c] ||
+                      step_n[k][4 * i + c] != normals[4 * i + c];
+    }
+    std::vector<std::uint32_t> moving;
+    for (std::size_t i = 0; i < moves.size(); ++i)
+      if (moves[i]) moving.push_back(static_cast<std::uint32_t>(i));
+    std::vector<std::uint16_t> set_q;
+    std::vector<std::int8_t> set_n;
+    std::vector<int> set_of(steps, 0);
+    std::vector<std::uint16_t> last_q;
+    std::vector<std::int8_t> last_n;
+    int sets = 0;
+    for (std::size_t k = 0; k < steps; ++k) {
+      std::vector<std::uint16_t> q;
+      std::vector<std::int8_t> m;
+      q.reserve(moving.size() * 4);
+      m.reserve(moving.size() * 4);
+      for (const std::uint32_t i : moving) {
+        q.insert(q.end(), step_q[k].begin() + 4 * i, step_q[k].begin() + 4 * i + 4);
+        m.insert(m.end(), step_n[k].begin() + 4 * i, step_n[k].begin() + 4 * i + 4);
+      }
+      if (k > 0 && q == last_q && m == last_n) {
+        set_of[k] = sets - 1;
+        continue;
+      }
+      set_q.insert(set_q.end(), q.begin(), q.end());
+      set_n.insert(set_n.end(), m.begin(), m.end());
+      last_q = std::move(q);
+      last_n = std::move(m);
+      set_of[k] = sets++;
+    }
+    const std::size_t before = block.bytes().size();
+    motion_json = ",\"motion\":{\"moving\":" + block.add(moving) +
+                  ",\"positions\":" + block.add_vertices(set_q, 4) +
+                  ",\"normals\":" + block.add_vertices(set_n, 4) +
+                  ",\"sets\":" + json_numbers(set_of) + "}";
+    if (report) {
+      report->moving_vertices = moving.size();
+      report->motion_sets = static_cast<std::size_t>(sets);
+      report->motion = block.bytes().size() - before;
     }
   }
   std::vector<std::uint32_t> indices;
@@ -348,10 +431,9 @@ std::string web_page(const PreparedScene& p, WebPageReport* report, const WebPag
   }
   std::string arrays =
       "{\"positions\":" +
-      block.add_vertices(
-          positions, 4,
-          ",\"min\":" + json_numbers(std::vector<float>{lo.x, lo.y, lo.z}) + ",\"max\":" +
-              json_numbers(std::vector<float>{bounds.max.x, bounds.max.y, bounds.max.z})) +
+      block.add_vertices(positions, 4,
+                         ",\"min\":" + json_numbers(std::vector<float>{lo.x, lo.y, lo.z}) +
+                             ",\"max\":" + json_numbers(std::vector<float>{hi.x, hi.y, hi.z})) +
       ",\"normals\":" + block.add_vertices(normals, 4) +
       ",\"vectors\":" + block.add_vertices(vectors, 4) +
       ",\"indices\":" + block.add_indices(indices, mesh.positions.size()) +
@@ -389,7 +471,7 @@ std::string web_page(const PreparedScene& p, WebPageReport* report, const WebPag
     arrays += ",\"cells\":" + block.add(cells, ",\"columns\":" + std::to_string(columns) +
                                                    ",\"scale\":" + json_number(s.noise.scale));
   }
-  arrays += "}";
+  arrays += motion_json + "}";
 
   const auto matrix = [](const glm::mat4& m) {
     return json_numbers(std::vector<float>(glm::value_ptr(m), glm::value_ptr(m) + 16));

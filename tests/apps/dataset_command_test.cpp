@@ -150,9 +150,11 @@ std::vector<bool> surface_of(const std::filesystem::path& png) {
 TEST_F(DatasetCommand, SeriesWhosePointsMovePlayOnEachStepsPoints) {
   std::string pvd = "<VTKFile type=\"Collection\"><Collection>\n";
   for (int k = 0; k < 3; ++k) {
-    file("t" + std::to_string(k) + ".vtk", turned_square(20.0 * k, k == 2 ? 9 : 6));
-    pvd += "<DataSet timestep=\"" + std::to_string(k) + "\" file=\"t" + std::to_string(k) +
-           ".vtk\"/>\n";
+    char name[16], entry[64];
+    std::snprintf(name, sizeof name, "t%d.vtk", k);
+    std::snprintf(entry, sizeof entry, "<DataSet timestep=\"%d\" file=\"%s\"/>\n", k, name);
+    file(name, turned_square(20.0 * k, k == 2 ? 9 : 6));
+    pvd += entry;
   }
   file("turn.pvd", pvd + "</Collection></VTKFile>\n");
   Result r =
@@ -166,7 +168,8 @@ TEST_F(DatasetCommand, SeriesWhosePointsMovePlayOnEachStepsPoints) {
     char frame[32];
     std::snprintf(frame, sizeof frame, "f%04d.png", k);
     const std::vector<bool> played = surface_of(dir_ / frame);
-    const std::vector<bool> alone = surface_of(dir_ / ("s" + std::to_string(k) + ".png"));
+    std::snprintf(frame, sizeof frame, "s%d.png", k);
+    const std::vector<bool> alone = surface_of(dir_ / frame);
     std::size_t differ = 0, surface = 0;
     for (std::size_t i = 0; i < played.size(); ++i) {
       differ += played[i] != alone[i];

@@ -8,6 +8,9 @@
 #include <functional>
 #include <string>
 
+#include "helpers.h"
+#include "ibfvs/core/mesh/mesh_io.h"
+#include "ibfvs/core/mesh/procedural.h"
 #include "ibfvs/core/scene/scene.h"
 #include "ibfvs/core/scene/scene_prep.h"
 #include "ibfvs/core/support/error.h"
@@ -65,6 +68,37 @@ TEST(WebPage, HoldsTheSceneTheShadersAndTheRuntime) {
        at = page.find("</script", at + 1))
     ++closings;
   EXPECT_EQ(closings, 3u);
+}
+
+TEST(WebPage, AMovingSurfaceStoresTheMovingPointsOfEachStepOnce) {
+  if (!has_web_runtime()) GTEST_SKIP() << "built without the browser runtime";
+  // A square of two halves: the right half (x > 0.05) lifts at steps 2 and 3
+  // (the same lift), the left half never moves; steps 0 and 1 are alike.
+  const test::TempDir dir;
+  for (int k = 0; k < 4; ++k) {
+    TriMesh m = make_square(1.0f, 10);
+    for (glm::vec3& p : m.positions)
+      if (k >= 2 && p.x > 0.05f) p.z = 0.2f * p.x;
+    compute_vertex_normals(m);
+    m.vectors.assign(m.vertex_count(), glm::vec3(1, 0, 0));
+    write_ply(m, dir / ("lift_" + std::to_string(k) + ".ply"));
+  }
+  Scene s;
+  s.mesh = (dir / "lift_*.ply").string();
+  s.width = 64;
+  s.height = 48;
+  const PreparedScene p = prepare_scene(s);
+  ASSERT_TRUE(p.moving);
+  WebPageReport report;
+  const std::string page = web_page(p, &report);
+  // The right half's points (x = 0.2, 0.4, ... 1.0) and the column next to
+  // them (x = 0: its normals turn), 11 each.
+  EXPECT_EQ(report.moving_vertices, 66u);
+  EXPECT_EQ(report.motion_sets, 2u);  // steps 0-1 and 2-3
+  EXPECT_GT(report.motion, 0u);
+  EXPECT_LT(report.motion, 66u * 12u * 2u);  // less than its raw bytes (codec)
+  EXPECT_NE(page.find("\"sets\":[0,0,1,1]"), std::string::npos);
+  EXPECT_NE(page.find("#define IBFVS_MOVING"), std::string::npos);
 }
 
 TEST(WebPage, AStyledSceneIsNamedByItsStyle) {

@@ -99,6 +99,12 @@ export interface SceneHeader {
     surface_image?: ArrayRef & { width: number; height: number };
     // F_t's first colours, one per noise cell of `scale` pixels, float16 RGB_ by rows of `columns`
     cells?: ArrayRef & { columns: number; scale: number };
+    // A surface that moves: the vertices that move at some step (uint32), and
+    // sets of their points (uint16 x 4 in the box of `positions`) and normals
+    // (int8 x 4), one set after the other; step k takes set sets[k] (a step
+    // like the one before it shares its set). The looks' vertex shaders then
+    // read each vertex at this step and the next, and where the last frame drew it.
+    motion?: { moving: ArrayRef; positions: ArrayRef; normals: ArrayRef; sets: number[] };
   };
 }
 

@@ -96,6 +96,13 @@ export class PageRenderer {
   private vectorBuffer: WebGLBuffer | null = null;
   private step = -1;
   private fieldMix = 0;
+  // A surface that moves (the scene's motion): every vertex's point and
+  // normal at step 0, interleaved, and the moving vertices' in each stored set.
+  private motion: { base: Float32Array; moving: Uint32Array; points: Float32Array;
+                    normals: Float32Array; sets: number[] } | null = null;
+  private surface: WebGLBuffer[] = []; // this step's and the next's points and normals
+  private drawn: WebGLBuffer[] | null = null; // the pair the last frame drew, where setTime replaced it since
+  private drawnMix = 0;
   private previousViewProjection: mat4 | null = null;
   private cells: Float32Array | null = null; // F_t's first texels (random cells), or null
   locked = false;
@@ -125,8 +132,32 @@ export class PageRenderer {
       gl.enableVertexAttribArray(location);
       gl.vertexAttribPointer(location, size, type, normalized, 0, 0);
     };
-    attribute(0, positions, 3, gl.FLOAT, false);
-    attribute(1, view(data, a.normals, i8, 1), 4, gl.BYTE, true);
+    const normals = view(data, a.normals, i8, 1);
+    if (a.motion) {
+      // Points and normals per step, as floats (setTime builds each step's);
+      // the box is the positions' (every step's points).
+      const box = (q: Uint16Array, i: number, c: number) =>
+        a.positions.min[c] + (a.positions.max[c] - a.positions.min[c]) * (q[4 * i + c] / 65535);
+      const base = new Float32Array(s.vertex_count * 6);
+      for (let i = 0; i < s.vertex_count; ++i)
+        for (let c = 0; c < 3; ++c) {
+          base[6 * i + c] = positions[3 * i + c];
+          base[6 * i + 3 + c] = Math.max(normals[4 * i + c] / 127, -1);
+        }
+      const moving = view(data, a.motion.moving, u32, 4);
+      const q = view(data, a.motion.positions, u16, 2), n = view(data, a.motion.normals, i8, 1);
+      const count = q.length / 4;
+      const points = new Float32Array(count * 3), unit = new Float32Array(count * 3);
+      for (let i = 0; i < count; ++i)
+        for (let c = 0; c < 3; ++c) {
+          points[3 * i + c] = box(q, i, c);
+          unit[3 * i + c] = Math.max(n[4 * i + c] / 127, -1);
+        }
+      this.motion = { base, moving, points, normals: unit, sets: a.motion.sets };
+    } else {
+      attribute(0, positions, 3, gl.FLOAT, false);
+      attribute(1, normals, 4, gl.BYTE, true);
+    }
     // The field: attributes 2 and 4 read the current and the next time step
     // from one buffer (setTime moves them).
     this.vectorBuffer = gl.createBuffer()!;
@@ -252,7 +283,46 @@ export class PageRenderer {
     gl.bindBuffer(gl.ARRAY_BUFFER, this.vectorBuffer);
     gl.vertexAttribPointer(2, 4, gl.HALF_FLOAT, false, 0, step * bytes);
     gl.vertexAttribPointer(4, 4, gl.HALF_FLOAT, false, 0, ((step + 1) % n) * bytes);
+    if (this.motion) {
+      // The surface at this step and the next (IbfvsRenderer::set_surface_steps):
+      // the pair the last frame drew stays for the next frame's advection.
+      if (this.previousViewProjection && !this.drawn) this.drawn = this.surface;
+      else this.surface.forEach((b) => gl.deleteBuffer(b));
+      this.surface = [step, (step + 1) % n].map((k) => {
+        const b = gl.createBuffer()!;
+        gl.bindBuffer(gl.ARRAY_BUFFER, b);
+        gl.bufferData(gl.ARRAY_BUFFER, this.surfaceAt(k), gl.STATIC_DRAW);
+        return b;
+      });
+      this.pointSurface(0, 1, this.surface[0]);
+      this.pointSurface(5, 6, this.surface[1]);
+    }
     gl.bindVertexArray(null);
+  }
+
+  /// Every vertex's point and normal at step k, interleaved.
+  private surfaceAt(k: number): Float32Array {
+    const m = this.motion!, out = m.base.slice(), set = m.sets[k], count = m.moving.length;
+    for (let j = 0; j < count; ++j) {
+      const i = m.moving[j], from = 3 * (set * count + j);
+      for (let c = 0; c < 3; ++c) {
+        out[6 * i + c] = m.points[from + c];
+        out[6 * i + 3 + c] = m.normals[from + c];
+      }
+    }
+    return out;
+  }
+
+  /// Attributes `point` and `normal` (or -1) at a buffer of interleaved points
+  /// and normals; the vertex array bound.
+  private pointSurface(point: number, normal: number, buffer: WebGLBuffer): void {
+    const gl = this.gl;
+    gl.bindBuffer(gl.ARRAY_BUFFER, buffer);
+    gl.enableVertexAttribArray(point);
+    gl.vertexAttribPointer(point, 3, gl.FLOAT, false, 24, 0);
+    if (normal < 0) return;
+    gl.enableVertexAttribArray(normal);
+    gl.vertexAttribPointer(normal, 3, gl.FLOAT, false, 24, 12);
   }
 
   applySettings(uniforms: Uniform[]): void {
@@ -337,6 +407,16 @@ export class PageRenderer {
     gl.uniform1f(at("u_dt"), this.locked ? 0 : dt);
     gl.uniform1f(at("u_probe"), s.probe);
     gl.uniform1f(at("u_field_mix"), this.fieldMix);
+    if (this.motion) {
+      // Where the last frame drew each vertex (the current pair where no
+      // motion enters: locked, the first frame, or advecting in this view).
+      const compensate = this.look.advect_previous && this.previousViewProjection !== null && !this.locked;
+      const pair = compensate && this.drawn ? this.drawn : this.surface;
+      gl.bindVertexArray(this.vao);
+      this.pointSurface(7, -1, pair[0]);
+      this.pointSurface(8, -1, pair[1]);
+      gl.uniform1f(at("u_drawn_mix"), compensate ? this.drawnMix : this.fieldMix);
+    }
     gl.uniform2f(at("u_texture_shift"), 0, 0);
     gl.uniform2f(at("u_noise_shift"), 0, 0);
     gl.uniform1i(at("u_locked"), this.locked ? 1 : 0);
@@ -397,6 +477,10 @@ export class PageRenderer {
     if (!this.locked) {  // a locked F_t stays where it is; F is shared
       this.current = next;
       this.previousViewProjection = vp;
+      // This frame's surface is the one the next frame's texture comes from.
+      if (this.drawn) this.drawn.forEach((b) => gl.deleteBuffer(b));
+      this.drawn = null;
+      this.drawnMix = this.fieldMix;
     }
     ++this.frame;
   }
@@ -666,8 +750,8 @@ export function start(root: HTMLElement, scene: SceneHeader, data: ArrayBuffer):
 
   const tick = () => {
     if (playing) {
+      // Frame k at time k / frames_per_step, as Session::advance.
       if (scene.steps > 1) {
-        time = (time + 1 / scene.frames_per_step) % scene.steps;
         renderer.setTime(time);
         if (timeSlider) timeSlider.value = String(time);
       }
@@ -683,6 +767,7 @@ export function start(root: HTMLElement, scene: SceneHeader, data: ArrayBuffer):
     w.ibfvsFrames = renderer.frame;
     w.ibfvsLocked = renderer.locked;
     w.ibfvsTime = time;
+    if (playing && scene.steps > 1) time = (time + 1 / scene.frames_per_step) % scene.steps;
     requestAnimationFrame(tick);
   };
   requestAnimationFrame(tick);

@@ -269,6 +269,53 @@ test("the page records a WebM of its canvas", async () => {
   await page.close();
 });
 
+// A series of ASCII PLY files: a sphere (and its swirl about its own axis)
+// turning `degrees` a step about +Y, its points moving.
+function writeTurningSeries(dir, steps, degrees) {
+  fs.mkdirSync(dir, { recursive: true });
+  const rows = 24, columns = 48;
+  const base = [];
+  for (let i = 0; i <= rows; ++i)
+    for (let j = 0; j < columns; ++j) {
+      const t = Math.PI * i / rows, f = 2 * Math.PI * j / columns;
+      base.push([Math.sin(t) * Math.cos(f), Math.cos(t), Math.sin(t) * Math.sin(f)]);
+    }
+  const faces = [];
+  for (let i = 0; i < rows; ++i)
+    for (let j = 0; j < columns; ++j) {
+      const a = i * columns + j, b = i * columns + (j + 1) % columns;
+      faces.push([a, b, a + columns], [b, b + columns, a + columns]);
+    }
+  for (let k = 0; k < steps; ++k) {
+    const angle = (degrees * k * Math.PI) / 180, c = Math.cos(angle), s = Math.sin(angle);
+    const turn = ([x, y, z]) => [c * x + s * z, y, -s * x + c * z];
+    const axis = turn([0.3, 1, 0]);
+    const lines = base.map((p0) => {
+      const p = turn(p0);
+      const v = [axis[1] * p[2] - axis[2] * p[1], axis[2] * p[0] - axis[0] * p[2],
+                 axis[0] * p[1] - axis[1] * p[0]];
+      return [...p, ...v].map((x) => x.toFixed(6)).join(" ");
+    });
+    const text = ["ply", "format ascii 1.0", `element vertex ${base.length}`,
+                  "property float x", "property float y", "property float z",
+                  "property float vx", "property float vy", "property float vz",
+                  `element face ${faces.length}`, "property list uchar int vertex_indices",
+                  "end_header", ...lines, ...faces.map((f) => "3 " + f.join(" "))].join("\n");
+    fs.writeFileSync(path.join(dir, `turn_${String(k).padStart(2, "0")}.ply`), text + "\n");
+  }
+  return path.join(dir, "turn_*.ply");
+}
+
+test("a series whose points move plays in the page as in ibfvs render", async () => {
+  const series = writeTurningSeries(path.join(out, "turning"), 12, 10);
+  const said = execFileSync(ibfvs, ["render", "--mesh", series, "--frames-per-step", "4",
+                                    "--size", "128x128", "--out", path.join(out, "turning.html")],
+                            { encoding: "utf8" });
+  // Every vertex but the poles' moves; a set of their points per step.
+  assert.match(said, /the surface moves: \d+ of its vertices, 12 sets of their points for 12 steps/);
+  await assertMatchesRender("turning", ["--mesh", series, "--frames-per-step", "4"]);
+});
+
 test("the earth plays its months, with a time slider", async () => {
   const file = path.join(out, "earth.html");
   execFileSync(ibfvs, ["render", "scenes/figure6-earth-wind.toml", "--size", "128x128",

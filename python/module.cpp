@@ -123,21 +123,25 @@ class Animation {
     return top_first<ImageF, float>(session_->renderer().read_texture(), false);
   }
 
-  // Any key: texture settings live, the step rescales dt, the camera moves;
-  // anything else prepares the scene again (the texture starts afresh).
+  // Any key: texture settings live, the step rescales dt, the camera moves,
+  // the size resamples the texture; anything else prepares the scene again
+  // (the texture starts afresh).
   void set(const Options& options) {
     Scene desc = desc_;
     std::vector<Setting> settings;
-    bool live = true, camera = false, step = false;
+    bool live = true, camera = false, step = false, size = false;
     for (const auto& [key, text] : options) {
       settings.push_back({key, text, ""});
       camera = camera || key == "camera" || key == "look_at" || key == "fov" || key == "ortho";
       step = step || key == "step";
-      live = live && (is_live_texture_key(key) || key == "camera" || key == "look_at" ||
-                      key == "fov" || key == "ortho" || key == "step" || key == "orbit");
+      size = size || key == "size";
+      live = live &&
+             (is_live_texture_key(key) || key == "camera" || key == "look_at" || key == "fov" ||
+              key == "ortho" || key == "step" || key == "orbit" || key == "size");
     }
     apply_settings(desc, settings);
     const Current current(*this);
+    if (live && size) session_->resize(desc.width, desc.height);
     if (!live) {
       session_ = std::make_unique<Session>(prepare(desc));
       desc_ = desc;
@@ -159,6 +163,28 @@ class Animation {
     }
     p.scene = desc;
     desc_ = desc;
+  }
+
+  // The next state of the data (a time step of the caller's own loop):
+  // the texture goes on (Session::change_data), the points' motion carried
+  // into it; `frames` frames now carry the points and vectors over from the
+  // last state (0: the next frame shows the new one).
+  void update(TriMesh mesh, int frames) {
+    if (frames < 0) throw SettingError("frames", "must not be negative");
+    py::gil_scoped_release release;
+    const Current current(*this);
+    session_->change_data(
+        prepare_change(session_->scene(), mesh, name_.empty() ? "the data" : name_));
+    mesh_ = std::move(mesh);
+    const Camera& c = session_->camera();
+    for (int k = 1; k <= frames; ++k)
+      session_->render_transition({c.view(), c.projection()}, k, frames);
+  }
+
+  // The texture from noise again, the data and settings as they are.
+  void restart() {
+    const Current current(*this);
+    session_->rebuild(true);
   }
 
   void lock() {
@@ -376,6 +402,19 @@ PYBIND11_MODULE(_ibfvs, m) {
       .def("texture", &Animation::texture,
            "The texture F_t, float32 (H, W, 4), rows top first (a view, no copy).")
       .def("_set", &Animation::set, py::arg("options"))
+      .def(
+          "_update",
+          [](Animation& a, const ibfvs::python::Array<double>& points,
+             const ibfvs::python::Array<std::int64_t>& triangles,
+             const std::map<std::string, py::array>& point_arrays,
+             const std::map<std::string, py::array>& cell_arrays, int frames) {
+            a.update(ibfvs::python::mesh_from_arrays(points, triangles, point_arrays, cell_arrays),
+                     frames);
+          },
+          py::arg("points"), py::arg("triangles"), py::arg("point_arrays"), py::arg("cell_arrays"),
+          py::arg("frames"))
+      .def("restart", &Animation::restart,
+           "Start the texture from noise again (a change of data or size never does).")
       .def("lock", &Animation::lock, "Lock the texture to the surface (section 3.7).")
       .def("unlock", &Animation::unlock)
       .def_property_readonly("locked", &Animation::locked)

@@ -121,6 +121,21 @@ def _mesh_arrays(mesh):
     return points, triangles, point_arrays, cell_arrays
 
 
+def _put_vectors(vectors, points, triangles, point_arrays, cell_arrays):
+    """vectors (n, 3) per point or (m, 3) per triangle as the array 'vectors'."""
+    v = _check_float_array("vectors", vectors)
+    n_points, n_tris = len(np.asarray(points)), len(np.asarray(triangles))
+    if v.ndim != 2 or v.shape[1] != 3:
+        raise ValueError(f"vectors must have shape (n, 3), got {v.shape}")
+    if len(v) == n_points:
+        point_arrays["vectors"] = v
+    elif len(v) == n_tris:
+        cell_arrays["vectors"] = v
+    else:
+        raise ValueError(f"vectors has {len(v)} rows: expected one per point ({n_points}) "
+                         f"or one per triangle ({n_tris})")
+
+
 class Animation(_ibfvs.Animation):
     """An IBFVS animation in its own headless GL context.
 
@@ -163,19 +178,42 @@ class Animation(_ibfvs.Animation):
         if isinstance(vectors, str):
             options.setdefault("field", "file:" + vectors)
         elif vectors is not None:
-            v = _check_float_array("vectors", vectors)
-            n_points, n_tris = len(np.asarray(points)), len(np.asarray(triangles))
-            if v.ndim != 2 or v.shape[1] != 3:
-                raise ValueError(f"vectors must have shape (n, 3), got {v.shape}")
-            if len(v) == n_points:
-                point_arrays["vectors"] = v
-            elif len(v) == n_tris:
-                cell_arrays["vectors"] = v
-            else:
-                raise ValueError(f"vectors has {len(v)} rows: expected one per point ({n_points}) "
-                                 f"or one per triangle ({n_tris})")
+            _put_vectors(vectors, points, triangles, point_arrays, cell_arrays)
             options.setdefault("field", "file:vectors")
         super().__init__(points, triangles, point_arrays, cell_arrays, _options(options), name)
+        self._data = (points, triangles, point_arrays, cell_arrays)
+
+    def update(self, points=None, vectors=None, triangles=None, *, frames=0):
+        """The next state of the data: a time step of your own loop, moved
+        points, new vectors. The texture goes on from where it is, the
+        points' motion carried into it (same triangles) or taken on from
+        the image (other triangles); it never starts from noise again.
+
+        points: (n, 3), or a VTK-style mesh (its points, faces and arrays);
+        vectors: (n, 3) per point or (m, 3) per triangle; triangles: (m, 3)
+        where they change. What is left out stays as it was (an animation
+        made from a file needs points and triangles). frames: frames rendered
+        now that carry the points and vectors over from the last state (0:
+        the next frame shows the new one)."""
+        last = getattr(self, "_data", None)
+        point_arrays, cell_arrays = {}, {}
+        if points is not None and hasattr(points, "points") and hasattr(points, "faces"):
+            points, triangles, point_arrays, cell_arrays = _mesh_arrays(points)
+        elif last is not None:
+            point_arrays, cell_arrays = dict(last[2]), dict(last[3])
+        if points is None or triangles is None:
+            if last is None:
+                raise TypeError("an animation made from a file needs points and triangles to update")
+            points = last[0] if points is None else points
+            triangles = last[1] if triangles is None else triangles
+        points = _check_float_array("points", points)
+        triangles = _check_index_array(triangles)
+        if vectors is not None:
+            point_arrays.pop("vectors", None)
+            cell_arrays.pop("vectors", None)
+            _put_vectors(vectors, points, triangles, point_arrays, cell_arrays)
+        self._update(points, triangles, point_arrays, cell_arrays, int(frames))
+        self._data = (points, triangles, point_arrays, cell_arrays)
 
     def set(self, **options):
         """Change settings: texture settings and the camera live, others rebuild."""

@@ -5,6 +5,7 @@
 #include "internal.h"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -38,6 +39,7 @@
 #include <vtkIdTypeArray.h>
 #include <vtkInformation.h>
 #include <vtkLogger.h>
+#include <vtkMath.h>
 #include <vtkMultiBlockDataSet.h>
 #include <vtkMultiPieceDataSet.h>
 #include <vtkNew.h>
@@ -215,6 +217,68 @@ struct Surface {
   Arrays point_arrays, cell_arrays;
 };
 
+// A quadrilateral's two triangles: along the diagonal from its first point,
+// unless the other diagonal is clearly the shorter (by a thousandth). VTK's
+// triangle filter takes the shorter one, which for the equal diagonals of a
+// polar mesh's cells (a rotor's) flips with the rounding as the points move:
+// the triangles of a moving mesh must not change from step to step.
+std::array<Triangle, 2> split_quad(const vtkIdType* q, vtkPoints* points) {
+  double a[3], b[3], c[3], d[3];
+  points->GetPoint(q[0], a);
+  points->GetPoint(q[1], b);
+  points->GetPoint(q[2], c);
+  points->GetPoint(q[3], d);
+  const double ac = vtkMath::Distance2BetweenPoints(a, c);
+  const double bd = vtkMath::Distance2BetweenPoints(b, d);
+  const auto id = [&](int k) { return static_cast<std::uint32_t>(q[k]); };
+  if (bd < ac * (1.0 - 2e-3)) return {{{id(0), id(1), id(3)}, {id(1), id(2), id(3)}}};
+  return {{{id(0), id(1), id(2)}, {id(0), id(2), id(3)}}};
+}
+
+// A surface of triangles and quadrilaterals, as it is: its points, the
+// triangles (quadrilaterals split), the arrays (a cell's values on each of
+// its triangles).
+Surface own_triangles(vtkPolyData* poly) {
+  Surface s;
+  const vtkIdType n = poly->GetNumberOfPoints();
+  s.positions.resize(static_cast<std::size_t>(n));
+  double p[3];
+  for (vtkIdType i = 0; i < n; ++i) {
+    poly->GetPoint(i, p);
+    s.positions[static_cast<std::size_t>(i)] = glm::vec3(p[0], p[1], p[2]);
+  }
+  vtkCellArray* polys = poly->GetPolys();
+  std::vector<vtkIdType> cell_of;  // each triangle's cell (vertices and lines come first)
+  vtkIdType count = 0;
+  const vtkIdType* ids = nullptr;
+  vtkIdType cell = poly->GetNumberOfVerts() + poly->GetNumberOfLines();
+  for (polys->InitTraversal(); polys->GetNextCell(count, ids); ++cell) {
+    if (count == 3) {
+      s.triangles.push_back({static_cast<std::uint32_t>(ids[0]), static_cast<std::uint32_t>(ids[1]),
+                             static_cast<std::uint32_t>(ids[2])});
+      cell_of.push_back(cell);
+    } else if (count == 4) {
+      for (const Triangle& t : split_quad(ids, poly->GetPoints())) {
+        s.triangles.push_back(t);
+        cell_of.push_back(cell);
+      }
+    }
+  }
+  take_arrays(poly->GetPointData(), n, s.point_arrays);
+  Arrays cells;
+  take_arrays(poly->GetCellData(), poly->GetNumberOfCells(), cells);
+  for (auto& [name, array] : cells) {
+    const auto c = static_cast<std::size_t>(array.first);
+    std::vector<float> per_triangle(cell_of.size() * c);
+    for (std::size_t t = 0; t < cell_of.size(); ++t)
+      std::copy_n(array.second.begin() +
+                      static_cast<std::ptrdiff_t>(static_cast<std::size_t>(cell_of[t]) * c),
+                  c, per_triangle.begin() + static_cast<std::ptrdiff_t>(t * c));
+    s.cell_arrays[name] = {array.first, std::move(per_triangle)};
+  }
+  return s;
+}
+
 Surface block_surface(vtkDataSet* ds) {
   vtkSmartPointer<vtkPolyData> poly = vtkPolyData::SafeDownCast(ds);
   if (!poly) {
@@ -223,9 +287,11 @@ Surface block_surface(vtkDataSet* ds) {
     surface->Update();
     poly = surface->GetOutput();
   }
-  // Polygons and strips to triangles, lines and vertices dropped; a mesh of
-  // triangles alone (most files) is taken as it is (the filter would copy
-  // it: a second on six million triangles).
+  // Triangles and quadrilaterals (most files, OpenFOAM's faces) are taken as
+  // they are, each quadrilateral split by split_quad; other polygons and
+  // strips go through VTK's triangle filter; lines and vertices are dropped.
+  if (poly->GetNumberOfStrips() == 0 && poly->GetPolys()->GetMaxCellSize() <= 4)
+    return own_triangles(poly);
   vtkSmartPointer<vtkPolyData> tri = poly;
   if (poly->GetNumberOfStrips() > 0 || poly->GetPolys()->IsHomogeneous() != 3) {
     vtkNew<vtkTriangleFilter> triangles;

@@ -4,6 +4,7 @@
 // vtk_bad_files_test.cpp). Files are written on the fly (VTK's own writers,
 // or by hand where the exact bytes matter; vtk_test_files.h).
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -20,6 +21,7 @@
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataWriter.h>
+#include <vtkSmartPointer.h>
 #include <vtkStructuredGrid.h>
 #include <vtkStructuredGridWriter.h>
 #include <vtkUnstructuredGrid.h>
@@ -220,6 +222,64 @@ TEST_F(VtkIo, PvdSeriesIsUnsteady) {
   EXPECT_NEAR(one.field[0].x, -2.0f, 1e-6f);
   scene.time = TimeRange::parse("1:5");
   EXPECT_THROW(prepare_scene(scene), SettingError);
+}
+
+// A rotor's cells: an annulus of quadrilaterals (their two diagonals equal)
+// turned by `degrees` about +Z, with cell and point arrays.
+vtkSmartPointer<vtkPolyData> turned_annulus(double degrees) {
+  constexpr int rings = 6, sectors = 48;
+  vtkNew<vtkPoints> points;
+  const double a0 = degrees * 3.14159265358979 / 180.0;
+  for (int r = 0; r <= rings; ++r)
+    for (int k = 0; k < sectors; ++k) {
+      const double radius = 0.2 + 0.8 * r / rings, a = a0 + 2.0 * 3.14159265358979 * k / sectors;
+      points->InsertNextPoint(radius * std::cos(a), radius * std::sin(a), 0.0);
+    }
+  vtkNew<vtkCellArray> quads;
+  vtkNew<vtkFloatArray> id;
+  id->SetName("id");
+  for (int r = 0; r < rings; ++r)
+    for (int k = 0; k < sectors; ++k) {
+      const vtkIdType q[4] = {r * sectors + k, r * sectors + (k + 1) % sectors,
+                              (r + 1) * sectors + (k + 1) % sectors, (r + 1) * sectors + k};
+      quads->InsertNextCell(4, q);
+      id->InsertNextValue(static_cast<float>(r * sectors + k));
+    }
+  auto poly = vtkSmartPointer<vtkPolyData>::New();
+  poly->SetPoints(points);
+  poly->SetPolys(quads);
+  poly->GetCellData()->AddArray(id);
+  return poly;
+}
+
+TEST_F(VtkIo, QuadrilateralsSplitTheSameWayWhereverThePointsMove) {
+  // A moving mesh keeps its triangles from step to step (scene_prep then
+  // carries the texture with its points): VTK's triangle filter takes the
+  // shorter diagonal, which for equal diagonals flips with the rounding.
+  const TriMesh first = vtk::surface_mesh(turned_annulus(0.0), "annulus");
+  ASSERT_EQ(first.triangle_count(), 2u * 6 * 48);
+  for (double degrees = 0.7; degrees < 360.0; degrees += 7.3) {
+    const TriMesh turned = vtk::surface_mesh(turned_annulus(degrees), "annulus");
+    ASSERT_EQ(turned.triangles, first.triangles) << degrees << " degrees";
+  }
+  // Each triangle keeps its cell's value.
+  const std::vector<float>& id = first.scalars.at("id");
+  EXPECT_GT(id.size(), 0u);
+  // And a quadrilateral whose other diagonal is clearly shorter splits along it.
+  vtkNew<vtkPoints> kite;
+  for (const auto& p :
+       {glm::vec3(0, 0, 0), glm::vec3(1, -0.2f, 0), glm::vec3(3, 0, 0), glm::vec3(1, 0.2f, 0)})
+    kite->InsertNextPoint(p.x, p.y, p.z);
+  vtkNew<vtkCellArray> one;
+  const vtkIdType q[4] = {0, 1, 2, 3};
+  one->InsertNextCell(4, q);
+  vtkNew<vtkPolyData> poly;
+  poly->SetPoints(kite);
+  poly->SetPolys(one);
+  const TriMesh split = vtk::surface_mesh(poly, "kite");
+  ASSERT_EQ(split.triangle_count(), 2u);
+  for (const Triangle& t : split.triangles)  // the diagonal 1-3 in both
+    EXPECT_TRUE(std::count(t.begin(), t.end(), 1u) && std::count(t.begin(), t.end(), 3u));
 }
 
 TEST_F(VtkIo, NumberedFilesAreASeries) {

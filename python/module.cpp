@@ -167,8 +167,8 @@ class Animation {
 
   // The next state of the data (a time step of the caller's own loop):
   // the texture goes on (Session::change_data), the points' motion carried
-  // into it; `frames` frames now carry the points and vectors over from the
-  // last state (0: the next frame shows the new one).
+  // into it; `frames` frames of the new state are rendered now (0: the next
+  // step shows it).
   void update(TriMesh mesh, int frames) {
     if (frames < 0) throw SettingError("frames", "must not be negative");
     py::gil_scoped_release release;
@@ -176,9 +176,7 @@ class Animation {
     session_->change_data(
         prepare_change(session_->scene(), mesh, name_.empty() ? "the data" : name_));
     mesh_ = std::move(mesh);
-    const Camera& c = session_->camera();
-    for (int k = 1; k <= frames; ++k)
-      session_->render_transition({c.view(), c.projection()}, k, frames);
+    for (int k = 0; k < frames; ++k) session_->render(session_->camera());
   }
 
   // The texture from noise again, the data and settings as they are.

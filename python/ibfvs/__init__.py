@@ -192,9 +192,9 @@ class Animation(_ibfvs.Animation):
         points: (n, 3), or a VTK-style mesh (its points, faces and arrays);
         vectors: (n, 3) per point or (m, 3) per triangle; triangles: (m, 3)
         where they change. What is left out stays as it was (an animation
-        made from a file needs points and triangles). frames: frames rendered
-        now that carry the points and vectors over from the last state (0:
-        the next frame shows the new one)."""
+        made from a file needs points and triangles). frames: frames of the
+        new state rendered now, the texture taking it on (0: the next step
+        shows it)."""
         last = getattr(self, "_data", None)
         point_arrays, cell_arrays = {}, {}
         if points is not None and hasattr(points, "points") and hasattr(points, "faces"):

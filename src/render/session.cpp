@@ -9,6 +9,12 @@
 
 namespace ibfvs {
 
+int forming_frames(float alpha) {
+  if (!(alpha > 0.0f)) return 100;
+  if (alpha >= 0.9f) return 1;
+  return std::clamp(static_cast<int>(std::ceil(std::log(0.1) / std::log(1.0 - alpha))), 1, 100);
+}
+
 namespace {
 
 // The positions and normals a step's surface has.
@@ -185,16 +191,16 @@ void Session::change_data(PreparedScene next) {
   // A series played so far gives way to the new data.
   player_.reset();
   if (to.vertex_count() == from.vertex_count() && to.triangles == from.triangles) {
-    // The same surface: its points move from where the last frame drew
-    // them (the renderer's pair at its mix) to the new ones.
+    // The same surface: the next frame advects from where the last one drew
+    // its points (the renderer keeps them) to the new ones, at once; the
+    // frames after it take the texture onto the new flow (docs/paraview.md,
+    // "Time": faster than interpolating the change over them).
     if (to.positions != from.positions || renderer_->moving())
-      renderer_->set_surface_steps(from.positions, from.normals, to.positions, to.normals);
-    renderer_->set_field_steps(scene_.field, next.field);
+      renderer_->set_surface_steps(to.positions, to.normals, to.positions, to.normals);
+    renderer_->set_field(next.field);
   } else {
     renderer_->replace_mesh(to, next.field);
-    renderer_->set_field_steps(next.field, next.field);
   }
-  renderer_->set_field_mix(1.0f);
   set_scene_scalars(scene_, *renderer_, next.color_scalar, next.beta_scalar);
   // The data is the new scene's; the settings, camera and dt stay this session's.
   scene_.mesh = std::move(next.mesh);
@@ -208,14 +214,6 @@ void Session::change_data(PreparedScene next) {
   scene_.step_data = std::move(next.step_data);
   scene_.moving = next.moving;
   player_ = std::make_unique<StepPlayer>(scene_, *renderer_);
-}
-
-void Session::render_transition(const ViewState& view, int k, int frames) {
-  if (frames < 1 || k < 1 || k > frames)
-    throw InputError("render_transition: frame " + std::to_string(k) + " of " +
-                     std::to_string(frames));
-  renderer_->set_field_mix(static_cast<float>(k) / static_cast<float>(frames));
-  render(view);
 }
 
 }  // namespace ibfvs

@@ -18,6 +18,7 @@
 #include "ibfvs/core/mesh/mesh_io.h"
 #include "ibfvs/core/mesh/procedural.h"
 #include "ibfvs/core/scene/scene.h"
+#include "ibfvs/render/session.h"
 
 namespace ibfvs {
 namespace {
@@ -246,6 +247,7 @@ TEST(ParaViewDefaults, EqualTheScenesDefaults) {
   EXPECT_FLOAT_EQ(value("Sharpen"), s.sharpen);
   EXPECT_EQ(value("Resample"), static_cast<double>(s.resample));  // the enum's numbers
   EXPECT_EQ(value("Seed"), static_cast<double>(s.seed));
+  EXPECT_EQ(value("FramesPerStep"), static_cast<double>(kDefaultFramesPerStep));
 }
 
 }  // namespace

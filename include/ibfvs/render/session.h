@@ -25,10 +25,15 @@ namespace ibfvs {
 
 /// Texture frames a host gives each change of its data (a time step) at
 /// least, where its renders since the last change fell short (ParaView's
-/// Frames Per Step): enough for the texture to take on the new flow
-/// (docs/paraview.md, "Time").
-inline constexpr int kDefaultFramesPerStep = 10;
+/// Frames Per Step): enough for the texture to take on the new flow, as
+/// measured on two OpenFOAM results (docs/paraview.md, "Time").
+inline constexpr int kDefaultFramesPerStep = 3;
 inline constexpr int kMaxFramesPerStep = 200;
+
+/// Frames a texture started from noise takes to form: until the first
+/// frame's noise weighs a tenth, (1 - alpha)^k <= 0.1 (22 at alpha 0.1),
+/// at most 100. A host gives a new texture these at its first render.
+[[nodiscard]] int forming_frames(float alpha);
 
 class Session {
  public:
@@ -72,15 +77,9 @@ class Session {
   /// triangles the surface moves from where the last frame drew it (its
   /// motion enters the advection, as the camera's does); with other
   /// triangles it is replaced and the texture stays where it is in the image
-  /// until the flow takes it on. The next frame shows the new data;
-  /// render_transition spreads the change over several.
+  /// until the flow takes it on. The next frame shows the new data; a host
+  /// owes the texture a few frames at a change (kDefaultFramesPerStep).
   void change_data(PreparedScene next);
-  /// Frame `k` (1..frames) of a change of data spread over `frames` frames
-  /// seen with `view`: the data k/frames of the way from the last frame's
-  /// to change_data's (points and field interpolated where the triangles
-  /// stayed). Frame `frames` shows the new data. A host owes the texture
-  /// such frames at a change (kDefaultFramesPerStep).
-  void render_transition(const ViewState& view, int k, int frames);
   /// A new image size: the texture is resampled to it and goes on.
   void resize(int width, int height);
   /// A new renderer with the scene's current settings (a new noise scale):

@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <memory>
 #include <optional>
@@ -17,20 +19,20 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
+#include "ibfvs/core/fields/vector_field.h"
 #include "ibfvs/core/image/composite.h"
-#include "ibfvs/core/support/error.h"
 #include "ibfvs/core/scene/scene.h"
 #include "ibfvs/core/scene/scene_prep.h"
-#include "ibfvs/core/fields/vector_field.h"
+#include "ibfvs/core/support/error.h"
 #include "ibfvs/gl/objects.h"
 #include "ibfvs/render/session.h"
 #include "ibfvs/vtk/vtk_io.h"
 
 #include "vtkActor.h"
 #include "vtkCallbackCommand.h"
-#include "vtkCommand.h"
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
+#include "vtkCommand.h"
 #include "vtkDataObject.h"
 #include "vtkLookupTable.h"
 #include "vtkMath.h"
@@ -107,8 +109,8 @@ class vtkIBFVSMapper::Internals {
   std::string problem;                   // why this rank cannot draw the texture
   float speed = 0.0f;                    // fastest vector of this piece
   glm::vec3 lower{0.0f}, upper{0.0f};    // its bounds (the header's, every frame)
-  bool retake = true;        // take the surface again (the vectors were set)
-  bool data_changed = true;  // a new surface or array: the session takes it on
+  bool retake = true;                    // take the surface again (the vectors were set)
+  bool data_changed = true;              // a new surface or array: the session takes it on
   // Render() calls that drew the data as it is now: a change owes the
   // texture the frames these fell short of frames_per_step.
   int renders_at_data = 0;
@@ -130,7 +132,7 @@ class vtkIBFVSMapper::Internals {
   // ---- the texture again after the renderer's FXAA (see RedrawAfterFXAA)
   vtkWeakPointer<vtkRenderer> observed;  // the renderer whose EndEvent we observe
   unsigned long observer = 0;
-  bool redraw = false;     // this frame drew the texture, FXAA may blur it
+  bool redraw = false;      // this frame drew the texture, FXAA may blur it
   glm::ivec2 origin{0, 0};  // where it was drawn
 
   void StopObserving() {
@@ -443,8 +445,8 @@ void vtkIBFVSMapper::CompositeFrame(vtkMultiProcessController* controller) {
   ibfvs::ImageF texture = session ? session->renderer().read_texture_raw()
                                   : ibfvs::ImageF(w, h, ibfvs::IbfvsRenderer::kRawChannels, 0.0f);
   // Every rank counts its renderer's frames alike: the statistics are due on the same ones.
-  const bool statistics = in.scene.contrast > 0.0f &&
-                          in.renderer_frame % ibfvs::IbfvsRenderer::kStatsEvery == 0;
+  const bool statistics =
+      in.scene.contrast > 0.0f && in.renderer_frame % ibfvs::IbfvsRenderer::kStatsEvery == 0;
   ibfvs::ImageF output;
   std::vector<ibfvs::ImageF*> images{&texture};
   if (statistics) {
@@ -507,7 +509,14 @@ void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor) {
     in.input_time = input_time;
     in.input_vectors = in.vectors;
     in.cells_apart = cells_apart;
+    std::shared_ptr<ibfvs::TriMesh> last = std::move(in.mesh);
     in.mesh = take_surface(input, in.vectors, cells_apart, in.problem, in.speed);
+    // The same content again (a time within the same step, a pipeline that
+    // ran again): nothing changed for the texture.
+    const bool same = last && in.mesh && last->positions == in.mesh->positions &&
+                      last->triangles == in.mesh->triangles && last->vectors == in.mesh->vectors &&
+                      last->scalars == in.mesh->scalars &&
+                      last->vector_arrays == in.mesh->vector_arrays;
     if (in.mesh && !in.mesh->positions.empty()) {
       in.lower = in.upper = in.mesh->positions.front();
       for (const glm::vec3& p : in.mesh->positions) {
@@ -516,7 +525,7 @@ void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor) {
       }
     }
     in.colour_key.clear();
-    in.data_changed = true;
+    in.data_changed = in.data_changed || !same;
   }
   if (in.problem.empty() && epoxy_gl_version() < 45) {
     in.problem = "needs OpenGL 4.5 (this context has " + std::to_string(epoxy_gl_version() / 10) +
@@ -571,15 +580,19 @@ void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor) {
 
   // ---- the session: made, or taking on a new size, noise grid or data
   // (the texture goes on from where it is; only a restart starts afresh).
-  // The texture frames of this render: one; where the data changed or the
-  // texture started, also the frames_per_step that the renders since the
-  // last change fell short of (Save Animation renders each time step once,
-  // Play between steps renders on).
+  // The texture frames of this render: one; where the data changed,
+  // frames_per_step at the new data, unless the view rendered the last data
+  // at least twice as often (Play, which renders on between steps: a step
+  // change is then one more frame). Save Animation renders a step once or
+  // twice (its first, up to three times), so the shortfall of the renders
+  // since the last change would leave a step too few. A texture started
+  // from noise is formed first (22 frames at Alpha 0.1).
   const bool restart = header[kRestart] > 0.0;
   const bool changed = header[kChanged] > 0.0 || restart;
   const bool new_renderer = restart || header[kResize] > 0.0 || header[kRegrid] > 0.0;
-  const int frames =
-      changed ? 1 + std::max(0, in.frames_per_step - std::max(in.renders_at_data, 1)) : 1;
+  int frames = 1;
+  if (changed && in.renders_at_data < 2 * in.frames_per_step) frames = in.frames_per_step;
+  if (restart) frames = std::max(frames, ibfvs::forming_frames(in.scene.alpha));
   try {
     if (restart || (!in.mesh && in.session)) {
       in.session.reset();
@@ -692,8 +705,8 @@ void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor) {
   }
 
   // ---- the frames, each composited under MPI (every rank renders alike)
-  for (int k = 1; k <= frames; ++k) {
-    if (session) session->render_transition(view, k, frames);
+  for (int k = 0; k < frames; ++k) {
+    if (session) session->render(view);
     if (ranks > 1) this->CompositeFrame(controller);
     ++in.frame;
     ++in.renderer_frame;

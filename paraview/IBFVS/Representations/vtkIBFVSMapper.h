@@ -44,7 +44,8 @@ class IBFVSREPRESENTATIONS_EXPORT vtkIBFVSMapper : public vtkCompositePolyDataMa
   void SetSeed(int seed);
   /// At least this many texture frames for each change of the data (a time
   /// step): a change adds the frames that the renders since the last one
-  /// fell short of (Save Animation renders a step once; Play renders on).
+  /// fell short of, at the new data (Save Animation renders a step once;
+  /// Play renders on).
   void SetFramesPerStep(int frames);
   /// Starts the texture afresh from noise at the next render.
   void Restart();

@@ -42,6 +42,8 @@ import time
 
 import paraview.simple as pv
 
+import pvmeasure
+
 root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 parser = argparse.ArgumentParser()
 parser.add_argument("data")
@@ -66,52 +68,9 @@ up = [float(v) for v in args.up.split(",")]
 pv.LoadPlugin(args.plugin, remote=False, ns={})
 
 # The data, its vectors on the points (as Surface LIC needs them), reversed if asked.
-source = pv.OpenDataFile(args.data)
-if hasattr(source, "MeshRegions"):  # OpenFOAM: the walls, not the volume
-    source.MeshRegions = [r for r in source.GetProperty("MeshRegions").Available
-                          if r.startswith("patch/") or r.startswith("wall")] or ["internalMesh"]
-source.UpdatePipeline()
-surface = pv.ExtractSurface(Input=pv.MergeBlocks(Input=source))
-info = surface.GetDataInformation()
-on_cells = surface.CellData.GetArray(args.array) is not None and \
-    surface.PointData.GetArray(args.array) is None
-if on_cells:
-    surface = pv.CellDatatoPointData(Input=surface)
-flow = pv.Calculator(Input=surface, ResultArrayName="flow",
-                     Function=("-" if args.reverse else "") + args.array)
-flow.UpdatePipeline()
-bounds = flow.GetDataInformation().GetBounds()
-centre = [0.5 * (bounds[2 * i] + bounds[2 * i + 1]) for i in range(3)]
-radius = 0.5 * math.sqrt(math.fsum((bounds[2 * i + 1] - bounds[2 * i]) ** 2 for i in range(3)))
-
-# The true projected direction, per point, for a camera: the derivative of the
-# perspective projection along the unit vector, normalised, in eye space
-# (x right, y up); blue 255 where the vector is not zero and its component
-# across the line of sight is at least 0.3 (17 degrees off it).
-DIRECTION_SCRIPT = """
-import numpy as np
-from vtk.numpy_interface import dataset_adapter as dsa
-eye = np.array(%r); right = np.array(%r); upv = np.array(%r); back = np.array(%r)
-data = dsa.WrapDataObject(inputs[0].VTKObject)
-p = np.asarray(data.Points) - eye
-v = np.asarray(data.PointData["flow"])
-speed = np.linalg.norm(v, axis=1)
-u = v / np.maximum(speed, 1e-30)[:, None]
-x, y, z = p @ right, p @ upv, p @ back
-dx, dy, dz = u @ right, u @ upv, u @ back
-# d/ds of (x / -z, y / -z), times z^2: (dx (-z) + x dz, dy (-z) + y dz)
-sx, sy = dx * (-z) + x * dz, dy * (-z) + y * dz
-n = np.hypot(sx, sy)
-across = n / np.maximum(np.sqrt(x * x + y * y + z * z), 1e-30)
-rgb = np.zeros((len(v), 3), dtype=np.uint8)
-ok = (speed > 0) & (n > 0)
-rgb[:, 0] = np.clip(np.round(127.5 + 127.5 * np.where(ok, sx / np.maximum(n, 1e-30), 0)), 0, 255)
-rgb[:, 1] = np.clip(np.round(127.5 + 127.5 * np.where(ok, sy / np.maximum(n, 1e-30), 0)), 0, 255)
-rgb[:, 2] = np.where(ok & (across >= 0.3), 255, 0)
-output.ShallowCopy(inputs[0].VTKObject)
-out = dsa.WrapDataObject(output)
-out.PointData.append(rgb, "direction")
-"""
+source, flow = pvmeasure.flow_of(args.data, args.array, args.reverse)
+centre, radius = pvmeasure.bounding_sphere(flow)
+DIRECTION_SCRIPT = pvmeasure.DIRECTION_SCRIPT
 
 view = pv.CreateRenderView()
 view.ViewSize = [w, h]
@@ -127,31 +86,7 @@ direction_display = None
 
 def place_camera(azimuth, elevation):
     """The camera about the centre; returns eye, right, up, back (eye space axes)."""
-    upn = [u / math.sqrt(math.fsum(c * c for c in up)) for u in up]
-    # A horizontal reference axis: +X unless up is X.
-    ref = [1.0, 0.0, 0.0] if abs(upn[0]) < 0.9 else [0.0, 1.0, 0.0]
-    dot = math.fsum(a * b for a, b in zip(ref, upn))
-    e1 = [a - dot * b for a, b in zip(ref, upn)]
-    l1 = math.sqrt(math.fsum(a * a for a in e1))
-    e1 = [a / l1 for a in e1]
-    e2 = [upn[1] * e1[2] - upn[2] * e1[1], upn[2] * e1[0] - upn[0] * e1[2],
-          upn[0] * e1[1] - upn[1] * e1[0]]
-    a, e = math.radians(azimuth), math.radians(elevation)
-    to_eye = [math.cos(e) * (math.cos(a) * e1[i] + math.sin(a) * e2[i]) + math.sin(e) * upn[i]
-              for i in range(3)]
-    distance = radius * args.zoom / math.tan(math.radians(15.0))
-    eye = [centre[i] + distance * to_eye[i] for i in range(3)]
-    view.CameraPosition = eye
-    view.CameraFocalPoint = centre
-    view.CameraViewUp = upn
-    view.CameraViewAngle = 30
-    view.CameraParallelProjection = 0
-    back = to_eye
-    right = [upn[1] * back[2] - upn[2] * back[1], upn[2] * back[0] - upn[0] * back[2],
-             upn[0] * back[1] - upn[1] * back[0]]
-    true_up = [back[1] * right[2] - back[2] * right[1], back[2] * right[0] - back[0] * right[2],
-               back[0] * right[1] - back[1] * right[0]]
-    return eye, right, true_up, back
+    return pvmeasure.place_camera(view, centre, radius, up, args.zoom, azimuth, elevation)
 
 
 def library_camera(back):
@@ -207,17 +142,7 @@ def shot(name):
 
 
 def measure(picture, truth):
-    text = subprocess.run([args.ibfvs, "quality", "--png", picture, "--direction", truth],
-                          check=True, capture_output=True, text=True).stdout
-    values = {}
-    for line in text.splitlines():
-        if "alignment A" in line:
-            values["A"] = float(line.split()[2])
-        if "streak width W" in line:
-            values["W"] = float(line.split()[3])
-        if "grain along Z" in line:
-            values["Z"] = float(line.split()[3])
-    return values
+    return pvmeasure.measure(args.ibfvs, picture, truth)
 
 
 rows = []

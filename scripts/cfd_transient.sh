@@ -1,0 +1,89 @@
+#!/usr/bin/env bash
+# A transient or moving-mesh pimpleFoam tutorial of Debian's
+# openfoam-examples, shortened to minutes on two cores and run serially, for
+# ibfvs's comparisons over time (docs/cfd.md, "Time"). Output in git-ignored
+# data/cfd/CASE:
+#   CASE.foam      the case with every written time (a moving mesh's points
+#                  per time too), for ibfvs and ParaView
+#   CASE.vtm.series ParaView's file series of the chosen patches at every
+#                  written time, from foamToVTK
+#
+# Usage: scripts/cfd_transient.sh TJunction|mixerVesselAMI2D
+#   TJunction         pimpleFoam/RAS/TJunction: a T-junction of square ducts,
+#                     the inlet pressure rising 10 -> 40 over the first second;
+#                     fixed walls, wallShearStress at every written time
+#                     (endTime 1.5 s, 16 times; the tutorial's own), on a mesh
+#                     twice as fine as the tutorial's (10 cells across a duct)
+#   mixerVesselAMI2D  pimpleFoam/laminar/mixerVesselAMI2D: a rotor turning
+#                     once a second inside a baffled tank, started from rest,
+#                     its cells and points rotating (solid-body motion with an
+#                     arbitrary mesh interface); the front face of the slab
+#                     with U on it (endTime 1 s, written every 0.05 s: 21 times)
+# IBFVS_CFD_DIR=FOLDER puts the case elsewhere.
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+name="${1:?usage: scripts/cfd_transient.sh TJunction|mixerVesselAMI2D}"
+examples=/usr/share/doc/openfoam-examples/examples/incompressible/pimpleFoam
+case "$name" in
+  TJunction)
+    tutorial=$examples/RAS/TJunction end="" write="" patches="" ;;
+  mixerVesselAMI2D)
+    tutorial=$examples/laminar/mixerVesselAMI2D end=1 write=0.05 patches="front" ;;
+  *)
+    echo "cfd_transient: no case $name (TJunction or mixerVesselAMI2D)" >&2
+    exit 1 ;;
+esac
+case_dir="${IBFVS_CFD_DIR:-$root/data/cfd/$name}"
+log() { printf '%s  %s\n' "$(date +%T)" "$*"; }
+
+if ! command -v pimpleFoam > /dev/null || [[ ! -d $tutorial ]]; then
+  sudo=""
+  [[ $(id -u) -ne 0 ]] && sudo="sudo"
+  log "installing Debian's openfoam and openfoam-examples"
+  $sudo env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends \
+    openfoam openfoam-examples > /dev/null
+fi
+# OpenFOAM's binaries need only this (its etc/bashrc is broken in Debian's build).
+export WM_PROJECT_DIR=/usr/share/openfoam
+
+start=$(date +%s)
+rm -rf "$case_dir"
+mkdir -p "$case_dir"
+cp -r "$tutorial"/. "$case_dir"/
+cd "$case_dir"
+find . -name '*.gz' -exec gunzip -f {} +
+[[ -n $end ]] && sed -i "s/^endTime .*/endTime         $end;/" system/controlDict
+[[ -n $write ]] && sed -i "s/^writeInterval .*/writeInterval   $write;/" system/controlDict
+
+run() {
+  local step=$1
+  shift
+  log "$step"
+  "$@" > "log.$step" 2>&1 || {
+    echo "cfd_transient: $step failed; see $case_dir/log.$step" >&2
+    tail -n 20 "log.$step" >&2
+    exit 1
+  }
+}
+[[ -f system/blockMeshDict.m4 ]] && m4 system/blockMeshDict.m4 > system/blockMeshDict
+[[ $name == TJunction ]] &&
+  sed -i 's/(50 5 5)/(100 10 10)/; s/(5 5 5)/(10 10 10)/; s/(5 50 5)/(10 100 10)/g' system/blockMeshDict
+run blockMesh blockMesh
+[[ -f system/topoSetDict ]] && run topoSet topoSet
+[[ -d 0.orig && ! -d 0 ]] && cp -r 0.orig 0
+run pimpleFoam pimpleFoam
+# The wall patches (type wall in the mesh's boundary file), unless the case
+# names its own (a 2D case's front face).
+if [[ -z $patches ]]; then
+  patches=$(awk '/^ *[A-Za-z_][A-Za-z0-9_]* *$/ { name = $1 } /type +wall;/ { print name }' \
+    constant/polyMesh/boundary | tr '\n' ' ')
+  patches=${patches% }
+  run wallShearStress pimpleFoam -postProcess -func wallShearStress -noZero
+fi
+touch "$name.foam"
+run foamToVTK foamToVTK -no-internal -one-boundary -patches "(${patches})"
+series=$(ls VTK/*.series 2> /dev/null | head -n 1 || true)
+[[ -n $series ]] && cp "$series" "$name.vtm.series" && sed -i 's#"name" *: *"#&VTK/#' "$name.vtm.series"
+end_s=$(date +%s)
+times=$(ls -d [0-9]* | wc -l)
+log "done in $((end_s - start)) s; $times written times; patches: $patches; the case: $case_dir/$name.foam"

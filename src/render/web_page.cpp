@@ -439,12 +439,30 @@ std::string web_page(const PreparedScene& p, WebPageReport* report, const WebPag
       ",\"indices\":" + block.add_indices(indices, mesh.positions.size()) +
       ",\"phases\":" + block.add(phases) + ",\"color_map\":" + block.add(colours);
   if (s.use_color || s.use_beta) {
+    // (colour, beta) per vertex: every step's where they change from step
+    // to step (a transient result coloured by its own magnitude), as the
+    // session sets them at each step; else the first step's.
+    const auto put = [&](const std::vector<float>& colour, const std::vector<float>& beta,
+                         std::vector<float>& out) {
+      for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+        out.push_back(colour.empty() ? 0.0f : colour[i]);
+        out.push_back(beta.empty() ? 0.0f : beta[i]);
+      }
+    };
     std::vector<float> scalars;
-    for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
-      scalars.push_back(p.color_scalar.empty() ? 0.0f : p.color_scalar[i]);
-      scalars.push_back(p.beta_scalar.empty() ? 0.0f : p.beta_scalar[i]);
+    put(p.color_scalar, p.beta_scalar, scalars);
+    const std::size_t first = scalars.size();
+    bool changing = false;
+    for (std::size_t k = 1; k < steps && p.step_data; ++k) {
+      const StepData d = p.step_data(k);
+      put(d.color_scalar, d.beta_scalar, scalars);
+      changing = changing || !std::equal(scalars.begin(), scalars.begin() + first,
+                                         scalars.end() - static_cast<std::ptrdiff_t>(first));
     }
-    arrays += ",\"scalars\":" + block.add_vertices(scalars, 2);
+    if (!changing) scalars.resize(first);
+    arrays +=
+        ",\"scalars\":" +
+        block.add_vertices(scalars, 2, ",\"steps\":" + std::to_string(scalars.size() / first));
   }
   if (const ImageU8& image = p.surface_image; !image.pixels.empty()) {
     // The surface colour (RGBA8, bottom row first as the GL texture takes

@@ -99,6 +99,20 @@ TEST(WebPage, AMovingSurfaceStoresTheMovingPointsOfEachStepOnce) {
   EXPECT_LT(report.motion, 66u * 12u * 2u);  // less than its raw bytes (codec)
   EXPECT_NE(page.find("\"sets\":[0,0,1,1]"), std::string::npos);
   EXPECT_NE(page.find("#define IBFVS_MOVING"), std::string::npos);
+  EXPECT_NE(page.find("\"steps\":4"), std::string::npos);  // of the field
+  EXPECT_EQ(page.find("\"scalars\""), std::string::npos);  // not coloured
+  // Coloured by height, which changes at step 2: every step's colours, as
+  // the session sets them; by x, which never changes: the first step's.
+  s.color_by = "z";
+  const std::string by_height = web_page(prepare_scene(s));
+  EXPECT_NE(by_height.find("\"codec\":\"vertex\",\"stride\":8,\"elements\":" +
+                           std::to_string(2 * 4 * p.mesh->vertex_count()) + ",\"steps\":4"),
+            std::string::npos);
+  s.color_by = "x";
+  const std::string by_x = web_page(prepare_scene(s));
+  EXPECT_NE(by_x.find("\"codec\":\"vertex\",\"stride\":8,\"elements\":" +
+                      std::to_string(2 * p.mesh->vertex_count()) + ",\"steps\":1"),
+            std::string::npos);
 }
 
 TEST(WebPage, AStyledSceneIsNamedByItsStyle) {

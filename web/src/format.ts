@@ -91,7 +91,7 @@ export interface SceneHeader {
     positions: ArrayRef & { min: number[]; max: number[] }; // uint16 x 4 (the last 0), in the box
     normals: ArrayRef; // int8 x 4 (snorm)
     vectors: ArrayRef; // float16 x 4, every time step one after the other
-    scalars?: ArrayRef; // float32 x 2 (colour, beta)
+    scalars?: ArrayRef & { steps: number }; // float32 x 2 (colour, beta) per vertex, for each of `steps` steps (1: all alike)
     indices: ArrayRef; // uint32
     phases: ArrayRef; // uint16, phi * 65535
     color_map: ArrayRef; // uint8 RGBA x 256

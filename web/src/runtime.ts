@@ -103,6 +103,8 @@ export class PageRenderer {
   private surface: WebGLBuffer[] = []; // this step's and the next's points and normals
   private drawn: WebGLBuffer[] | null = null; // the pair the last frame drew, where setTime replaced it since
   private drawnMix = 0;
+  private scalarBuffer: WebGLBuffer | null = null; // (colour, beta) per vertex, per step where they change
+  private scalarSteps = 1;
   private previousViewProjection: mat4 | null = null;
   private cells: Float32Array | null = null; // F_t's first texels (random cells), or null
   locked = false;
@@ -165,8 +167,13 @@ export class PageRenderer {
     gl.bufferData(gl.ARRAY_BUFFER, view(data, a.vectors, u16, 2), gl.STATIC_DRAW);
     gl.enableVertexAttribArray(2);
     gl.enableVertexAttribArray(4);
-    if (a.scalars) attribute(3, view(data, a.scalars, f32, 4), 2, gl.FLOAT, false);
-    else gl.vertexAttrib2f(3, 0, 0);
+    if (a.scalars) {
+      attribute(3, view(data, a.scalars, f32, 4), 2, gl.FLOAT, false);
+      this.scalarBuffer = gl.getVertexAttrib(3, gl.VERTEX_ATTRIB_ARRAY_BUFFER_BINDING) as WebGLBuffer;
+      this.scalarSteps = a.scalars.steps ?? 1;
+    } else {
+      gl.vertexAttrib2f(3, 0, 0);
+    }
     const indices = gl.createBuffer()!;
     gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, indices);
     gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, view(data, a.indices, u32, 4), gl.STATIC_DRAW);
@@ -283,6 +290,11 @@ export class PageRenderer {
     gl.bindBuffer(gl.ARRAY_BUFFER, this.vectorBuffer);
     gl.vertexAttribPointer(2, 4, gl.HALF_FLOAT, false, 0, step * bytes);
     gl.vertexAttribPointer(4, 4, gl.HALF_FLOAT, false, 0, ((step + 1) % n) * bytes);
+    if (this.scalarSteps > 1) {
+      // Each step's colours, as the session sets them at each step.
+      gl.bindBuffer(gl.ARRAY_BUFFER, this.scalarBuffer);
+      gl.vertexAttribPointer(3, 2, gl.FLOAT, false, 0, step * this.scene.vertex_count * 8);
+    }
     if (this.motion) {
       // The surface at this step and the next (IbfvsRenderer::set_surface_steps):
       // the pair the last frame drew stays for the next frame's advection.

@@ -313,7 +313,10 @@ test("a series whose points move plays in the page as in ibfvs render", async ()
                             { encoding: "utf8" });
   // Every vertex but the poles' moves; a set of their points per step.
   assert.match(said, /the surface moves: \d+ of its vertices, 12 sets of their points for 12 steps/);
-  await assertMatchesRender("turning", ["--mesh", series, "--frames-per-step", "4"]);
+  // Coloured by height along z, which changes as the sphere turns: each
+  // step's colours, as the session sets them.
+  await assertMatchesRender("turning", ["--mesh", series, "--frames-per-step", "4",
+                                        "--color-by", "z"]);
 });
 
 test("the earth plays its months, with a time slider", async () => {

@@ -22,40 +22,20 @@ iterations="${2:-}"
 examples=/usr/share/doc/openfoam-examples/examples
 tutorial="$examples/incompressible/simpleFoam/$name"
 case_dir="${IBFVS_CFD_DIR:-$root/data/cfd/$name}"
-log() { printf '%s  %s\n' "$(date +%T)" "$*"; }
+me=cfd_case
+# shellcheck source=scripts/cfd_common.sh
+source "$root/scripts/cfd_common.sh"
 
-if ! command -v simpleFoam > /dev/null || [[ ! -d $tutorial ]]; then
-  [[ -d $examples ]] && [[ ! -d $tutorial ]] && {
-    echo "cfd_case: no simpleFoam tutorial $name in $examples/incompressible/simpleFoam" >&2
-    exit 1
-  }
-  sudo=""
-  [[ $(id -u) -ne 0 ]] && sudo="sudo"
-  log "installing Debian's openfoam and openfoam-examples"
-  $sudo env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends \
-    openfoam openfoam-examples > /dev/null
+if [[ -d $examples ]] && [[ ! -d $tutorial ]]; then
+  echo "cfd_case: no simpleFoam tutorial $name in $examples/incompressible/simpleFoam" >&2
+  exit 1
 fi
-# OpenFOAM's binaries need only this (its etc/bashrc is broken in Debian's build).
-export WM_PROJECT_DIR=/usr/share/openfoam
+need_openfoam simpleFoam "$tutorial"
 
 start=$(date +%s)
-rm -rf "$case_dir"
-mkdir -p "$case_dir"
-cp -r "$tutorial"/. "$case_dir"/
-cd "$case_dir"
-find . -name '*.gz' -exec gunzip -f {} +
+copy_tutorial "$tutorial" "$case_dir"
 [[ -n $iterations ]] && sed -i "s/^endTime .*/endTime         $iterations;/" system/controlDict
 
-run() {
-  local step=$1
-  shift
-  log "$step"
-  "$@" > "log.$step" 2>&1 || {
-    echo "cfd_case: $step failed; see $case_dir/log.$step" >&2
-    tail -n 20 "log.$step" >&2
-    exit 1
-  }
-}
 [[ -f system/surfaceFeatureExtractDict ]] && run surfaceFeatureExtract surfaceFeatureExtract
 run blockMesh blockMesh
 [[ -f system/snappyHexMeshDict ]] && run snappyHexMesh snappyHexMesh -overwrite
@@ -64,8 +44,7 @@ run simpleFoam simpleFoam
 run wallShearStress simpleFoam -postProcess -func wallShearStress -noZero
 touch "$name.foam"
 # The wall patches (type wall in the mesh's boundary file), one surface.
-walls=$(awk '/^ *[A-Za-z_][A-Za-z0-9_]* *$/ { name = $1 } /type +wall;/ { print name }' \
-  constant/polyMesh/boundary | tr '\n' ' ')
+walls="$(wall_patches) "
 [[ -n $walls ]] || { echo "cfd_case: $name has no wall patches" >&2; exit 1; }
 run foamToVTK foamToVTK -latestTime -no-internal -one-boundary -patches "(${walls% })"
 cp VTK/*/boundary.vtp "$name.vtp"  # VTK/<case folder name>_<time>/

@@ -21,7 +21,10 @@ iterations="${1:-500}"
 case_dir="${IBFVS_CFD_DIR:-$root/data/cfd/motorBike}"  # IBFVS_CFD_DIR: elsewhere
 examples=/usr/share/doc/openfoam-examples/examples
 tutorial="$examples/incompressible/simpleFoam/motorBike"
-log() { printf '%s  %s\n' "$(date +%T)" "$*"; }
+me=cfd_motorbike
+# log and run
+# shellcheck source=scripts/cfd_common.sh
+source "$root/scripts/cfd_common.sh"
 
 if ! command -v simpleFoam > /dev/null || [[ ! -d $tutorial ]]; then
   sudo=""
@@ -62,16 +65,6 @@ interval=$((iterations / 5))
 ((interval < 1)) && interval=1
 sed -i "s/^writeInterval .*/writeInterval   $interval;/" system/controlDict
 
-run() {
-  local name=$1
-  shift
-  log "$name"
-  "$@" > "log.$name" 2>&1 || {
-    echo "cfd_motorbike: $name failed; see $case_dir/log.$name" >&2
-    tail -n 20 "log.$name" >&2
-    exit 1
-  }
-}
 run surfaceFeatureExtract surfaceFeatureExtract
 run blockMesh blockMesh
 run decomposePar decomposePar

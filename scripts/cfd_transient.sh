@@ -5,8 +5,9 @@
 # data/cfd/CASE:
 #   CASE.foam      the case with every written time (a moving mesh's points
 #                  per time too), for ibfvs and ParaView
-#   CASE.vtm.series ParaView's file series of the chosen patches at every
-#                  written time, from foamToVTK
+#   CASE.vtm.series ParaView's file series of the wall patches at every
+#                  written time, from foamToVTK (TJunction; the mixer's front
+#                  face is an empty patch, which foamToVTK leaves out)
 #
 # Usage: scripts/cfd_transient.sh TJunction|mixerVesselAMI2D
 #   TJunction         pimpleFoam/RAS/TJunction: a T-junction of square ducts,
@@ -34,37 +35,16 @@ case "$name" in
     exit 1 ;;
 esac
 case_dir="${IBFVS_CFD_DIR:-$root/data/cfd/$name}"
-log() { printf '%s  %s\n' "$(date +%T)" "$*"; }
-
-if ! command -v pimpleFoam > /dev/null || [[ ! -d $tutorial ]]; then
-  sudo=""
-  [[ $(id -u) -ne 0 ]] && sudo="sudo"
-  log "installing Debian's openfoam and openfoam-examples"
-  $sudo env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends \
-    openfoam openfoam-examples > /dev/null
-fi
-# OpenFOAM's binaries need only this (its etc/bashrc is broken in Debian's build).
-export WM_PROJECT_DIR=/usr/share/openfoam
+me=cfd_transient
+# shellcheck source=scripts/cfd_common.sh
+source "$root/scripts/cfd_common.sh"
+need_openfoam pimpleFoam "$tutorial"
 
 start=$(date +%s)
-rm -rf "$case_dir"
-mkdir -p "$case_dir"
-cp -r "$tutorial"/. "$case_dir"/
-cd "$case_dir"
-find . -name '*.gz' -exec gunzip -f {} +
+copy_tutorial "$tutorial" "$case_dir"
 [[ -n $end ]] && sed -i "s/^endTime .*/endTime         $end;/" system/controlDict
 [[ -n $write ]] && sed -i "s/^writeInterval .*/writeInterval   $write;/" system/controlDict
 
-run() {
-  local step=$1
-  shift
-  log "$step"
-  "$@" > "log.$step" 2>&1 || {
-    echo "cfd_transient: $step failed; see $case_dir/log.$step" >&2
-    tail -n 20 "log.$step" >&2
-    exit 1
-  }
-}
 [[ -f system/blockMeshDict.m4 ]] && m4 system/blockMeshDict.m4 > system/blockMeshDict
 [[ $name == TJunction ]] &&
   sed -i 's/(50 5 5)/(100 10 10)/; s/(5 5 5)/(10 10 10)/; s/(5 50 5)/(10 100 10)/g' system/blockMeshDict
@@ -74,16 +54,14 @@ run blockMesh blockMesh
 run pimpleFoam pimpleFoam
 # The wall patches (type wall in the mesh's boundary file), unless the case
 # names its own (a 2D case's front face).
-if [[ -z $patches ]]; then
-  patches=$(awk '/^ *[A-Za-z_][A-Za-z0-9_]* *$/ { name = $1 } /type +wall;/ { print name }' \
-    constant/polyMesh/boundary | tr '\n' ' ')
-  patches=${patches% }
-  run wallShearStress pimpleFoam -postProcess -func wallShearStress -noZero
-fi
 touch "$name.foam"
-run foamToVTK foamToVTK -no-internal -one-boundary -patches "(${patches})"
-series=$(ls VTK/*.series 2> /dev/null | head -n 1 || true)
-[[ -n $series ]] && cp "$series" "$name.vtm.series" && sed -i 's#"name" *: *"#&VTK/#' "$name.vtm.series"
+if [[ -z $patches ]]; then
+  patches=$(wall_patches)
+  run wallShearStress pimpleFoam -postProcess -func wallShearStress -noZero
+  run foamToVTK foamToVTK -no-internal -one-boundary -patches "(${patches})"
+  # Beside the case, its names made relative to it.
+  sed 's#"name" *: *"#&VTK/#' VTK/*.series > "$name.vtm.series"
+fi
 end_s=$(date +%s)
 times=$(ls -d [0-9]* | wc -l)
 log "done in $((end_s - start)) s; $times written times; patches: $patches; the case: $case_dir/$name.foam"

@@ -217,11 +217,12 @@ struct Surface {
   Arrays point_arrays, cell_arrays;
 };
 
-// A quadrilateral's two triangles: along the diagonal from its first point,
-// unless the other diagonal is clearly the shorter (by a thousandth). VTK's
-// triangle filter takes the shorter one, which for the equal diagonals of a
-// polar mesh's cells (a rotor's) flips with the rounding as the points move:
-// the triangles of a moving mesh must not change from step to step.
+// A quadrilateral's two triangles: along the shorter diagonal, as VTK's
+// triangle filter splits it, but where the two are within a thousandth of
+// each other along the one from the second point, as VTK does for equal
+// ones. VTK's own choice for the nearly equal diagonals of a polar mesh's
+// cells (a rotor's) flips with the rounding as the points move: the
+// triangles of a moving mesh must not change from step to step.
 std::array<Triangle, 2> split_quad(const vtkIdType* q, vtkPoints* points) {
   double a[3], b[3], c[3], d[3];
   points->GetPoint(q[0], a);
@@ -231,8 +232,8 @@ std::array<Triangle, 2> split_quad(const vtkIdType* q, vtkPoints* points) {
   const double ac = vtkMath::Distance2BetweenPoints(a, c);
   const double bd = vtkMath::Distance2BetweenPoints(b, d);
   const auto id = [&](int k) { return static_cast<std::uint32_t>(q[k]); };
-  if (bd < ac * (1.0 - 2e-3)) return {{{id(0), id(1), id(3)}, {id(1), id(2), id(3)}}};
-  return {{{id(0), id(1), id(2)}, {id(0), id(2), id(3)}}};
+  if (ac < bd * (1.0 - 2e-3)) return {{{id(0), id(1), id(2)}, {id(0), id(2), id(3)}}};
+  return {{{id(0), id(1), id(3)}, {id(1), id(2), id(3)}}};
 }
 
 // A surface of triangles and quadrilaterals, as it is: its points, the
@@ -288,52 +289,17 @@ Surface block_surface(vtkDataSet* ds) {
     poly = surface->GetOutput();
   }
   // Triangles and quadrilaterals (most files, OpenFOAM's faces) are taken as
-  // they are, each quadrilateral split by split_quad; other polygons and
+  // they are, each quadrilateral split by split_quad (the filter would copy
+  // a mesh of triangles: a second on six million); other polygons and
   // strips go through VTK's triangle filter; lines and vertices are dropped.
   if (poly->GetNumberOfStrips() == 0 && poly->GetPolys()->GetMaxCellSize() <= 4)
     return own_triangles(poly);
-  vtkSmartPointer<vtkPolyData> tri = poly;
-  if (poly->GetNumberOfStrips() > 0 || poly->GetPolys()->IsHomogeneous() != 3) {
-    vtkNew<vtkTriangleFilter> triangles;
-    triangles->SetInputData(poly);
-    triangles->PassVertsOff();
-    triangles->PassLinesOff();
-    triangles->Update();
-    tri = triangles->GetOutput();
-  }
-  Surface s;
-  const vtkIdType n = tri->GetNumberOfPoints();
-  s.positions.resize(static_cast<std::size_t>(n));
-  double p[3];
-  for (vtkIdType i = 0; i < n; ++i) {
-    tri->GetPoint(i, p);
-    s.positions[static_cast<std::size_t>(i)] = glm::vec3(p[0], p[1], p[2]);
-  }
-  vtkCellArray* polys = tri->GetPolys();
-  s.triangles.reserve(static_cast<std::size_t>(polys->GetNumberOfCells()));
-  vtkIdType count = 0;
-  const vtkIdType* ids = nullptr;
-  std::vector<vtkIdType> kept;  // the cells that are triangles (all, from vtkTriangleFilter)
-  vtkIdType cell = tri->GetNumberOfVerts() + tri->GetNumberOfLines();
-  for (polys->InitTraversal(); polys->GetNextCell(count, ids); ++cell) {
-    if (count != 3) continue;
-    s.triangles.push_back({static_cast<std::uint32_t>(ids[0]), static_cast<std::uint32_t>(ids[1]),
-                           static_cast<std::uint32_t>(ids[2])});
-    kept.push_back(cell);
-  }
-  take_arrays(tri->GetPointData(), n, s.point_arrays);
-  Arrays cells;
-  take_arrays(tri->GetCellData(), tri->GetNumberOfCells(), cells);
-  for (auto& [name, array] : cells) {
-    const auto c = static_cast<std::size_t>(array.first);
-    std::vector<float> per_triangle(kept.size() * c);
-    for (std::size_t t = 0; t < kept.size(); ++t)
-      std::copy_n(
-          array.second.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(kept[t]) * c),
-          c, per_triangle.begin() + static_cast<std::ptrdiff_t>(t * c));
-    s.cell_arrays[name] = {array.first, std::move(per_triangle)};
-  }
-  return s;
+  vtkNew<vtkTriangleFilter> triangles;
+  triangles->SetInputData(poly);
+  triangles->PassVertsOff();
+  triangles->PassLinesOff();
+  triangles->Update();
+  return own_triangles(triangles->GetOutput());
 }
 
 // Every triangle with three vertices of its own, so that its cells' values

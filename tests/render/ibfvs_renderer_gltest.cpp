@@ -146,13 +146,7 @@ TEST_F(RendererGLTest, EqualsTheCpuReferenceOnAFlatSquare) {
     field[i] = glm::cross(omega, square.positions[i]) + u;
   const float dt = 0.012f;  // about 2.5 pixels per frame at the image corners
   for (const NoiseProfile profile : {NoiseProfile::Sine, NoiseProfile::Sawtooth}) {
-    RenderSettings settings;
-    settings.width = w;
-    settings.height = h;
-    settings.alpha = 0.12f;
-    settings.noise.scale = 5.0f;
-    settings.noise.profile = profile;
-    settings.noise.rate = 0.03f;
+    const RenderSettings settings = reference_settings(w, h, profile);
     IbfvsRenderer r(settings);
     r.set_mesh(square, field);
     ReferenceIbfvs ref(w, h, settings.background.x, settings.noise);
@@ -186,13 +180,7 @@ TEST_F(RendererGLTest, ImageNormalizedFlowEqualsTheCpuReference) {
   std::vector<glm::vec3> field(square.vertex_count());
   for (std::size_t i = 0; i < field.size(); ++i)
     field[i] = glm::cross(omega, square.positions[i]) + u;
-  RenderSettings settings;
-  settings.width = w;
-  settings.height = h;
-  settings.alpha = 0.12f;
-  settings.noise.scale = 5.0f;
-  settings.noise.profile = NoiseProfile::Sine;
-  settings.noise.rate = 0.03f;
+  RenderSettings settings = reference_settings(w, h);
   settings.image_step = step;
   IbfvsRenderer r(settings);
   r.set_mesh(square, field);

@@ -64,13 +64,7 @@ TEST_F(RendererGLTest, EqualsTheCpuReferenceOnATurningSquare) {
                      0.0f) +
            static_cast<float>(k) * slide;
   };
-  RenderSettings settings;
-  settings.width = w;
-  settings.height = h;
-  settings.alpha = 0.12f;
-  settings.noise.scale = 5.0f;
-  settings.noise.profile = NoiseProfile::Sine;
-  settings.noise.rate = 0.03f;
+  const RenderSettings settings = reference_settings(w, h);
   IbfvsRenderer r(settings);
   r.set_mesh(square, std::vector<glm::vec3>(square.vertex_count(), glm::vec3(0.0f)));
   ReferenceIbfvs ref(w, h, settings.background.x, settings.noise);

@@ -24,6 +24,19 @@ inline ViewState flat_view() {
   return {glm::mat4(1.0f), glm::ortho(-1.0f, 1.0f, -1.0f, 1.0f, -1.0f, 1.0f)};
 }
 
+// The settings the comparisons with the CPU reference run at: coarse noise
+// (5 px), a slow smooth profile, alpha 0.12.
+inline RenderSettings reference_settings(int w, int h, NoiseProfile profile = NoiseProfile::Sine) {
+  RenderSettings settings;
+  settings.width = w;
+  settings.height = h;
+  settings.alpha = 0.12f;
+  settings.noise.scale = 5.0f;
+  settings.noise.profile = profile;
+  settings.noise.rate = 0.03f;
+  return settings;
+}
+
 struct Scene {
   TriMesh mesh;
   std::vector<glm::vec3> field;

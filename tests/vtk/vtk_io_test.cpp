@@ -265,10 +265,11 @@ TEST_F(VtkIo, QuadrilateralsSplitTheSameWayWhereverThePointsMove) {
   // Each triangle keeps its cell's value.
   const std::vector<float>& id = first.scalars.at("id");
   EXPECT_GT(id.size(), 0u);
-  // And a quadrilateral whose other diagonal is clearly shorter splits along it.
+  // And a quadrilateral whose diagonal from its first point is clearly the
+  // shorter splits along it.
   vtkNew<vtkPoints> kite;
   for (const auto& p :
-       {glm::vec3(0, 0, 0), glm::vec3(1, -0.2f, 0), glm::vec3(3, 0, 0), glm::vec3(1, 0.2f, 0)})
+       {glm::vec3(1, -0.2f, 0), glm::vec3(3, 0, 0), glm::vec3(1, 0.2f, 0), glm::vec3(0, 0, 0)})
     kite->InsertNextPoint(p.x, p.y, p.z);
   vtkNew<vtkCellArray> one;
   const vtkIdType q[4] = {0, 1, 2, 3};
@@ -278,8 +279,8 @@ TEST_F(VtkIo, QuadrilateralsSplitTheSameWayWhereverThePointsMove) {
   poly->SetPolys(one);
   const TriMesh split = vtk::surface_mesh(poly, "kite");
   ASSERT_EQ(split.triangle_count(), 2u);
-  for (const Triangle& t : split.triangles)  // the diagonal 1-3 in both
-    EXPECT_TRUE(std::count(t.begin(), t.end(), 1u) && std::count(t.begin(), t.end(), 3u));
+  for (const Triangle& t : split.triangles)  // the diagonal 0-2 in both
+    EXPECT_TRUE(std::count(t.begin(), t.end(), 0u) && std::count(t.begin(), t.end(), 2u));
 }
 
 TEST_F(VtkIo, NumberedFilesAreASeries) {

@@ -623,10 +623,9 @@ def test_save_animation_over_a_series_keeps_the_texture_at_every_step(tmp_path):
         measured.append(alignment(frame, direction))
     print("Save Animation, A and W at each step:", measured)
     # Every step is aligned with its own flow, not the last step's (30
-    # degrees off) and not noise (A 0.5): measured A 0.980-0.987, W 0.82-0.87
-    # px, the first step too (a new texture is formed first: 22 frames). The
-    # rule "the frames the renders since the last change fell short of" gave
-    # step 1 a single frame (the first step's three renders): A 0.81.
+    # degrees off) and not noise (A 0.5): measured A 0.98-0.99, W 0.8-0.9
+    # px. The rule "the frames the renders since the last change fell short
+    # of" gave step 1 a single frame (the first step's three renders): A 0.81.
     for k, m in enumerate(measured):
         assert m["A"] > 0.93, (k, m)
         assert m["W"] < 1.2, (k, m)

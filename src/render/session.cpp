@@ -9,12 +9,6 @@
 
 namespace ibfvs {
 
-int forming_frames(float alpha) {
-  if (!(alpha > 0.0f)) return 100;
-  if (alpha >= 0.9f) return 1;
-  return std::clamp(static_cast<int>(std::ceil(std::log(0.1) / std::log(1.0 - alpha))), 1, 100);
-}
-
 namespace {
 
 // The positions and normals a step's surface has.
@@ -77,7 +71,8 @@ class Session::StepPlayer {
     // into a step with other triangles the current one holds to the end.
     const bool pair = &mesh_of(next_) == &mesh;
     const StepData& to = pair ? next_ : current_;
-    if (scene_.moving)
+    // A surface that moves at either step (or moved before) takes both steps' points.
+    if (renderer.moving() || !current_.positions.empty() || !to.positions.empty())
       renderer.set_surface_steps(positions_of(current_, mesh), normals_of(current_, mesh),
                                  positions_of(to, mesh), normals_of(to, mesh));
     renderer.set_field_steps(current_.field, to.field);
@@ -212,7 +207,6 @@ void Session::change_data(PreparedScene next) {
   scene_.vertex_order = std::move(next.vertex_order);
   scene_.step_count = next.step_count;
   scene_.step_data = std::move(next.step_data);
-  scene_.moving = next.moving;
   player_ = std::make_unique<StepPlayer>(scene_, *renderer_);
 }
 

@@ -30,11 +30,6 @@ namespace ibfvs {
 inline constexpr int kDefaultFramesPerStep = 3;
 inline constexpr int kMaxFramesPerStep = 200;
 
-/// Frames a texture started from noise takes to form: until the first
-/// frame's noise weighs a tenth, (1 - alpha)^k <= 0.1 (22 at alpha 0.1),
-/// at most 100. A host gives a new texture these at its first render.
-[[nodiscard]] int forming_frames(float alpha);
-
 class Session {
  public:
   /// Uploads the mesh, field, scalars and surface image and initialises F_t

@@ -585,14 +585,12 @@ void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor) {
   // at least twice as often (Play, which renders on between steps: a step
   // change is then one more frame). Save Animation renders a step once or
   // twice (its first, up to three times), so the shortfall of the renders
-  // since the last change would leave a step too few. A texture started
-  // from noise is formed first (22 frames at Alpha 0.1).
+  // since the last change would leave a step too few.
   const bool restart = header[kRestart] > 0.0;
   const bool changed = header[kChanged] > 0.0 || restart;
   const bool new_renderer = restart || header[kResize] > 0.0 || header[kRegrid] > 0.0;
   int frames = 1;
   if (changed && in.renders_at_data < 2 * in.frames_per_step) frames = in.frames_per_step;
-  if (restart) frames = std::max(frames, ibfvs::forming_frames(in.scene.alpha));
   try {
     if (restart || (!in.mesh && in.session)) {
       in.session.reset();

@@ -71,15 +71,20 @@ struct StepContext {
 // their own (checked, normals, GPU order). `arrays_only`: only its arrays
 // count (a field_step file on the scene's mesh, the same vertices).
 // `moved`: the points differ from the prepared mesh's; `same`: its triangles.
-TriMesh mesh_on(const StepContext& c, TriMesh given, const std::string& where, bool arrays_only,
-                bool& same, bool& moved) {
-  for (std::size_t i = 0; i < given.positions.size() && !arrays_only; ++i) {
-    const glm::vec3& r = given.positions[i];
+// Throws InputError naming `where` and the point where a point is not finite.
+void check_finite(const std::vector<glm::vec3>& points, const std::string& where) {
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const glm::vec3& r = points[i];
     if (!std::isfinite(r.x) || !std::isfinite(r.y) || !std::isfinite(r.z))
       throw InputError(where + ": point " + std::to_string(i) + " is not a finite number (" +
                        std::to_string(r.x) + ", " + std::to_string(r.y) + ", " +
                        std::to_string(r.z) + ")");
   }
+}
+
+TriMesh mesh_on(const StepContext& c, TriMesh given, const std::string& where, bool arrays_only,
+                bool& same, bool& moved) {
+  if (!arrays_only) check_finite(given.positions, where);
   const auto put = [&](const auto& values) {
     return c.order.empty() ? values : remap_vertex_data(values, c.order);
   };
@@ -169,6 +174,15 @@ std::function<StepData(std::size_t)> cached_steps(std::function<StepData(std::si
   };
 }
 
+// The steps a run plays: its frames at frames_per_step each (with the step
+// each last frame runs towards); all of them where the run's length is
+// automatic.
+std::size_t steps_played(const PreparedScene& p) {
+  if (p.step_count < 2 || p.frames <= 0) return p.step_count;
+  const auto per_step = static_cast<std::size_t>(std::max(p.scene.frames_per_step, 1));
+  return std::min(p.step_count, static_cast<std::size_t>(p.frames - 1) / per_step + 2);
+}
+
 // The positions a step's surface has.
 const std::vector<glm::vec3>& step_positions(const StepData& d, const TriMesh& mesh) {
   return d.mesh ? d.mesh->positions : !d.positions.empty() ? d.positions : mesh.positions;
@@ -205,11 +219,13 @@ float fit_to_image(PreparedScene& p, int width, int height) {
   p.height = p.settings.height = height;
   const Camera camera(mesh_bounds(*p.mesh), p.camera,
                       static_cast<float>(width) / static_cast<float>(height));
-  // The fastest vertex of every step played, not only of the first (a run
-  // from rest has no flow there).
+  // The fastest vertex of the steps played, not only of the first (a run
+  // from rest has no flow there); normalised in image space, dt only needs
+  // a step that has flow.
   float speed =
       max_pixel_speed(p.mesh->positions, p.field, camera.view_projection(), width, height);
-  for (std::size_t k = 1; k < p.step_count && p.step_data; ++k) {
+  for (std::size_t k = 1; k < steps_played(p) && p.step_data; ++k) {
+    if (s.image_normalize && speed > 0.0f) break;
     const StepData d = p.step_data(k);
     speed = std::max(speed, max_pixel_speed(step_positions(d, *p.mesh), d.field,
                                             camera.view_projection(), width, height));
@@ -378,9 +394,7 @@ PreparedScene prepare(const Scene& s, std::optional<LoadedMesh> given) {
                                          ? step.positions
                                          : remap_vertex_data(step.positions, loaded.vertex_order);
       if (moved != mesh.positions) {
-        TriMesh check;
-        check.positions = moved;
-        for_key("mesh", [&] { validate_mesh(check, where); });
+        for_key("mesh", [&] { check_finite(moved, where); });
         mesh.positions = std::move(moved);
         compute_vertex_normals(mesh);
       }
@@ -585,13 +599,6 @@ PreparedScene prepare(const Scene& s, std::optional<LoadedMesh> given) {
     p.warnings.push_back(mesh_label + ": " + std::to_string(field_report.non_finite_zeroed) +
                          " vectors were NaN or infinite and are set to zero");
 
-  // ---- the steps: does the surface move (each step read once, and kept
-  // while the steps fit in memory)
-  for (std::size_t k = 0; k < p.step_count && p.step_data; ++k) {
-    const StepData d = p.step_data(k);
-    p.moving = p.moving || !d.positions.empty() || d.mesh;
-  }
-
   // ---- camera and dt
   p.mesh = mesh_ptr;
   const float speed = fit_to_image(p, s.width, s.height);
@@ -640,11 +647,11 @@ PreparedScene prepare(const Scene& s, std::optional<LoadedMesh> given) {
     } catch (const InputError& e) {
       throw SettingError(key, mesh_label + ": " + e.what());
     }
-    // Percentiles of every step played (a run from rest has none at the first).
+    // Percentiles of the steps played (a run from rest has none at the first).
     std::vector<float> all;
     if (p.step_data && p.step_count > 1 && (!range || range->percentile)) {
       all = values;
-      for (std::size_t k = 1; k < p.step_count; ++k) {
+      for (std::size_t k = 1; k < steps_played(p); ++k) {
         const StepData d = p.step_data(k);
         const std::vector<float>& v = colour ? d.color_scalar : d.beta_scalar;
         all.insert(all.end(), v.begin(), v.end());
@@ -718,7 +725,6 @@ PreparedScene prepare_change(const PreparedScene& prepared, TriMesh mesh, const 
   PreparedScene next = prepared;
   next.step_count = 1;
   next.step_data = nullptr;
-  next.moving = false;
   next.field = std::move(d.field);
   next.color_scalar = std::move(d.color_scalar);
   next.beta_scalar = std::move(d.beta_scalar);

@@ -52,8 +52,6 @@ struct PreparedScene {
   /// The data at a step (0 <= k < step_count; step 0 is `field` and `mesh`
   /// with the scalars). Throws SettingError naming the file and the step.
   std::function<StepData(std::size_t)> step_data;
-  /// Some step's surface moves or has other triangles (StepData).
-  bool moving = false;
   /// The mesh as given, before subdivision and GPU order: its vertex count,
   /// topology_hash, and the new index of each of its vertices (empty:
   /// unchanged). A later state of it (prepare_change) with the same

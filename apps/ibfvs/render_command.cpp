@@ -264,6 +264,9 @@ int run_render(const Scene& o, const std::string& scene_file) {
           out.c_str(), report.page, report.scene, report.runtime, mesh_name.c_str(),
           prepared.mesh->vertex_count(), prepared.mesh->triangle_count(),
           field_spec.to_string().c_str());
+    if (!o.quiet && report.other_meshes > 0)
+      std::printf("ibfvs: %zu steps with triangles of their own, each a mesh in the page\n",
+                  report.other_meshes);
     if (!o.quiet && report.moving_vertices > 0)
       std::printf(
           "ibfvs: the surface moves: %zu of its vertices, %zu sets of their points for "

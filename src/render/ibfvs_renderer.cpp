@@ -342,7 +342,7 @@ void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
     float drawn_mix = field_mix_;
     if (moving_) {
       point_drawn_attributes();
-      if (use_previous && !locked_) drawn_mix = drawn_mix_;
+      if (use_previous && !locked_ && drawn_this_mesh_) drawn_mix = drawn_mix_;
     }
     const FrameUniforms frame{locked_        ? lock_view_projection_
                               : use_previous ? previous_view_projection_
@@ -385,6 +385,7 @@ void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
     drawn_next_ = gl::Buffer();
     drawn_elsewhere_ = false;
     drawn_mix_ = field_mix_;
+    drawn_this_mesh_ = true;
   }
   has_previous_ = true;
   ++frame_;

@@ -58,7 +58,7 @@ void IbfvsRenderer::upload_mesh(const TriMesh& mesh, std::span<const glm::vec3> 
   vertices_next_ = gl::Buffer();
   drawn_ = gl::Buffer();
   drawn_next_ = gl::Buffer();
-  moving_ = drawn_elsewhere_ = false;
+  moving_ = drawn_elsewhere_ = drawn_this_mesh_ = false;
   field_ = gl::Buffer(bytes_of(field), true);
   field_next_ = gl::Buffer(bytes_of(field), true);
   const std::vector<glm::vec2> zeros(mesh.positions.size(), glm::vec2(0.0f));
@@ -90,7 +90,7 @@ void IbfvsRenderer::set_surface_steps(std::span<const glm::vec3> positions,
       throw InputError("renderer: each surface step needs one position and normal per vertex");
   // The pair the last frame drew stays for the next frame's advection, unless
   // it is kept already (two changes without a frame between them).
-  if (has_previous_ && !drawn_elsewhere_) {
+  if (has_previous_ && drawn_this_mesh_ && !drawn_elsewhere_) {
     drawn_ = std::move(vertices_);
     drawn_next_ = moving_ ? std::move(vertices_next_) : gl::Buffer();
     drawn_elsewhere_ = true;
@@ -121,10 +121,11 @@ void IbfvsRenderer::set_surface_steps(std::span<const glm::vec3> positions,
 
 void IbfvsRenderer::point_drawn_attributes() {
   constexpr std::size_t stride = 6 * sizeof(float);
-  // Locked, before the first frame, or advecting in the current view: no
-  // motion of the surface enters (the vertex is taken where it is drawn).
-  const bool compensate =
-      settings_.advect_view == AdvectView::Previous && has_previous_ && !locked_;
+  // Locked, before the first frame, after another mesh, or advecting in the
+  // current view: no motion of the surface enters (the vertex is taken
+  // where it is drawn).
+  const bool compensate = settings_.advect_view == AdvectView::Previous && has_previous_ &&
+                          drawn_this_mesh_ && !locked_;
   const bool elsewhere = compensate && drawn_elsewhere_;
   const gl::Buffer& a = elsewhere ? drawn_ : vertices_;
   const gl::Buffer& b = elsewhere ? (drawn_next_ ? drawn_next_ : drawn_) : vertices_next_;

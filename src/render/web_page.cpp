@@ -176,14 +176,14 @@ using T = shaders::UniformValue::Type;
 // style over the same data. `finest`: the columns and rows of the page's
 // noise phases (a coarser grid takes the first of them).
 std::string look_json(const PreparedScene& q, const std::string& name, std::string_view description,
-                      glm::ivec2 finest, glm::vec3 centre) {
+                      glm::ivec2 finest, glm::vec3 centre, bool moving) {
   const RenderSettings& s = q.settings;
   // Random-cell colours make F_t a colour texture, as in the renderer.
   const bool colour_texture =
       shaders::colour_background(s) || q.scene.init == InitMode::RandomCells;
   shaders::ShaderFeatures f =
       shaders::features_for(s, colour_texture, !q.surface_image.pixels.empty(), false);
-  f.moving = q.moving;
+  f.moving = moving;
   const NoiseGrid grid(q.width, q.height, s.noise);
   const glm::ivec2 phase_size = glm::min(glm::ivec2(grid.columns(), grid.rows()), finest);
   const std::vector<shaders::UniformValue> grid_uniforms = {
@@ -235,7 +235,7 @@ std::vector<Restyle> restyles(const PreparedScene& p) {
 // The page's looks: the scene's own first, then each style that takes the
 // same data, each once.
 std::string looks_json(const PreparedScene& p, const std::vector<Restyle>& styles,
-                       glm::ivec2 finest, glm::vec3 centre) {
+                       glm::ivec2 finest, glm::vec3 centre, bool moving) {
   const auto body = [](const std::string& look) {
     return look.substr(look.find(",\"background\""));
   };
@@ -245,17 +245,17 @@ std::string looks_json(const PreparedScene& p, const std::vector<Restyle>& style
     return p.scene.style && r.style.value == *p.scene.style;
   });
   const std::string own =
-      look_json(p, "as rendered", "the settings the page was written with", finest, centre);
-  const bool as_style =
-      pure != styles.end() && body(look_json(pure->scene, "", "", finest, centre)) == body(own);
+      look_json(p, "as rendered", "the settings the page was written with", finest, centre, moving);
+  const bool as_style = pure != styles.end() &&
+                        body(look_json(pure->scene, "", "", finest, centre, moving)) == body(own);
   looks.push_back(as_style ? look_json(p, std::string(pure->style.name), pure->style.description,
-                                       finest, centre)
+                                       finest, centre, moving)
                            : own);
   // Random cells start F_t from colours of the look's own noise cells: one look.
   if (p.scene.init == InitMode::RandomCells) return "[" + looks.front() + "]";
   for (const Restyle& r : styles) {
     const std::string look =
-        look_json(r.scene, std::string(r.style.name), r.style.description, finest, centre);
+        look_json(r.scene, std::string(r.style.name), r.style.description, finest, centre, moving);
     if (std::none_of(looks.begin(), looks.end(),
                      [&](const std::string& l) { return body(l) == body(look); }))
       looks.push_back(look);
@@ -284,23 +284,33 @@ std::string web_page(const PreparedScene& p, WebPageReport* report, const WebPag
                      " triangles, more than a page takes (" + std::to_string(limits.triangles) +
                      "); subdivide less or decimate the mesh");
   const std::size_t steps = std::max<std::size_t>(p.step_count, 1);
-  // A surface that moves: every step's points and normals (a step with
-  // triangles of its own is not a page's yet).
-  std::vector<StepData> motion;
-  if (p.moving && p.step_data) {
-    for (std::size_t k = 0; k < steps; ++k) {
-      StepData d = p.step_data(k);
-      if (d.mesh)
-        throw InputError(what + ": step " + std::to_string(k) +
-                         " has other triangles than the first (a changing mesh); a page takes "
-                         "a series whose points move, on one set of triangles");
-      motion.push_back(std::move(d));
+  // Every step's data: a surface that moves (its points at each step) or
+  // changes (a step with triangles of its own is a mesh of its own in the
+  // page: step_mesh, 1.. for meshes[0..]; 0 for the first step's).
+  std::vector<StepData> data(steps);
+  std::vector<int> step_mesh(steps, 0);
+  bool moving = false;
+  std::size_t other_meshes = 0, vectors_in_all = 0, triangles_in_all = mesh.triangle_count();
+  for (std::size_t k = 0; k < steps; ++k) {
+    if (p.step_data) data[k] = p.step_data(k);
+    moving = moving || !data[k].positions.empty() || data[k].mesh;
+    if (data[k].mesh) {
+      step_mesh[k] = static_cast<int>(++other_meshes);
+      vectors_in_all += data[k].mesh->vertex_count();
+      triangles_in_all += data[k].mesh->triangle_count();
     }
   }
-  if (steps * mesh.vertex_count() > limits.vectors)
+  vectors_in_all += steps * mesh.vertex_count();
+  if (triangles_in_all > limits.triangles)
+    throw InputError(what + ": " + std::to_string(triangles_in_all) +
+                     " triangles over its steps' meshes, more than a page takes (" +
+                     std::to_string(limits.triangles) + "); export fewer steps");
+  if (vectors_in_all > limits.vectors)
     throw InputError(what + ": " + std::to_string(steps) + " time steps of " +
                      std::to_string(mesh.vertex_count()) + " vectors, more than a page takes (" +
                      std::to_string(limits.vectors) + " vectors); export fewer steps");
+  // The first step's own data where it is not a series' (a steady scene).
+  if (!p.step_data) data[0].field = p.field;
 
   const RenderSettings& s = p.settings;
   // The noise phases of the finest look (the default's 1-pixel cells; a
@@ -316,8 +326,8 @@ std::string web_page(const PreparedScene& p, WebPageReport* report, const WebPag
   const Camera camera(bounds, p.camera, static_cast<float>(p.width) / static_cast<float>(p.height));
   // The box the positions are stored in: every step's points.
   glm::vec3 lo = bounds.min, hi = bounds.max;
-  for (const StepData& d : motion)
-    for (const glm::vec3& r : d.positions) {
+  for (const StepData& d : data)
+    for (const glm::vec3& r : d.mesh ? d.mesh->positions : d.positions) {
       lo = glm::min(lo, r);
       hi = glm::max(hi, r);
     }
@@ -343,25 +353,32 @@ std::string web_page(const PreparedScene& p, WebPageReport* report, const WebPag
   };
   for (std::size_t i = 0; i < mesh.positions.size(); ++i)
     put_vertex(mesh.positions[i], mesh.normals[i], positions, normals);
-  // Every time step of an unsteady field, one after the other.
+  // Every time step of an unsteady field, one after the other (a step on
+  // a mesh of its own: zeros here, its vectors with its mesh).
+  const auto put_vectors = [](const std::vector<glm::vec3>& field,
+                              std::vector<std::uint16_t>& out) {
+    for (const glm::vec3& v : field) {
+      for (int c = 0; c < 3; ++c) out.push_back(glm::packHalf1x16(v[c]));
+      out.push_back(0);
+    }
+  };
   vectors.reserve(steps * mesh.positions.size() * 4);
   for (std::size_t step = 0; step < steps; ++step) {
-    const std::vector<glm::vec3> field = step == 0 ? p.field : p.step_data(step).field;
-    for (const glm::vec3& v : field) {
-      for (int c = 0; c < 3; ++c) vectors.push_back(glm::packHalf1x16(v[c]));
-      vectors.push_back(0);
-    }
+    if (data[step].mesh)
+      vectors.resize(vectors.size() + mesh.positions.size() * 4, 0);
+    else
+      put_vectors(data[step].field, vectors);
   }
   // The motion: the vertices whose stored point or normal differs from the
   // first step's at some step, and for each step theirs, a step the same as
   // the one before it stored once.
   std::string motion_json;
-  if (!motion.empty()) {
+  if (moving) {
     std::vector<std::vector<std::uint16_t>> step_q(steps);
     std::vector<std::vector<std::int8_t>> step_n(steps);
     std::vector<std::uint8_t> moves(mesh.vertex_count(), 0);
     for (std::size_t k = 0; k < steps; ++k) {
-      const StepData& d = motion[k];
+      const StepData& d = data[k];
       const std::vector<glm::vec3>& r = d.positions.empty() ? mesh.positions : d.positions;
       const std::vector<glm::vec3>& n = d.normals.empty() ? mesh.normals : d.normals;
       step_q[k].reserve(r.size() * 4);
@@ -454,8 +471,9 @@ std::string web_page(const PreparedScene& p, WebPageReport* report, const WebPag
     const std::size_t first = scalars.size();
     bool changing = false;
     for (std::size_t k = 1; k < steps && p.step_data; ++k) {
-      const StepData d = p.step_data(k);
-      put(d.color_scalar, d.beta_scalar, scalars);
+      const StepData& d = data[k];  // a step on a mesh of its own: its scalars go with it
+      put(d.mesh ? std::vector<float>() : d.color_scalar,
+          d.mesh ? std::vector<float>() : d.beta_scalar, scalars);
       changing = changing || !std::equal(scalars.begin(), scalars.begin() + first,
                                          scalars.end() - static_cast<std::ptrdiff_t>(first));
     }
@@ -463,6 +481,41 @@ std::string web_page(const PreparedScene& p, WebPageReport* report, const WebPag
     arrays +=
         ",\"scalars\":" +
         block.add_vertices(scalars, 2, ",\"steps\":" + std::to_string(scalars.size() / first));
+  }
+  // The steps whose triangles are their own (a changing mesh): each its
+  // points and normals (in the same box), triangles, vectors and scalars.
+  if (other_meshes > 0) {
+    std::string meshes;
+    for (std::size_t k = 0; k < steps; ++k) {
+      if (!data[k].mesh) continue;
+      const TriMesh& m = *data[k].mesh;
+      std::vector<std::uint16_t> q, v;
+      std::vector<std::int8_t> n;
+      for (std::size_t i = 0; i < m.vertex_count(); ++i)
+        put_vertex(m.positions[i], m.normals[i], q, n);
+      put_vectors(data[k].field, v);
+      std::vector<std::uint32_t> ids;
+      for (const Triangle& t : m.triangles) ids.insert(ids.end(), t.begin(), t.end());
+      meshes += std::string(meshes.empty() ? "" : ",") +
+                "{\"vertex_count\":" + std::to_string(m.vertex_count()) +
+                ",\"index_count\":" + std::to_string(ids.size()) +
+                ",\"cull\":" + std::to_string(closed_orientation(m)) +
+                ",\"positions\":" + block.add_vertices(q, 4) +
+                ",\"normals\":" + block.add_vertices(n, 4) +
+                ",\"vectors\":" + block.add_vertices(v, 4) +
+                ",\"indices\":" + block.add_indices(ids, m.vertex_count());
+      if (s.use_color || s.use_beta) {
+        std::vector<float> sc;
+        for (std::size_t i = 0; i < m.vertex_count(); ++i) {
+          sc.push_back(data[k].color_scalar.empty() ? 0.0f : data[k].color_scalar[i]);
+          sc.push_back(data[k].beta_scalar.empty() ? 0.0f : data[k].beta_scalar[i]);
+        }
+        meshes += ",\"scalars\":" + block.add_vertices(sc, 2);
+      }
+      meshes += "}";
+    }
+    arrays += ",\"meshes\":[" + meshes + "]";
+    if (report) report->other_meshes = other_meshes;
   }
   if (const ImageU8& image = p.surface_image; !image.pixels.empty()) {
     // The surface colour (RGBA8, bottom row first as the GL texture takes
@@ -536,10 +589,10 @@ std::string web_page(const PreparedScene& p, WebPageReport* report, const WebPag
       json_string(shaders::grid_vertex_source(shaders::Dialect::Es300)) +
       ",\"grid_fragment\":" + json_string(shaders::grid_fragment_source(shaders::Dialect::Es300)) +
       ",\"display_vertex\":" +
-      json_string(shaders::display_vertex_source(shaders::Dialect::Es300)) +
-      "},\"looks\":" + looks_json(p, styles, glm::ivec2(grid.columns(), grid.rows()), centre) +
+      json_string(shaders::display_vertex_source(shaders::Dialect::Es300)) + "},\"looks\":" +
+      looks_json(p, styles, glm::ivec2(grid.columns(), grid.rows()), centre, moving) +
       ",\"vertex_count\":" + std::to_string(mesh.positions.size()) +
-      ",\"steps\":" + std::to_string(steps) +
+      ",\"steps\":" + std::to_string(steps) + ",\"step_mesh\":" + json_numbers(step_mesh) +
       ",\"frames_per_step\":" + std::to_string(p.scene.frames_per_step) +
       ",\"index_count\":" + std::to_string(indices.size()) + ",\"phase_size\":[" +
       std::to_string(grid.columns()) + "," + std::to_string(grid.rows()) + "]" +

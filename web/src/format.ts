@@ -62,6 +62,18 @@ export interface Look {
   grid_uniforms: Uniform[];
 }
 
+/// A step's own mesh (a changing mesh).
+export interface StepMesh {
+  vertex_count: number;
+  index_count: number;
+  cull: number;
+  positions: ArrayRef; // uint16 x 4, in the box of arrays.positions
+  normals: ArrayRef; // int8 x 4
+  vectors: ArrayRef; // float16 x 4, its step's
+  indices: ArrayRef; // uint32
+  scalars?: ArrayRef; // float32 x 2 (colour, beta)
+}
+
 export interface SceneHeader {
   format: "ibfvs-page";
   version: 2;
@@ -84,6 +96,7 @@ export interface SceneHeader {
   looks: Look[]; // the scene's own first
   vertex_count: number;
   steps: number; // time steps of the field (1: steady)
+  step_mesh?: number[]; // per step: 0 the first step's mesh, k > 0 arrays.meshes[k - 1]
   frames_per_step: number;
   index_count: number;
   phase_size: [number, number]; // of the phases array (the finest look's grid)
@@ -105,6 +118,10 @@ export interface SceneHeader {
     // like the one before it shares its set). The looks' vertex shaders then
     // read each vertex at this step and the next, and where the last frame drew it.
     motion?: { moving: ArrayRef; positions: ArrayRef; normals: ArrayRef; sets: number[] };
+    // The steps whose triangles are their own (a changing mesh), in step
+    // order: each as the first step's (positions in the same box), with its
+    // one step's vectors and colours.
+    meshes?: StepMesh[];
   };
 }
 

@@ -10,8 +10,9 @@
 // The scene format is in format.ts, the WebGL objects in webgl.ts.
 import { mat4, vec3 } from "gl-matrix";
 import { MeshoptDecoder } from "meshoptimizer/decoder";
-import { type Camera, type Look, type SceneHeader, type Uniform, decodeBase64, f32, halfToFloat, i8, u16, u32,
-         view } from "./format";
+import { type Camera, type Look, type SceneHeader, type Uniform, decodeBase64, halfToFloat, view }
+  from "./format";
+import { Surfaces } from "./surfaces";
 import { compile, framebuffer, locate, setUniform, texture } from "./webgl";
 
 // ---------------------------------------------------------------- the page's elements
@@ -70,7 +71,7 @@ export class PageRenderer {
   private display: WebGLProgram | null = null; // the display pass, with a tap texture
   // compiled looks: main, stats, display
   private programs = new Map<Look, [WebGLProgram, WebGLProgram, WebGLProgram | null]>();
-  private vao: WebGLVertexArrayObject;
+  private surfaces: Surfaces;
   private empty: WebGLVertexArrayObject;
   private textures: WebGLTexture[] = [];
   private taps: WebGLTexture[] = []; // beside F_t when the look has a tap texture (RGBA8), else none
@@ -93,18 +94,8 @@ export class PageRenderer {
   private colorMap: WebGLTexture;
   private surfaceImage: WebGLTexture | null = null;
   private current = 0;
-  private vectorBuffer: WebGLBuffer | null = null;
   private step = -1;
   private fieldMix = 0;
-  // A surface that moves (the scene's motion): every vertex's point and
-  // normal at step 0, interleaved, and the moving vertices' in each stored set.
-  private motion: { base: Float32Array; moving: Uint32Array; points: Float32Array;
-                    normals: Float32Array; sets: number[] } | null = null;
-  private surface: WebGLBuffer[] = []; // this step's and the next's points and normals
-  private drawn: WebGLBuffer[] | null = null; // the pair the last frame drew, where setTime replaced it since
-  private drawnMix = 0;
-  private scalarBuffer: WebGLBuffer | null = null; // (colour, beta) per vertex, per step where they change
-  private scalarSteps = 1;
   private previousViewProjection: mat4 | null = null;
   private cells: Float32Array | null = null; // F_t's first texels (random cells), or null
   locked = false;
@@ -117,67 +108,8 @@ export class PageRenderer {
     this.look = s.looks[0];
     this.grid = compile(gl, s.shaders.grid_vertex, s.shaders.grid_fragment);
 
-    // The mesh: positions from 16 bits in the box, the rest as stored.
     const a = s.arrays;
-    const q = view(data, a.positions, u16, 2);
-    const positions = new Float32Array((q.length / 4) * 3);
-    for (let i = 0; i < q.length; ++i) {
-      const c = i % 4, lo = a.positions.min[c], hi = a.positions.max[c];
-      if (c < 3) positions[(i >> 2) * 3 + c] = lo + (hi - lo) * (q[i] / 65535);
-    }
-    this.vao = gl.createVertexArray()!;
-    gl.bindVertexArray(this.vao);
-    const attribute = (location: number, bytes: ArrayBufferView, size: number, type: number, normalized: boolean) => {
-      const b = gl.createBuffer()!;
-      gl.bindBuffer(gl.ARRAY_BUFFER, b);
-      gl.bufferData(gl.ARRAY_BUFFER, bytes, gl.STATIC_DRAW);
-      gl.enableVertexAttribArray(location);
-      gl.vertexAttribPointer(location, size, type, normalized, 0, 0);
-    };
-    const normals = view(data, a.normals, i8, 1);
-    if (a.motion) {
-      // Points and normals per step, as floats (setTime builds each step's);
-      // the box is the positions' (every step's points).
-      const box = (q: Uint16Array, i: number, c: number) =>
-        a.positions.min[c] + (a.positions.max[c] - a.positions.min[c]) * (q[4 * i + c] / 65535);
-      const base = new Float32Array(s.vertex_count * 6);
-      for (let i = 0; i < s.vertex_count; ++i)
-        for (let c = 0; c < 3; ++c) {
-          base[6 * i + c] = positions[3 * i + c];
-          base[6 * i + 3 + c] = Math.max(normals[4 * i + c] / 127, -1);
-        }
-      const moving = view(data, a.motion.moving, u32, 4);
-      const q = view(data, a.motion.positions, u16, 2), n = view(data, a.motion.normals, i8, 1);
-      const count = q.length / 4;
-      const points = new Float32Array(count * 3), unit = new Float32Array(count * 3);
-      for (let i = 0; i < count; ++i)
-        for (let c = 0; c < 3; ++c) {
-          points[3 * i + c] = box(q, i, c);
-          unit[3 * i + c] = Math.max(n[4 * i + c] / 127, -1);
-        }
-      this.motion = { base, moving, points, normals: unit, sets: a.motion.sets };
-    } else {
-      attribute(0, positions, 3, gl.FLOAT, false);
-      attribute(1, normals, 4, gl.BYTE, true);
-    }
-    // The field: attributes 2 and 4 read the current and the next time step
-    // from one buffer (setTime moves them).
-    this.vectorBuffer = gl.createBuffer()!;
-    gl.bindBuffer(gl.ARRAY_BUFFER, this.vectorBuffer);
-    gl.bufferData(gl.ARRAY_BUFFER, view(data, a.vectors, u16, 2), gl.STATIC_DRAW);
-    gl.enableVertexAttribArray(2);
-    gl.enableVertexAttribArray(4);
-    if (a.scalars) {
-      attribute(3, view(data, a.scalars, f32, 4), 2, gl.FLOAT, false);
-      this.scalarBuffer = gl.getVertexAttrib(3, gl.VERTEX_ATTRIB_ARRAY_BUFFER_BINDING) as WebGLBuffer;
-      this.scalarSteps = a.scalars.steps ?? 1;
-    } else {
-      gl.vertexAttrib2f(3, 0, 0);
-    }
-    const indices = gl.createBuffer()!;
-    gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, indices);
-    gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, view(data, a.indices, u32, 4), gl.STATIC_DRAW);
-    gl.bindVertexArray(null);
+    this.surfaces = new Surfaces(gl, scene, data);
     this.setTime(0);
     this.empty = gl.createVertexArray()!;
 
@@ -285,56 +217,7 @@ export class PageRenderer {
     this.fieldMix = n > 1 ? t - Math.floor(t) : 0;
     if (step === this.step) return;
     this.step = step;
-    const bytes = this.scene.vertex_count * 8; // four half floats per vector
-    gl.bindVertexArray(this.vao);
-    gl.bindBuffer(gl.ARRAY_BUFFER, this.vectorBuffer);
-    gl.vertexAttribPointer(2, 4, gl.HALF_FLOAT, false, 0, step * bytes);
-    gl.vertexAttribPointer(4, 4, gl.HALF_FLOAT, false, 0, ((step + 1) % n) * bytes);
-    if (this.scalarSteps > 1) {
-      // Each step's colours, as the session sets them at each step.
-      gl.bindBuffer(gl.ARRAY_BUFFER, this.scalarBuffer);
-      gl.vertexAttribPointer(3, 2, gl.FLOAT, false, 0, step * this.scene.vertex_count * 8);
-    }
-    if (this.motion) {
-      // The surface at this step and the next (IbfvsRenderer::set_surface_steps):
-      // the pair the last frame drew stays for the next frame's advection.
-      if (this.previousViewProjection && !this.drawn) this.drawn = this.surface;
-      else this.surface.forEach((b) => gl.deleteBuffer(b));
-      this.surface = [step, (step + 1) % n].map((k) => {
-        const b = gl.createBuffer()!;
-        gl.bindBuffer(gl.ARRAY_BUFFER, b);
-        gl.bufferData(gl.ARRAY_BUFFER, this.surfaceAt(k), gl.STATIC_DRAW);
-        return b;
-      });
-      this.pointSurface(0, 1, this.surface[0]);
-      this.pointSurface(5, 6, this.surface[1]);
-    }
-    gl.bindVertexArray(null);
-  }
-
-  /// Every vertex's point and normal at step k, interleaved.
-  private surfaceAt(k: number): Float32Array {
-    const m = this.motion!, out = m.base.slice(), set = m.sets[k], count = m.moving.length;
-    for (let j = 0; j < count; ++j) {
-      const i = m.moving[j], from = 3 * (set * count + j);
-      for (let c = 0; c < 3; ++c) {
-        out[6 * i + c] = m.points[from + c];
-        out[6 * i + 3 + c] = m.normals[from + c];
-      }
-    }
-    return out;
-  }
-
-  /// Attributes `point` and `normal` (or -1) at a buffer of interleaved points
-  /// and normals; the vertex array bound.
-  private pointSurface(point: number, normal: number, buffer: WebGLBuffer): void {
-    const gl = this.gl;
-    gl.bindBuffer(gl.ARRAY_BUFFER, buffer);
-    gl.enableVertexAttribArray(point);
-    gl.vertexAttribPointer(point, 3, gl.FLOAT, false, 24, 0);
-    if (normal < 0) return;
-    gl.enableVertexAttribArray(normal);
-    gl.vertexAttribPointer(normal, 3, gl.FLOAT, false, 24, 12);
+    this.surfaces.setStep(step, this.previousViewProjection !== null);
   }
 
   applySettings(uniforms: Uniform[]): void {
@@ -401,10 +284,6 @@ export class PageRenderer {
     gl.viewport(0, 0, s.width, s.height);
     gl.enable(gl.DEPTH_TEST);
     gl.depthFunc(gl.LESS);
-    if (s.cull !== 0) {
-      gl.enable(gl.CULL_FACE);
-      gl.cullFace(s.cull > 0 ? gl.BACK : gl.FRONT);
-    }
     const p = this.main;
     gl.useProgram(p);
     const at = (n: string) => locate(gl, p, n);
@@ -419,15 +298,14 @@ export class PageRenderer {
     gl.uniform1f(at("u_dt"), this.locked ? 0 : dt);
     gl.uniform1f(at("u_probe"), s.probe);
     gl.uniform1f(at("u_field_mix"), this.fieldMix);
-    if (this.motion) {
-      // Where the last frame drew each vertex (the current pair where no
-      // motion enters: locked, the first frame, or advecting in this view).
-      const compensate = this.look.advect_previous && this.previousViewProjection !== null && !this.locked;
-      const pair = compensate && this.drawn ? this.drawn : this.surface;
-      gl.bindVertexArray(this.vao);
-      this.pointSurface(7, -1, pair[0]);
-      this.pointSurface(8, -1, pair[1]);
-      gl.uniform1f(at("u_drawn_mix"), compensate ? this.drawnMix : this.fieldMix);
+    // This step's mesh; a moving surface's from where the last frame drew it
+    // (where it was this mesh and motion enters: not locked, not the first
+    // frame, advecting in the last view).
+    const compensate = this.look.advect_previous && this.previousViewProjection !== null && !this.locked;
+    const mesh = this.surfaces.bind(compensate, this.fieldMix, at("u_drawn_mix"));
+    if (mesh.cull !== 0) {
+      gl.enable(gl.CULL_FACE);
+      gl.cullFace(mesh.cull > 0 ? gl.BACK : gl.FRONT);
     }
     gl.uniform2f(at("u_texture_shift"), 0, 0);
     gl.uniform2f(at("u_noise_shift"), 0, 0);
@@ -446,8 +324,7 @@ export class PageRenderer {
     if (this.surfaceImage) bind(3, this.surfaceImage);
     bind(4, this.statsTexture);
     gl.bindFramebuffer(gl.FRAMEBUFFER, this.fbs[next]);
-    gl.bindVertexArray(this.vao);
-    gl.drawElements(gl.TRIANGLES, s.index_count, gl.UNSIGNED_INT, 0);
+    gl.drawElements(gl.TRIANGLES, mesh.count, gl.UNSIGNED_INT, 0);
     gl.disable(gl.CULL_FACE);
     if (this.display) {
       // The display pass: once per pixel of the surface (a triangle on the far
@@ -489,10 +366,7 @@ export class PageRenderer {
     if (!this.locked) {  // a locked F_t stays where it is; F is shared
       this.current = next;
       this.previousViewProjection = vp;
-      // This frame's surface is the one the next frame's texture comes from.
-      if (this.drawn) this.drawn.forEach((b) => gl.deleteBuffer(b));
-      this.drawn = null;
-      this.drawnMix = this.fieldMix;
+      this.surfaces.drawnFrame(this.fieldMix);
     }
     ++this.frame;
   }

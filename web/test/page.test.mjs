@@ -270,23 +270,24 @@ test("the page records a WebM of its canvas", async () => {
 });
 
 // A series of ASCII PLY files: a sphere (and its swirl about its own axis)
-// turning `degrees` a step about +Y, its points moving.
-function writeTurningSeries(dir, steps, degrees) {
+// turning `degrees` a step about +Y, its points moving; `rowsOf(k)`: step
+// k's tessellation (rows of latitude; twice as many of longitude).
+function writeTurningSeries(dir, steps, degrees, rowsOf = () => 24) {
   fs.mkdirSync(dir, { recursive: true });
-  const rows = 24, columns = 48;
-  const base = [];
-  for (let i = 0; i <= rows; ++i)
-    for (let j = 0; j < columns; ++j) {
-      const t = Math.PI * i / rows, f = 2 * Math.PI * j / columns;
-      base.push([Math.sin(t) * Math.cos(f), Math.cos(t), Math.sin(t) * Math.sin(f)]);
-    }
-  const faces = [];
-  for (let i = 0; i < rows; ++i)
-    for (let j = 0; j < columns; ++j) {
-      const a = i * columns + j, b = i * columns + (j + 1) % columns;
-      faces.push([a, b, a + columns], [b, b + columns, a + columns]);
-    }
   for (let k = 0; k < steps; ++k) {
+    const rows = rowsOf(k), columns = 2 * rows;
+    const base = [];
+    for (let i = 0; i <= rows; ++i)
+      for (let j = 0; j < columns; ++j) {
+        const t = Math.PI * i / rows, f = 2 * Math.PI * j / columns;
+        base.push([Math.sin(t) * Math.cos(f), Math.cos(t), Math.sin(t) * Math.sin(f)]);
+      }
+    const faces = [];
+    for (let i = 0; i < rows; ++i)
+      for (let j = 0; j < columns; ++j) {
+        const a = i * columns + j, b = i * columns + (j + 1) % columns;
+        faces.push([a, b, a + columns], [b, b + columns, a + columns]);
+      }
     const angle = (degrees * k * Math.PI) / 180, c = Math.cos(angle), s = Math.sin(angle);
     const turn = ([x, y, z]) => [c * x + s * z, y, -s * x + c * z];
     const axis = turn([0.3, 1, 0]);
@@ -317,6 +318,17 @@ test("a series whose points move plays in the page as in ibfvs render", async ()
   // step's colours, as the session sets them.
   await assertMatchesRender("turning", ["--mesh", series, "--frames-per-step", "4",
                                         "--color-by", "z"]);
+});
+
+test("a series whose triangles change plays in the page as in ibfvs render", async () => {
+  // Steps 2 and 3 are the sphere tessellated finer (meshes of their own):
+  // the texture goes on from the image into them and back.
+  const series = writeTurningSeries(path.join(out, "changing"), 6, 10, (k) => (k === 2 || k === 3 ? 30 : 24));
+  const said = execFileSync(ibfvs, ["render", "--mesh", series, "--frames-per-step", "4",
+                                    "--size", "128x128", "--out", path.join(out, "changing.html")],
+                            { encoding: "utf8" });
+  assert.match(said, /2 steps with triangles of their own/);
+  await assertMatchesRender("changing", ["--mesh", series, "--frames-per-step", "4", "--color-by", "z"]);
 });
 
 test("the earth plays its months, with a time slider", async () => {

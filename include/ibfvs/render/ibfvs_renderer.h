@@ -340,6 +340,9 @@ class IbfvsRenderer {
   gl::Buffer drawn_next_;
   bool drawn_elsewhere_ = false;
   float drawn_mix_ = 0.0f;
+  // The last frame drew this mesh (not one that set_mesh or replace_mesh
+  // replaced since): only then does its surface's motion enter the advection.
+  bool drawn_this_mesh_ = false;
   void upload_mesh(const TriMesh& mesh, std::span<const glm::vec3> field);
   void point_drawn_attributes();  // attributes 7, 8 at the pair the last frame drew
   gl::Buffer field_;

@@ -34,10 +34,13 @@ struct WebPageReport {
   /// their points and normals stored (a step like the one before it shares
   /// its set), and the bytes those take in the scene.
   std::size_t moving_vertices = 0, motion_sets = 0, motion = 0;
+  /// Steps whose triangles are their own (a changing mesh): each a mesh of its own.
+  std::size_t other_meshes = 0;
 };
 
 /// The page as text; an unsteady field's steps all go in (the page plays
-/// them, with a time slider), and so do the styles that take the same data
+/// them, with a time slider; points that move and steps with triangles of
+/// their own too), and so do the styles that take the same data
 /// (restyled: a style menu), a surface image, random-cell colours and the
 /// lock. Throws InputError for what a page cannot hold (more than `limits`)
 /// or when this build has no runtime.

@@ -389,9 +389,9 @@ std::string web_page(const PreparedScene& p, WebPageReport* report, const WebPag
           moves[i] |= step_q[k][4 * i + c] != positions[4 * i + c] ||
                       step_n[k][4 * i + c] != normals[4 * i + c];
     }
-    std::vector<std::uint32_t> moving;
+    std::vector<std::uint32_t> movers;
     for (std::size_t i = 0; i < moves.size(); ++i)
-      if (moves[i]) moving.push_back(static_cast<std::uint32_t>(i));
+      if (moves[i]) movers.push_back(static_cast<std::uint32_t>(i));
     std::vector<std::uint16_t> set_q;
     std::vector<std::int8_t> set_n;
     std::vector<int> set_of(steps, 0);
@@ -401,9 +401,9 @@ std::string web_page(const PreparedScene& p, WebPageReport* report, const WebPag
     for (std::size_t k = 0; k < steps; ++k) {
       std::vector<std::uint16_t> q;
       std::vector<std::int8_t> m;
-      q.reserve(moving.size() * 4);
-      m.reserve(moving.size() * 4);
-      for (const std::uint32_t i : moving) {
+      q.reserve(movers.size() * 4);
+      m.reserve(movers.size() * 4);
+      for (const std::uint32_t i : movers) {
         q.insert(q.end(), step_q[k].begin() + 4 * i, step_q[k].begin() + 4 * i + 4);
         m.insert(m.end(), step_n[k].begin() + 4 * i, step_n[k].begin() + 4 * i + 4);
       }
@@ -418,12 +418,12 @@ std::string web_page(const PreparedScene& p, WebPageReport* report, const WebPag
       set_of[k] = sets++;
     }
     const std::size_t before = block.bytes().size();
-    motion_json = ",\"motion\":{\"moving\":" + block.add(moving) +
+    motion_json = ",\"motion\":{\"moving\":" + block.add(movers) +
                   ",\"positions\":" + block.add_vertices(set_q, 4) +
                   ",\"normals\":" + block.add_vertices(set_n, 4) +
                   ",\"sets\":" + json_numbers(set_of) + "}";
     if (report) {
-      report->moving_vertices = moving.size();
+      report->moving_vertices = movers.size();
       report->motion_sets = static_cast<std::size_t>(sets);
       report->motion = block.bytes().size() - before;
     }

@@ -39,7 +39,6 @@
 #include <vtkIdTypeArray.h>
 #include <vtkInformation.h>
 #include <vtkLogger.h>
-#include <vtkMath.h>
 #include <vtkMultiBlockDataSet.h>
 #include <vtkMultiPieceDataSet.h>
 #include <vtkNew.h>
@@ -223,17 +222,44 @@ struct Surface {
 // ones. VTK's own choice for the nearly equal diagonals of a polar mesh's
 // cells (a rotor's) flips with the rounding as the points move: the
 // triangles of a moving mesh must not change from step to step.
-std::array<Triangle, 2> split_quad(const vtkIdType* q, vtkPoints* points) {
-  double a[3], b[3], c[3], d[3];
-  points->GetPoint(q[0], a);
-  points->GetPoint(q[1], b);
-  points->GetPoint(q[2], c);
-  points->GetPoint(q[3], d);
-  const double ac = vtkMath::Distance2BetweenPoints(a, c);
-  const double bd = vtkMath::Distance2BetweenPoints(b, d);
+std::array<Triangle, 2> split_quad(const vtkIdType* q, const std::vector<glm::vec3>& points) {
   const auto id = [&](int k) { return static_cast<std::uint32_t>(q[k]); };
+  for (int k = 0; k < 4; ++k)  // a point that is not there: the mesh's check names it
+    if (q[k] < 0 || static_cast<std::size_t>(q[k]) >= points.size())
+      return {{{id(0), id(1), id(2)}, {id(0), id(2), id(3)}}};
+  const auto distance2 = [&](int i, int j) {
+    const glm::dvec3 d = glm::dvec3(points[static_cast<std::size_t>(q[i])]) -
+                         glm::dvec3(points[static_cast<std::size_t>(q[j])]);
+    return d.x * d.x + d.y * d.y + d.z * d.z;
+  };
+  const double ac = distance2(0, 2);
+  const double bd = distance2(1, 3);
   if (ac < bd * (1.0 - 2e-3)) return {{{id(0), id(1), id(2)}, {id(0), id(2), id(3)}}};
   return {{{id(0), id(1), id(3)}, {id(1), id(2), id(3)}}};
+}
+
+// Each polygon's point ids, read straight from the cell array's offsets and
+// connectivity (its 32- or 64-bit storage), as `visit(cell, count, ids)`.
+template <typename Visit>
+void each_polygon(vtkCellArray* polys, Visit&& visit) {
+  if (!polys || polys->GetNumberOfCells() == 0) return;
+  const auto walk = [&](const auto* offsets, const auto* connectivity) {
+    std::array<vtkIdType, 4> ids{};
+    for (vtkIdType c = 0; c < polys->GetNumberOfCells(); ++c) {
+      const vtkIdType begin = offsets[c], count = offsets[c + 1] - begin;
+      if (count < 3 || count > 4) {
+        visit(c, count, nullptr);
+        continue;
+      }
+      for (vtkIdType k = 0; k < count; ++k)
+        ids[static_cast<std::size_t>(k)] = static_cast<vtkIdType>(connectivity[begin + k]);
+      visit(c, count, ids.data());
+    }
+  };
+  if (polys->IsStorage64Bit())
+    walk(polys->GetOffsetsArray64()->GetPointer(0), polys->GetConnectivityArray64()->GetPointer(0));
+  else
+    walk(polys->GetOffsetsArray32()->GetPointer(0), polys->GetConnectivityArray32()->GetPointer(0));
 }
 
 // A surface of triangles and quadrilaterals, as it is: its points, the
@@ -243,28 +269,34 @@ Surface own_triangles(vtkPolyData* poly) {
   Surface s;
   const vtkIdType n = poly->GetNumberOfPoints();
   s.positions.resize(static_cast<std::size_t>(n));
-  double p[3];
-  for (vtkIdType i = 0; i < n; ++i) {
-    poly->GetPoint(i, p);
-    s.positions[static_cast<std::size_t>(i)] = glm::vec3(p[0], p[1], p[2]);
+  if (n == 0) return s;  // a surface filter's empty output has no points object
+  if (auto* f = vtkFloatArray::SafeDownCast(poly->GetPoints()->GetData());
+      f && f->GetNumberOfComponents() == 3) {  // the common case: copy as they are
+    static_assert(sizeof(glm::vec3) == 3 * sizeof(float));
+    std::memcpy(s.positions.data(), f->GetPointer(0), s.positions.size() * sizeof(glm::vec3));
+  } else {
+    double p[3];
+    for (vtkIdType i = 0; i < n; ++i) {
+      poly->GetPoint(i, p);
+      s.positions[static_cast<std::size_t>(i)] = glm::vec3(p[0], p[1], p[2]);
+    }
   }
-  vtkCellArray* polys = poly->GetPolys();
   std::vector<vtkIdType> cell_of;  // each triangle's cell (vertices and lines come first)
-  vtkIdType count = 0;
-  const vtkIdType* ids = nullptr;
-  vtkIdType cell = poly->GetNumberOfVerts() + poly->GetNumberOfLines();
-  for (polys->InitTraversal(); polys->GetNextCell(count, ids); ++cell) {
+  const vtkIdType first = poly->GetNumberOfVerts() + poly->GetNumberOfLines();
+  s.triangles.reserve(static_cast<std::size_t>(poly->GetNumberOfPolys()) * 2);
+  cell_of.reserve(s.triangles.capacity());
+  each_polygon(poly->GetPolys(), [&](vtkIdType c, vtkIdType count, const vtkIdType* ids) {
     if (count == 3) {
       s.triangles.push_back({static_cast<std::uint32_t>(ids[0]), static_cast<std::uint32_t>(ids[1]),
                              static_cast<std::uint32_t>(ids[2])});
-      cell_of.push_back(cell);
+      cell_of.push_back(first + c);
     } else if (count == 4) {
-      for (const Triangle& t : split_quad(ids, poly->GetPoints())) {
+      for (const Triangle& t : split_quad(ids, s.positions)) {
         s.triangles.push_back(t);
-        cell_of.push_back(cell);
+        cell_of.push_back(first + c);
       }
     }
-  }
+  });
   take_arrays(poly->GetPointData(), n, s.point_arrays);
   Arrays cells;
   take_arrays(poly->GetCellData(), poly->GetNumberOfCells(), cells);

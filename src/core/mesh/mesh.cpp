@@ -1,6 +1,7 @@
 #include "ibfvs/core/mesh/mesh.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -37,6 +38,18 @@ Bounds mesh_bounds(const TriMesh& mesh) {
   return b;
 }
 
+namespace {
+// acos to 7e-5 radians (Abramowitz and Stegun 4.4.45), for the corner
+// weights: a moving surface's normals are computed at every step change,
+// and acosf was most of that.
+float corner_angle(float c) {
+  const float x = std::abs(c);
+  const float r =
+      std::sqrt(1.0f - x) * (1.5707288f + x * (-0.2121144f + x * (0.0742610f - x * 0.0187293f)));
+  return c >= 0.0f ? r : 3.14159265f - r;
+}
+}  // namespace
+
 void compute_vertex_normals(TriMesh& mesh) {
   std::vector<glm::vec3> acc(mesh.positions.size(), glm::vec3(0.0f));
   for (const Triangle& t : mesh.triangles) {
@@ -48,10 +61,10 @@ void compute_vertex_normals(TriMesh& mesh) {
     for (int k = 0; k < 3; ++k) {
       const glm::vec3 a = p[(k + 1) % 3] - p[k];
       const glm::vec3 b = p[(k + 2) % 3] - p[k];
-      const float la = glm::length(a), lb = glm::length(b);
-      if (!(la > 0.0f && lb > 0.0f)) continue;
-      const float c = std::clamp(glm::dot(a, b) / (la * lb), -1.0f, 1.0f);
-      acc[t[k]] += std::acos(c) * unit;
+      const float la2 = glm::dot(a, a), lb2 = glm::dot(b, b);
+      if (!(la2 > 0.0f && lb2 > 0.0f)) continue;
+      const float c = std::clamp(glm::dot(a, b) / std::sqrt(la2 * lb2), -1.0f, 1.0f);
+      acc[t[k]] += corner_angle(c) * unit;
     }
   }
   mesh.normals.resize(acc.size());
@@ -176,14 +189,26 @@ Topology analyze_topology(const TriMesh& mesh) {
 std::uint64_t topology_hash(const TriMesh& mesh) {
   // splitmix64's finaliser on each word, folded in order: every index and
   // its position count (not a checksum that swapped triangles would keep).
+  // Four lanes, triangle k in lane k mod 4, so that the multiplications of
+  // consecutive triangles overlap: a step change of a host's data hashes
+  // its triangles once.
   const auto mix = [](std::uint64_t z) {
     z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
     z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
     return z ^ (z >> 31);
   };
-  std::uint64_t h = mix(mesh.vertex_count() + 0x9e3779b97f4a7c15ull);
-  for (const Triangle& t : mesh.triangles)
-    for (int c = 0; c < 3; ++c) h = mix(h ^ (t[c] + 0x9e3779b97f4a7c15ull)) + (h << 6);
+  constexpr std::uint64_t kGolden = 0x9e3779b97f4a7c15ull;
+  std::array<std::uint64_t, 4> lanes{};
+  for (std::size_t l = 0; l < lanes.size(); ++l)
+    lanes[l] = mix(mesh.vertex_count() + kGolden * (l + 1));
+  for (std::size_t k = 0; k < mesh.triangles.size(); ++k) {
+    const Triangle& t = mesh.triangles[k];
+    std::uint64_t& h = lanes[k & 3];
+    h = mix(h ^ (((std::uint64_t{t[0]} << 32) | t[1]) + kGolden)) + (h << 6);
+    h = mix(h ^ (std::uint64_t{t[2]} + kGolden)) + (h << 6);
+  }
+  std::uint64_t h = mix(mesh.triangles.size() + kGolden);
+  for (const std::uint64_t lane : lanes) h = mix(h ^ lane) + (h << 6);
   return h;
 }
 

@@ -65,12 +65,6 @@ struct StepContext {
   std::string color_by, beta_by;
 };
 
-// A step's surface as given (the caller's order: a series file, a host's
-// data) on the prepared mesh: the same triangles take its order and
-// triangles, with its points and arrays; other triangles are a mesh of
-// their own (checked, normals, GPU order). `arrays_only`: only its arrays
-// count (a field_step file on the scene's mesh, the same vertices).
-// `moved`: the points differ from the prepared mesh's; `same`: its triangles.
 // Throws InputError naming `where` and the point where a point is not finite.
 void check_finite(const std::vector<glm::vec3>& points, const std::string& where) {
   for (std::size_t i = 0; i < points.size(); ++i) {
@@ -82,14 +76,21 @@ void check_finite(const std::vector<glm::vec3>& points, const std::string& where
   }
 }
 
+// A step's surface as given (the caller's order: a series file, a host's
+// data) on the prepared mesh: the same triangles take its order and
+// triangles, with its points and arrays; other triangles are a mesh of
+// their own (checked, normals, GPU order). `arrays_only`: only its arrays
+// count (a field_step file on the scene's mesh, the same vertices).
+// `moved`: the points differ from the prepared mesh's; `same`: its triangles
+// (`same_known`: the caller compared them already).
 TriMesh mesh_on(const StepContext& c, TriMesh given, const std::string& where, bool arrays_only,
-                bool& same, bool& moved) {
+                bool& same, bool& moved, bool same_known = false) {
   if (!arrays_only) check_finite(given.positions, where);
   const auto put = [&](const auto& values) {
     return c.order.empty() ? values : remap_vertex_data(values, c.order);
   };
   moved = false;
-  same = arrays_only ||
+  same = arrays_only || same_known ||
          (given.vertex_count() == c.source_vertices && topology_hash(given) == c.source_topology);
   if (!same) {
     if (given.triangles.empty()) throw InputError(where + ": no triangles");
@@ -719,7 +720,7 @@ PreparedScene prepare_change(const PreparedScene& prepared, TriMesh mesh, const 
   if (prepared.settings.use_color) c.color_by = s.color_by;
   if (prepared.settings.use_beta) c.beta_by = s.beta_by;
   bool same = true, moved = false;
-  TriMesh on = mesh_on(c, std::move(mesh), name, false, same, moved);
+  TriMesh on = mesh_on(c, std::move(mesh), name, false, same, moved, true);  // hashed above
   StepData d;
   evaluate_step(c, on, d);
   PreparedScene next = prepared;

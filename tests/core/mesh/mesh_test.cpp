@@ -1,4 +1,9 @@
 #include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
 #include <glm/geometric.hpp>
 
 #include "ibfvs/core/mesh/mesh.h"
@@ -20,6 +25,66 @@ TEST(Mesh, ComputedNormalsMatchTheSphere) {
     worst = std::min(worst, glm::dot(m.normals[i], exact[i]));
   }
   EXPECT_GT(worst, 0.995f);
+}
+
+TEST(Mesh, NormalsAreTheAngleWeightedOnes) {
+  // A mesh whose corners span every angle (a fan about a cone's apex, of
+  // unequal sectors, and their rims): the normals equal the mean of the
+  // triangles' normals weighted by exact corner angles.
+  TriMesh m;
+  m.positions.push_back({0.0f, 0.0f, 0.6f});
+  constexpr int kSectors = 9;
+  float angle = 0.0f;
+  for (int k = 0; k < kSectors; ++k) {
+    m.positions.push_back({std::cos(angle), std::sin(angle), 0.1f * static_cast<float>(k % 3)});
+    angle += 0.25f + 0.9f * static_cast<float>(k) / kSectors;  // 14 to 63 degrees
+  }
+  for (std::uint32_t k = 1; k < kSectors; ++k) m.triangles.push_back({0, k, k + 1});
+  m.triangles.push_back({1, 4, 7});  // a wide triangle under the fan
+  std::vector<glm::dvec3> exact(m.positions.size(), glm::dvec3(0.0)), even = exact;
+  for (const Triangle& t : m.triangles) {
+    const glm::dvec3 n = glm::normalize(glm::dvec3(
+        glm::cross(m.positions[t[1]] - m.positions[t[0]], m.positions[t[2]] - m.positions[t[0]])));
+    for (int k = 0; k < 3; ++k) {
+      const glm::dvec3 a = m.positions[t[(k + 1) % 3]] - m.positions[t[k]];
+      const glm::dvec3 b = m.positions[t[(k + 2) % 3]] - m.positions[t[k]];
+      exact[t[k]] += std::acos(glm::dot(glm::normalize(a), glm::normalize(b))) * n;
+      even[t[k]] += n;
+    }
+  }
+  const auto apart = [](glm::dvec3 a, glm::dvec3 b) {  // radians
+    return glm::length(glm::cross(glm::normalize(a), glm::normalize(b)));
+  };
+  compute_vertex_normals(m);
+  double worst = 0.0, weights = 0.0;
+  for (std::size_t i = 0; i < exact.size(); ++i) {
+    worst = std::max(worst, apart(m.normals[i], exact[i]));
+    weights = std::max(weights, apart(even[i], exact[i]));
+  }
+  std::printf("normals %.2g radians off the angle-weighted ones (unweighted: %.2g)\n", worst,
+              weights);
+  // Measured: 7.3e-6 (std::acos: 0); unweighted 0.14.
+  EXPECT_LT(worst, 2e-4);
+  EXPECT_GT(weights, 100 * 2e-4);
+}
+
+TEST(Mesh, TopologyHashTellsTrianglesApart) {
+  const TriMesh m = make_torus(1.0f, 0.4f, 24, 12);
+  const std::uint64_t h = topology_hash(m);
+  TriMesh moved = m;
+  for (glm::vec3& p : moved.positions) p += glm::vec3(0.5f);
+  EXPECT_EQ(topology_hash(moved), h);  // points do not count
+  TriMesh swapped = m;
+  std::swap(swapped.triangles[3], swapped.triangles[4]);
+  TriMesh turned = m;
+  std::rotate(turned.triangles[7].begin(), turned.triangles[7].begin() + 1,
+              turned.triangles[7].end());
+  TriMesh fewer = m;
+  fewer.triangles.pop_back();
+  TriMesh more_points = m;
+  more_points.positions.push_back(glm::vec3(0.0f));
+  for (const TriMesh* other : {&swapped, &turned, &fewer, &more_points})
+    EXPECT_NE(topology_hash(*other), h);
 }
 
 TEST(Mesh, BoundsAndRadius) {

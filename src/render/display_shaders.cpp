@@ -174,6 +174,7 @@ vec3 contrast(vec3 shown, vec2 stage) {
 const char* const kDisplayFragmentHead = R"(
 BINDING(1) uniform sampler2D u_start;  // (the first tap, t(x)'s depth or kNoFilter, displacement)
 BINDING(2) uniform sampler2D u_base;   // ((1 - beta) F_s, beta)
+BINDING(3) uniform sampler2D u_taps_now;  // this frame's taps: the flow's direction at each pixel
 #ifdef IBFVS_CONTRAST
 BINDING(4) uniform sampler2D u_stats;  // 1 x 1: (sum l, sum l^2, count)
 #endif
@@ -192,8 +193,13 @@ void main() {
 #ifdef IBFVS_FILTER
   vec2 moved = seed.ba;  // as the IBFVS pass wrote it: t(x) = x - moved
   float moved_length = length(moved);
+  // The streaks' direction as the IBFVS pass took it (the flow's own,
+  // without the surface's or the camera's motion), stored with this frame's taps.
+  vec2 along = 2.0 * texelFetch(u_taps_now, p, 0).ba - 1.0;
+  float along_length = length(along);
   if (seed.y > -255.0 && moved_length > 0.0)
-    shown = display_filter(gl_FragCoord.xy - moved - u_texture_shift, moved / moved_length,
+    shown = display_filter(gl_FragCoord.xy - moved - u_texture_shift,
+                           along_length > 0.25 ? along / along_length : moved / moved_length,
                            seed.y, shown);
 #endif
   float shown_mean = (shown.r + shown.g + shown.b) / 3.0;

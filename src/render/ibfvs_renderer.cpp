@@ -440,6 +440,7 @@ void IbfvsRenderer::display_pass(const Variant& v) {
   base_.bind(2);
   stats_.bind(4);
   taps_[current_].bind(5);
+  taps_[1 - current_].bind(3);  // this frame's: the flow's direction
   gl::draw_attributeless_triangle(empty_vao_);
   gl::scissor(false);
   gl::test_depth_behind_surface(false);

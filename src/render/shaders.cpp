@@ -61,6 +61,12 @@ uniform vec2 u_size;         // image size in pixels
 // interpolations err (section 3.9's artifact). It also avoids noperspective
 // varyings, which llvmpipe (Mesa 22.3) corrupts on triangles it clips.
 out vec4 v_from;
+// The flow's own displacement in the last frame's image (normalised device
+// units): where the last frame drew the point less t(x), without the
+// surface's or the camera's motion since. The streaks lie along it; a
+// surface that jumped (a time step of a moving mesh) or a turning camera
+// adds its motion to x - t(x), which the display must not follow.
+out vec2 v_flow;
 #if defined(IBFVS_COLOR_SCALAR) || defined(IBFVS_BETA_SCALAR)
 out vec2 v_scalars;
 #endif
@@ -106,6 +112,8 @@ void main() {
   }
 #endif
   v_from = u_advect_view_projection * vec4(drawn - step, 1.0);
+  vec4 still = u_advect_view_projection * vec4(drawn, 1.0);
+  v_flow = still.w > 1e-6 && v_from.w > 1e-6 ? still.xy / still.w - v_from.xy / v_from.w : vec2(0.0);
 #if defined(IBFVS_COLOR_SCALAR) || defined(IBFVS_BETA_SCALAR)
   v_scalars = a_scalars;
 #endif
@@ -169,6 +177,7 @@ const char* const kIbfvsFragmentHead = R"(
 uniform vec2 u_inverse_size;  // 1 / image size in pixels
 #ifndef IBFVS_RESOLVE
 in vec4 v_from;
+in vec2 v_flow;
 uniform vec2 u_clip_to_depth;  // (a, b): eye depth = a clip.z + b clip.w (this projection)
 #if defined(IBFVS_COLOR_SCALAR) || defined(IBFVS_BETA_SCALAR)
 in vec2 v_scalars;
@@ -182,7 +191,7 @@ in vec3 v_position_object;
 // The deferred pass's second half (deferred_pass in pass_settings.h): what
 // the first half left per pixel of the surface, in place of the varyings.
 BINDING(6) uniform sampler2D u_gbuffer0;  // (t(x) unshifted, or kBehind.., from depth, depth)
-BINDING(7) uniform sampler2D u_gbuffer1;  // (fwidth(depth), diffuse, v_scalars)
+BINDING(7) uniform sampler2D u_gbuffer1;  // (fwidth(depth), diffuse and flow, v_scalars)
 #endif
 // What the pass needs of the surface under this pixel: from the varyings,
 // or in the deferred pass's second half from the first half's two images.
@@ -194,8 +203,23 @@ struct Here {
   float depth_width; // fwidth(depth)
   float diffuse;     // |n . to eye| of the headlight
   vec2 scalars;      // (colour scalar, beta scalar)
+  vec2 flow;         // the flow's direction in the last frame's image (unit; 0: none), or in
+                     // the deferred pass's first half its displacement in pixels
 };
 const float kBehind = -1e9;  // a stored t(x) of a point behind the eye
+// The flow's direction to 1/4094 of a turn, as a 12-bit code (4095: none).
+// The deferred pass's first half keeps it with the headlight's diffuse term
+// (12 bits too) in one channel of its second image, as a float's exact
+// integer; the single pass takes the same direction (the two passes' F_t
+// are equal).
+uint direction_code(vec2 flow) {
+  return dot(flow, flow) > 1e-12 ? uint(round((atan(flow.y, flow.x) / 6.28318530718 + 0.5) * 4094.0))
+                                 : 4095u;
+}
+vec2 coded_direction(uint code) {
+  float angle = (float(code) / 4094.0 - 0.5) * 6.28318530718;
+  return code == 4095u ? vec2(0.0) : vec2(cos(angle), sin(angle));
+}
 Here surface_here() {
   Here h;
 #ifdef IBFVS_RESOLVE
@@ -206,7 +230,9 @@ Here surface_here() {
   h.from_depth = a.z;
   h.depth = a.w;
   h.depth_width = b.x;
-  h.diffuse = b.y;
+  uint diffuse_flow = uint(b.y);
+  h.diffuse = float(diffuse_flow & 4095u) / 4095.0;
+  h.flow = coded_direction(diffuse_flow >> 12u);
   h.scalars = b.zw;
 #else
   h.ahead = v_from.w > 1e-6;
@@ -220,6 +246,10 @@ Here surface_here() {
   vec3 n = normalize(v_normal_eye);
   vec3 to_eye = normalize(-v_position_eye);
   h.diffuse = min(abs(dot(n, to_eye)), 1.0);
+  h.flow = 0.5 * v_flow / u_inverse_size;
+#ifndef IBFVS_GBUFFER
+  h.flow = coded_direction(direction_code(h.flow));
+#endif
 #if defined(IBFVS_COLOR_SCALAR) || defined(IBFVS_BETA_SCALAR)
   h.scalars = v_scalars;
 #else
@@ -236,7 +266,8 @@ layout(location = 1) out vec4 o_gbuffer1;
 void main() {
   Here h = surface_here();
   o_gbuffer0 = vec4(h.ahead ? h.unshifted : vec2(kBehind), h.from_depth, h.depth);
-  o_gbuffer1 = vec4(h.depth_width, h.diffuse, h.scalars);
+  uint diffuse = uint(round(clamp(h.diffuse, 0.0, 1.0) * 4095.0));
+  o_gbuffer1 = vec4(h.depth_width, float(direction_code(h.flow) * 4096u + diffuse), h.scalars);
 }
 #else
 
@@ -418,7 +449,12 @@ void main() {
                                      previous_depth >= 65000.0);  // kAnyDepth: put in from outside
   vec2 moved = ahead && u_locked == 0 ? gl_FragCoord.xy - unshifted / u_inverse_size : vec2(0.0);
   float moved_length = length(moved);
-  vec2 along = moved_length > 1e-6 ? moved / moved_length : vec2(0.0);
+  // The streaks' direction: the flow's displacement alone (a jump of the
+  // surface or the camera's turn is not along them), else this pixel's.
+  vec2 flow = ahead && u_locked == 0 ? here.flow : vec2(0.0);
+  float flow_length = length(flow);
+  vec2 along = flow_length > 1e-6 ? flow / flow_length
+             : moved_length > 1e-6 ? moved / moved_length : vec2(0.0);
   vec2 start = texcoord / u_inverse_size;  // t(x) in pixels
 #ifdef IBFVS_COMPENSATE
   // The compensated warp (core/texture/display.h): the bilinear sample plus
@@ -489,7 +525,7 @@ void main() {
   if (u_locked != 0) high = high_previous;
 #endif
 #ifdef IBFVS_MONO_TEXTURE
-  o_texture = vec4(ft.r, depth, moved);
+  o_texture = vec4(ft.r, depth, along);  // the direction the display filter follows
 #else
   o_texture = vec4(ft, depth);
 #endif

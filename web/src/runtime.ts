@@ -339,6 +339,7 @@ export class PageRenderer {
       bind(2, this.base!);
       bind(4, this.statsTexture);
       bind(5, this.taps[this.current]);
+      bind(3, this.taps[next]); // this frame's: the flow's direction
       gl.bindVertexArray(this.empty);
       gl.drawArrays(gl.TRIANGLES, 0, 3);
       gl.depthMask(true);

@@ -148,9 +148,10 @@ class IbfvsRenderer {
   /// one-channel F_t is spread to grey RGB with alpha 1).
   [[nodiscard]] ImageF read_texture() const;
   /// F_t as stored, kRawChannels channels: grey value, eye depth, the
-  /// pixel's motion in its frame (x, y, kept when the display filter is on,
-  /// which follows its direction: the displacement in pixels, or its unit
-  /// direction with the tap texture; else 0) and the value the filter's
+  /// direction of the streaks at the pixel in its frame (x, y, kept when
+  /// the display filter is on, which follows it: the flow's own image-space
+  /// direction, without the surface's or the camera's motion; unit, or 8
+  /// bits a component with the tap texture; else 0) and the value the filter's
   /// taps read (sharpened, or the value), and the tap texture's depth as
   /// stored (-1 without one: write_texture_raw then stores the eye depth);
   /// or RGB, eye depth, 0, 0 and -1. The depth is kNoDepth off the surface.

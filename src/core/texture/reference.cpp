@@ -111,9 +111,15 @@ void ReferenceIbfvs::step(const BackwardMap& map, int frame, float alpha, Inject
       const glm::vec2 here(static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f);
       const glm::vec2 d = here - s;
       const float length = std::sqrt(d.x * d.x + d.y * d.y);
+      // The streaks' direction: the flow's own displacement where the map
+      // gives it, else the pixel's.
+      const glm::vec2 flow = map.flow.empty() ? d : map.flow[i];
+      const float flow_length = std::sqrt(flow.x * flow.x + flow.y * flow.y);
+      const glm::vec2 along = flow_length > 1e-6f ? flow / flow_length
+                              : length > 1e-6f    ? d / length
+                                                  : glm::vec2(0.0f);
       if (compensated_ && same && length > 1e-6f) {
         // The compensated warp (display.h), as the fragment shader.
-        const glm::vec2 along = d / length;
         const glm::vec2 across = kSharpenReach * glm::vec2(-along.y, along.x);
         const glm::vec2 f = glm::fract(s - 0.5f);
         const float v =
@@ -123,13 +129,12 @@ void ReferenceIbfvs::step(const BackwardMap& map, int frame, float alpha, Inject
             0.0f, 1.0f);
       }
       next.pixels[i] = blend(prev, g);
-      const glm::vec2 stored = encode_tap_direction(d);
+      const glm::vec2 stored = encode_tap_direction(along);
       const glm::vec2 direction = 2.0f * glm::vec2(unorm8(stored.x), unorm8(stored.y)) - 1.0f;
-      moved.at(x, y, 0) = tap_texture ? direction.x : d.x;
-      moved.at(x, y, 1) = tap_texture ? direction.y : d.y;
+      moved.at(x, y, 0) = tap_texture ? direction.x : along.x;
+      moved.at(x, y, 1) = tap_texture ? direction.y : along.y;
       shown.pixels[i] = tap_values.pixels[i] = next.pixels[i];
       if (!(length > 1e-6f)) continue;
-      const glm::vec2 along = d / length;
       // Sharpening once per pixel, as the fragment shader: the high-pass of
       // the last frame's F_t at the source and of this frame's noise here,
       // mixed as the values are; the taps read the sharpened values.

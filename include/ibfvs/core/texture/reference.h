@@ -37,6 +37,11 @@ struct BackwardMap {
   /// Optional (empty: none): 1 where the source lies on another surface
   /// than the pixel's in the previous frame (across an occlusion edge).
   std::vector<std::uint8_t> occluded;
+  /// Optional (empty: the source's displacement): the flow's own
+  /// displacement per pixel, in pixels, without the surface's or the
+  /// camera's motion since the last frame. The streaks lie along it: the
+  /// warp's compensation, sharpening and the display filter follow it.
+  std::vector<glm::vec2> flow;
 };
 
 /// Image-space texture synthesis on the CPU.

@@ -33,6 +33,12 @@ playing the series alone. Prints Markdown tables; pictures go to OUT.
   --no-play            leave Play out
   --export-variant N=V[,N=V]  Save Animation again with these properties too
                        (repeatable): FramesPerStep=3, ...
+  --sequence K         also Save Animation in Sequence mode, K frames over the
+                       series (more frames than steps): A and W of each frame
+                       against the truth at its time, and the correlation of
+                       consecutive frames, within a step and across a change
+  --interpolate        the data through ParaView's TemporalInterpolator (every
+                       sequence frame then shows data of its own time)
 """
 import argparse
 import math
@@ -62,6 +68,8 @@ parser.add_argument("--ibfvs", default=os.path.join(root, "build/ibfvs"))
 parser.add_argument("--no-lic", action="store_true")
 parser.add_argument("--export-variant", action="append", default=[])
 parser.add_argument("--no-play", action="store_true")
+parser.add_argument("--sequence", type=int, default=0)
+parser.add_argument("--interpolate", action="store_true")
 args = parser.parse_args()
 os.makedirs(args.out, exist_ok=True)
 w, h = (int(v) for v in args.size.split(","))
@@ -73,6 +81,8 @@ source, flow = pvmeasure.flow_of(args.data, args.array, args.reverse,
                                  args.blocks.split(",") if args.blocks else None)
 centre, radius = pvmeasure.bounding_sphere(flow)
 times = list(source.TimestepValues) if source.TimestepValues else [0.0]
+if args.interpolate:
+    flow = pv.TemporalInterpolator(Input=flow)
 pv._DisableFirstRenderCameraReset()
 
 
@@ -150,6 +160,22 @@ for k, variant in enumerate([""] + args.export_variant):
     pv.Delete(export_view)
 exported = exports["IBFVS, Save Animation"]
 
+# ---- Save Animation in Sequence mode: more frames than steps
+sequence = []
+if args.sequence:
+    scene.PlayMode = "Sequence"
+    scene.NumberOfFrames = args.sequence
+    sequence_view, _ = new_view()
+    shown(sequence_view, "IBFVS")
+    pv.SetActiveView(sequence_view)
+    pv.SaveAnimation(os.path.join(args.out, "sequence.png"), sequence_view,
+                     ImageResolution=[w, h])
+    pv.Delete(sequence_view)
+    scene.PlayMode = "Snap To TimeSteps"
+    start, end = times[0], times[-1]
+    sequence = [(start + (end - start) * i / (args.sequence - 1),
+                 os.path.join(args.out, "sequence.%04d.png" % i)) for i in range(args.sequence)]
+
 # ---- the truth, Surface LIC and Play, step by step
 truth_view, axes = new_view()
 # The region as seen: its centre projected, its radius at that depth (before
@@ -196,6 +222,16 @@ def region_truth(path):
     Image.fromarray(rgb).save(out)
     return out
 
+
+sequence_rows, sequence_truths = [], []
+for i, (t, path) in enumerate(sequence):
+    at_time(truth_view, t)
+    pv.Render(truth_view)
+    truth = shot(truth_view, "sequence-truth-%04d" % i)
+    sequence_truths.append(truth)
+    m = pvmeasure.measure(args.ibfvs, path, truth)
+    r = pvmeasure.measure(args.ibfvs, path, region_truth(truth)) if region else {}
+    sequence_rows.append((i, t, m, r))
 
 rows, correlations, lic_ms = [], [], []
 previous_last = None
@@ -247,8 +283,16 @@ try:
     within = [corr(s, l) for _, s, l, _, _ in correlations]
     across = [corr(p, f) for _, _, _, p, f in correlations if p]
     export_across = [corr(exported[k - 1], exported[k]) for k in range(1, len(exported))]
+    # Whether a sequence frame shows other data than the one before: its
+    # truth differs (the reader takes the step nearest a time, or its own
+    # rule; the interpolator its own data at every time).
+    sequence_within, sequence_across = [], []
+    for i in range(2, len(sequence)):  # from the second change on (the first forms the texture)
+        c = corr(sequence[i - 1][1], sequence[i][1])
+        changed = not np.array_equal(grey(sequence_truths[i - 1]), grey(sequence_truths[i]))
+        (sequence_across if changed else sequence_within).append(c)
 except ImportError:
-    within = across = export_across = []
+    within = across = export_across = sequence_within = sequence_across = []
 
 print("\n%s (%s%s), %d time steps, %dx%d, view %s, pvbatch, ParaView %s, %s\n" % (
     os.path.basename(args.data), args.array, ", reversed" if args.reverse else "", len(times), w, h,
@@ -283,6 +327,17 @@ for label in dict.fromkeys(label for _, _, label, _, _ in rows):
 print("\nCorrelation of the pictures: Play, two frames apart within a step %s; across a step "
       "change %s; Save Animation, frame to frame %s" % (summary(within), summary(across),
                                                        summary(export_across)))
+if sequence:
+    print("\nSave Animation in Sequence mode, %d frames%s, after the first two (min-max): A %s, "
+          "W %s%s; correlation of consecutive frames within a step %s, across a step change %s" % (
+              len(sequence), " (TemporalInterpolator)" if args.interpolate else "",
+              summary([m.get("A", math.nan) for i, _, m, _ in sequence_rows if i >= 2]),
+              summary([m.get("W", math.nan) for i, _, m, _ in sequence_rows if i >= 2]),
+              "; region A %s, W %s" % (
+                  summary([r.get("A", math.nan) for i, _, _, r in sequence_rows if i >= 2]),
+                  summary([r.get("W", math.nan) for i, _, _, r in sequence_rows if i >= 2]))
+              if region else "",
+              summary(sequence_within), summary(sequence_across)))
 print("\nA step change, ms (the render that first shows a step, the reader's work included): "
       "Surface %s; IBFVS %s%s" % (summary(surface_ms), summary(ibfvs_ms),
                                   "; Surface LIC, each step %s" % summary(lic_ms) if lic_ms else ""))

@@ -178,6 +178,27 @@ void Session::set_field(std::vector<glm::vec3> field) {
   renderer_->set_field(scene_.field);
 }
 
+void FramePacer::set_frames_per_step(int frames) {
+  per_step_ = std::clamp(frames, 1, kMaxFramesPerStep);
+}
+
+int FramePacer::next(bool changed, bool restart, bool moved) {
+  if (restart) {
+    first_ = true;
+    renders_ = 1;
+    return per_step_;
+  }
+  if (!changed) {
+    ++renders_;
+    return 1;
+  }
+  const int rendered = first_ || moved || renders_ <= 2 ? 1 : renders_;
+  const int owed = std::max(per_step_ - rendered, 0);
+  first_ = false;
+  renders_ = 1;
+  return 1 + owed;
+}
+
 void Session::change_data(PreparedScene next) {
   if (!next.mesh) throw InputError("change_data: no mesh");
   const gl::SavedState saved;

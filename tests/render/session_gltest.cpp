@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <vector>
+
 #include "gl_fixture.h"
 #include "ibfvs/core/scene/camera.h"
 #include "ibfvs/core/scene/scene.h"
@@ -18,6 +20,61 @@ namespace ibfvs {
 namespace {
 
 class SessionGLTest : public test::GlTest {};
+
+// The frames of each render as hosts render (no GL): `renders` renders of
+// each of `steps` data, the first data rendered `first` times.
+std::vector<int> paced(int frames_per_step, int first, int renders, int steps) {
+  FramePacer pacer(frames_per_step);
+  std::vector<int> out;
+  for (int k = 0; k < first; ++k) out.push_back(pacer.next(k == 0, k == 0));
+  for (int step = 1; step < steps; ++step)
+    for (int k = 0; k < renders; ++k) out.push_back(pacer.next(k == 0, false));
+  return out;
+}
+
+TEST(FramePacer, EveryStepGetsItsFramesAndPlayNoJump) {
+  // Save Animation: a step rendered once gets all three at its own data,
+  // the second step too though ParaView rendered the first three times.
+  EXPECT_EQ(paced(3, 3, 1, 4), (std::vector<int>{3, 1, 1, 3, 3, 3}));
+  // Save Animation started at another step: ParaView renders the first
+  // step it saves twice; the next one still gets all three.
+  {
+    FramePacer pacer(3);
+    std::vector<int> frames;
+    for (int k = 0; k < 40; ++k) frames.push_back(pacer.next(k < 2, k == 0));  // at step 5
+    for (int step = 0; step < 3; ++step)
+      for (int k = 0; k < (step == 0 ? 2 : 1); ++k) frames.push_back(pacer.next(k == 0, false));
+    EXPECT_EQ(std::vector<int>(frames.end() - 4, frames.end()), (std::vector<int>{1, 1, 3, 3}));
+  }
+  // Sequence mode, three renders a step: the change owes the frames the
+  // last step's renders fell short of, none; four: none; two count as one.
+  EXPECT_EQ(paced(3, 1, 3, 3), (std::vector<int>{3, 3, 1, 1, 1, 1, 1}));
+  EXPECT_EQ(paced(3, 1, 4, 3), (std::vector<int>{3, 3, 1, 1, 1, 1, 1, 1, 1}));
+  EXPECT_EQ(paced(5, 1, 4, 3), (std::vector<int>{5, 5, 1, 1, 1, 2, 1, 1, 1}));
+  EXPECT_EQ(paced(3, 1, 2, 3), (std::vector<int>{3, 3, 1, 3, 1}));
+  // Play (many renders a step) and a steady view: one a render; where the
+  // step moved the surface, all three.
+  EXPECT_EQ(paced(3, 30, 30, 3)[30 + 30], 1);
+  {
+    FramePacer pacer(3);
+    for (int k = 0; k < 30; ++k) pacer.next(k < 2, k == 0);
+    EXPECT_EQ(pacer.next(true, false, true), 3);
+    EXPECT_EQ(pacer.next(false, false, false), 1);
+  }
+  // A TemporalInterpolator: every render a change, each the same.
+  EXPECT_EQ(paced(4, 1, 1, 5), (std::vector<int>{4, 4, 4, 4, 4}));
+  // A restart forms a new texture; the data it starts on counts once.
+  FramePacer pacer(3);
+  for (int k = 0; k < 10; ++k) pacer.next(false, false);
+  EXPECT_EQ(pacer.next(true, true), 3);
+  for (int k = 0; k < 10; ++k) pacer.next(false, false);
+  EXPECT_EQ(pacer.next(true, false), 3);
+  // Clamped.
+  pacer.set_frames_per_step(0);
+  EXPECT_EQ(pacer.frames_per_step(), 1);
+  pacer.set_frames_per_step(100000);
+  EXPECT_EQ(pacer.frames_per_step(), kMaxFramesPerStep);
+}
 
 Scene small_scene() {
   Scene s;

@@ -30,6 +30,40 @@ namespace ibfvs {
 inline constexpr int kDefaultFramesPerStep = 3;
 inline constexpr int kMaxFramesPerStep = 200;
 
+/// How many texture frames each render of a host gives (ParaView's mapper),
+/// whatever its cadence: one; at a change of the data also the frames that
+/// the renders of the last data fell short of frames_per_step, at the new
+/// data. A step therefore gets at least frames_per_step frames: Save
+/// Animation, which renders each step once, all of them at the step's own
+/// data; Play and Sequence mode, which render a step several times, one a
+/// render, with no jump at a change. Two renders of a step count as one:
+/// Save Animation renders its first step twice (the time set, then the
+/// picture taken). The data the texture started on counts as rendered once
+/// too (a host renders it any number of times before it plays or saves:
+/// those frames formed the texture, they owe the next step nothing), and a
+/// restart gives frames_per_step, a new texture formed.
+class FramePacer {
+ public:
+  explicit FramePacer(int frames_per_step = kDefaultFramesPerStep) {
+    set_frames_per_step(frames_per_step);
+  }
+  /// Clamped to 1..kMaxFramesPerStep.
+  void set_frames_per_step(int frames);
+  [[nodiscard]] int frames_per_step() const { return per_step_; }
+  /// The frames of the next render. `changed`: its data differ from the
+  /// last render's; `restart`: the texture starts afresh; `moved`: the
+  /// change moved the surface's points (a moving mesh's step), which gets
+  /// all frames_per_step whatever the renders before: the texture carried
+  /// with the surface takes them to follow the new flow (one frame shows
+  /// it half formed: docs/paraview.md, "Time").
+  int next(bool changed, bool restart, bool moved = false);
+
+ private:
+  int per_step_ = kDefaultFramesPerStep;
+  int renders_ = 0;    // renders of the data as it is
+  bool first_ = true;  // that data is the one the texture started on
+};
+
 class Session {
  public:
   /// Uploads the mesh, field, scalars and surface image and initialises F_t

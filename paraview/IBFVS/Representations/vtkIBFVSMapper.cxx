@@ -60,14 +60,15 @@ namespace {
 // maximum): whether some rank cannot draw the texture; whether the texture
 // starts afresh (a new seed, a first surface), the view's size changed, the
 // noise grid changed, or some rank's data changed (all then do alike, so
-// that the frame counters and noise stay equal); the whole surface's speed
-// and bounds.
+// that the frame counters and noise stay equal), and moved its points; the
+// whole surface's speed and bounds.
 enum Header {
   kBad,
   kRestart,
   kResize,
   kRegrid,
   kChanged,
+  kMoved,
   kSpeed,
   kMinX,
   kMinY,
@@ -98,7 +99,7 @@ class vtkIBFVSMapper::Internals {
   bool settings_changed = false;  // live settings: applied without starting afresh
   bool restart = true;            // a new seed, or asked: the texture starts afresh
   bool regrid = false;            // a new noise scale: a new renderer, the texture goes on
-  int frames_per_step = ibfvs::kDefaultFramesPerStep;
+  ibfvs::FramePacer pacer;  // texture frames of each render (Frames Per Step)
 
   // ---- the surface
   vtkMTimeType input_time = 0;
@@ -111,9 +112,7 @@ class vtkIBFVSMapper::Internals {
   glm::vec3 lower{0.0f}, upper{0.0f};    // its bounds (the header's, every frame)
   bool retake = true;                    // take the surface again (the vectors were set)
   bool data_changed = true;              // a new surface or array: the session takes it on
-  // Render() calls that drew the data as it is now: a change owes the
-  // texture the frames these fell short of frames_per_step.
-  int renders_at_data = 0;
+  bool points_moved = false;             // and its points moved (the same triangles)
 
   // ---- colour by ParaView's lookup table
   std::string colour_key;
@@ -211,8 +210,8 @@ void vtkIBFVSMapper::SetNoiseScale(double pixels) {
 
 void vtkIBFVSMapper::SetFramesPerStep(int frames) {
   const int v = std::clamp(frames, 1, ibfvs::kMaxFramesPerStep);
-  if (this->Internal->frames_per_step == v) return;
-  this->Internal->frames_per_step = v;
+  if (this->Internal->pacer.frames_per_step() == v) return;
+  this->Internal->pacer.set_frames_per_step(v);
   this->Modified();
 }
 
@@ -526,6 +525,8 @@ void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor) {
     }
     in.colour_key.clear();
     in.data_changed = in.data_changed || !same;
+    in.points_moved = in.points_moved || (last && in.mesh && last->triangles == in.mesh->triangles &&
+                                          last->positions != in.mesh->positions);
   }
   if (in.problem.empty() && epoxy_gl_version() < 45) {
     in.problem = "needs OpenGL 4.5 (this context has " + std::to_string(epoxy_gl_version() / 10) +
@@ -544,6 +545,7 @@ void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor) {
   header[kResize] = width != in.width || height != in.height ? 1.0 : 0.0;
   header[kRegrid] = in.regrid ? 1.0 : 0.0;
   header[kChanged] = in.data_changed ? 1.0 : 0.0;
+  header[kMoved] = in.points_moved ? 1.0 : 0.0;
   header[kSpeed] = in.speed;
   for (int k = 0; k < 3; ++k) {
     header[kMinX + k] = -1e300;
@@ -580,17 +582,15 @@ void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor) {
 
   // ---- the session: made, or taking on a new size, noise grid or data
   // (the texture goes on from where it is; only a restart starts afresh).
-  // The texture frames of this render: one; where the data changed,
-  // frames_per_step at the new data, unless the view rendered the last data
-  // at least twice as often (Play, which renders on between steps: a step
-  // change is then one more frame). Save Animation renders a step once or
-  // twice (its first, up to three times), so the shortfall of the renders
-  // since the last change would leave a step too few.
+  // The texture frames of this render: one, and at a change of the data the
+  // frames the renders of the last data fell short of Frames Per Step
+  // (ibfvs::FramePacer: Save Animation gives each step all of them at its
+  // own data, Play and Sequence mode one a render), all of them where the
+  // points moved.
   const bool restart = header[kRestart] > 0.0;
   const bool changed = header[kChanged] > 0.0 || restart;
   const bool new_renderer = restart || header[kResize] > 0.0 || header[kRegrid] > 0.0;
-  int frames = 1;
-  if (changed && in.renders_at_data < 2 * in.frames_per_step) frames = in.frames_per_step;
+  const int frames = in.pacer.next(changed, restart, header[kMoved] > 0.0);
   try {
     if (restart || (!in.mesh && in.session)) {
       in.session.reset();
@@ -630,8 +630,7 @@ void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor) {
   in.height = height;
   in.regrid = false;
   in.data_changed = false;
-  if (changed) in.renders_at_data = 0;
-  ++in.renders_at_data;
+  in.points_moved = false;
 
   ibfvs::Session* session = in.session.get();
   ibfvs::ViewState view;

@@ -45,7 +45,8 @@ class IBFVSREPRESENTATIONS_EXPORT vtkIBFVSMapper : public vtkCompositePolyDataMa
   /// At least this many texture frames for each change of the data (a time
   /// step): a change adds the frames that the renders since the last one
   /// fell short of, at the new data (Save Animation renders a step once;
-  /// Play renders on).
+  /// Play renders on), all of them where the points moved
+  /// (ibfvs::FramePacer).
   void SetFramesPerStep(int frames);
   /// Starts the texture afresh from noise at the next render.
   void Restart();

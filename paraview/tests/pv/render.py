@@ -19,7 +19,10 @@
 #   animation  a series played after the frames: {"mode": "save"} File > Save
 #              Animation, one frame per time step (OUT.0000.png, ...); or
 #              {"mode": "play", "renders": R}: R renders at each time step, the
-#              first and the last two saved (-stepK-rJ.png)
+#              first and the last two saved (-stepK-rJ.png); or
+#              {"mode": "sequence", "frames": K}: Save Animation in Sequence
+#              mode, K frames over the series (OUT.0000.png, ...)
+#   interpolate  the data through ParaView's TemporalInterpolator
 import json
 import sys
 
@@ -34,6 +37,8 @@ source = OpenDataFile(cfg["data"])
 if cfg.get("pieces"):
     source = ProcessIdScalars(Input=source)
 calculator = None
+if cfg.get("interpolate"):
+    source = TemporalInterpolator(Input=source)
 if cfg.get("calculator"):
     name, function, _ = cfg["calculator"]
     source = calculator = Calculator(Input=source, ResultArrayName=name, Function=function)
@@ -132,6 +137,10 @@ if animation:
     scene.UpdateAnimationUsingDataTimeSteps()
     times = list(GetTimeKeeper().TimestepValues)
     if animation["mode"] == "save":
+        SaveAnimation(cfg["out"] + ".png", view, ImageResolution=[w, h])
+    elif animation["mode"] == "sequence":
+        scene.PlayMode = "Sequence"
+        scene.NumberOfFrames = animation["frames"]
         SaveAnimation(cfg["out"] + ".png", view, ImageResolution=[w, h])
     else:
         renders = animation["renders"]

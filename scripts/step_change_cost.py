@@ -27,6 +27,9 @@ medians over every step change of every round.
   --save-animation  one render per step instead (Save Animation: the change
                     then gets FramesPerStep texture frames); the cost is the
                     whole render
+  --frames-per-step N  the IBFVS representation's FramesPerStep (default: its
+                    own, 3); 1 leaves a change one texture frame, whatever
+                    it moved: the change's own work alone
   --plugin PATH     IBFVS.so (default: build/lib/ibfvs/paraview/IBFVS/IBFVS.so)
 """
 import argparse
@@ -49,6 +52,7 @@ parser.add_argument("--size", default="1024,768")
 parser.add_argument("--renders", type=int, default=8)
 parser.add_argument("--rounds", type=int, default=4)
 parser.add_argument("--save-animation", action="store_true")
+parser.add_argument("--frames-per-step", type=int, default=0)
 parser.add_argument("--plugin", default=os.path.join(root, "build/lib/ibfvs/paraview/IBFVS/IBFVS.so"))
 args = parser.parse_args()
 w, h = (int(v) for v in args.size.split(","))
@@ -78,6 +82,8 @@ for name in ("Surface", "IBFVS"):
     display.Representation = name
     if name == "IBFVS":
         display.SelectInputVectors = ["POINTS", "flow"]
+        if args.frames_per_step:
+            display.FramesPerStep = args.frames_per_step
     views[name] = view
 
 renders = 1 if args.save_animation else max(args.renders, 3)
@@ -107,10 +113,10 @@ for k in range(args.rounds):
     for name in (list(views) if k % 2 == 0 else list(views)[::-1]):
         play(name)
 
-print("\n%s (%s), %d time steps, %dx%d, %s, %d rounds, pvbatch, ParaView %s\n" % (
+print("\n%s (%s), %d time steps, %dx%d, %s, %d rounds, FramesPerStep %s, pvbatch, ParaView %s\n" % (
     os.path.basename(args.data), args.array, len(times), w, h,
     "one render a step (Save Animation)" if args.save_animation else "%d renders a step" % renders,
-    args.rounds, pv.GetParaViewVersion()))
+    args.rounds, args.frames_per_step or "default", pv.GetParaViewVersion()))
 if args.save_animation:
     print("| representation | a step's render, ms |")
     print("|---|---|")

@@ -66,7 +66,9 @@ out vec4 v_from;
 // surface's or the camera's motion since. The streaks lie along it; a
 // surface that jumped (a time step of a moving mesh) or a turning camera
 // adds its motion to x - t(x), which the display must not follow.
+#ifdef IBFVS_STREAKS
 out vec2 v_flow;
+#endif
 #if defined(IBFVS_COLOR_SCALAR) || defined(IBFVS_BETA_SCALAR)
 out vec2 v_scalars;
 #endif
@@ -112,8 +114,10 @@ void main() {
   }
 #endif
   v_from = u_advect_view_projection * vec4(drawn - step, 1.0);
+#ifdef IBFVS_STREAKS
   vec4 still = u_advect_view_projection * vec4(drawn, 1.0);
   v_flow = still.w > 1e-6 && v_from.w > 1e-6 ? still.xy / still.w - v_from.xy / v_from.w : vec2(0.0);
+#endif
 #if defined(IBFVS_COLOR_SCALAR) || defined(IBFVS_BETA_SCALAR)
   v_scalars = a_scalars;
 #endif
@@ -177,7 +181,9 @@ const char* const kIbfvsFragmentHead = R"(
 uniform vec2 u_inverse_size;  // 1 / image size in pixels
 #ifndef IBFVS_RESOLVE
 in vec4 v_from;
+#ifdef IBFVS_STREAKS
 in vec2 v_flow;
+#endif
 uniform vec2 u_clip_to_depth;  // (a, b): eye depth = a clip.z + b clip.w (this projection)
 #if defined(IBFVS_COLOR_SCALAR) || defined(IBFVS_BETA_SCALAR)
 in vec2 v_scalars;
@@ -246,9 +252,13 @@ Here surface_here() {
   vec3 n = normalize(v_normal_eye);
   vec3 to_eye = normalize(-v_position_eye);
   h.diffuse = min(abs(dot(n, to_eye)), 1.0);
+#ifdef IBFVS_STREAKS
   h.flow = 0.5 * v_flow / u_inverse_size;
 #ifndef IBFVS_GBUFFER
   h.flow = coded_direction(direction_code(h.flow));
+#endif
+#else
+  h.flow = vec2(0.0);  // nothing follows the streaks: the pixel's displacement will do
 #endif
 #if defined(IBFVS_COLOR_SCALAR) || defined(IBFVS_BETA_SCALAR)
   h.scalars = v_scalars;
@@ -690,6 +700,8 @@ std::string with_defines(const ShaderFeatures& features, const std::string& body
   define(features.moving, "IBFVS_MOVING");
   if (features.sharpen || features.compensate)
     source += "#define IBFVS_SHARPEN_REACH " + std::to_string(ibfvs::kSharpenReach) + "\n";
+  // The display's work that follows the streaks' direction (the flow's own).
+  define(features.sharpen || features.compensate || features.filter_taps > 0, "IBFVS_STREAKS");
   if (profile) source += kProfile;
   return source + body;
 }

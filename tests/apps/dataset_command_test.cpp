@@ -150,11 +150,9 @@ std::vector<bool> surface_of(const std::filesystem::path& png) {
 TEST_F(DatasetCommand, SeriesWhosePointsMovePlayOnEachStepsPoints) {
   std::string pvd = "<VTKFile type=\"Collection\"><Collection>\n";
   for (int k = 0; k < 3; ++k) {
-    char name[16], entry[64];
-    std::snprintf(name, sizeof name, "t%d.vtk", k);
-    std::snprintf(entry, sizeof entry, "<DataSet timestep=\"%d\" file=\"%s\"/>\n", k, name);
+    const std::string name = "t" + std::to_string(k) + ".vtk";
     file(name, turned_square(20.0 * k, k == 2 ? 9 : 6));
-    pvd += entry;
+    pvd += "<DataSet timestep=\"" + std::to_string(k) + "\" file=\"" + name + "\"/>\n";
   }
   file("turn.pvd", pvd + "</Collection></VTKFile>\n");
   Result r =

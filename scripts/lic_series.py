@@ -40,7 +40,6 @@ playing the series alone. Prints Markdown tables; pictures go to OUT.
   --interpolate        the data through ParaView's TemporalInterpolator (every
                        sequence frame then shows data of its own time)
 """
-import argparse
 import math
 import os
 import time
@@ -49,22 +48,13 @@ import paraview.simple as pv
 
 import pvmeasure
 
-root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-parser = argparse.ArgumentParser()
-parser.add_argument("data")
-parser.add_argument("array")
-parser.add_argument("out")
+parser = pvmeasure.series_arguments("out")
 parser.add_argument("--reverse", action="store_true")
-parser.add_argument("--blocks", default="")
-parser.add_argument("--view", default="0,10")
-parser.add_argument("--up", default="0,0,1")
 parser.add_argument("--zoom", type=float, default=1.0)
-parser.add_argument("--size", default="1024,768")
 parser.add_argument("--renders", type=int, default=24)
 parser.add_argument("--region", default="")
 parser.add_argument("--set", action="append", default=[])
-parser.add_argument("--plugin", default=os.path.join(root, "build/lib/ibfvs/paraview/IBFVS/IBFVS.so"))
-parser.add_argument("--ibfvs", default=os.path.join(root, "build/ibfvs"))
+parser.add_argument("--ibfvs", default=os.path.join(pvmeasure.ROOT, "build/ibfvs"))
 parser.add_argument("--no-lic", action="store_true")
 parser.add_argument("--export-variant", action="append", default=[])
 parser.add_argument("--no-play", action="store_true")
@@ -72,9 +62,7 @@ parser.add_argument("--sequence", type=int, default=0)
 parser.add_argument("--interpolate", action="store_true")
 args = parser.parse_args()
 os.makedirs(args.out, exist_ok=True)
-w, h = (int(v) for v in args.size.split(","))
-up = [float(v) for v in args.up.split(",")]
-azimuth, elevation = (float(v) for v in args.view.split(","))
+(w, h), up, (azimuth, elevation) = pvmeasure.series_view(args)
 pv.LoadPlugin(args.plugin, remote=False, ns={})
 
 source, flow = pvmeasure.flow_of(args.data, args.array, args.reverse,

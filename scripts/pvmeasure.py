@@ -3,7 +3,9 @@ pvbatch: the data's surface with its vectors on the points ("flow"), a camera
 about the data's centre, the direction-coded picture of the TRUE projected
 flow, and `ibfvs quality` against it (docs/quality.md, "Real data").
 """
+import argparse
 import math
+import os
 import subprocess
 
 import paraview.simple as pv
@@ -36,6 +38,32 @@ output.ShallowCopy(inputs[0].VTKObject)
 out = dsa.WrapDataObject(output)
 out.PointData.append(rgb, "direction")
 """
+
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+def series_arguments(*positional):
+    """The command line the series scripts share: DATA ARRAY (and
+    `positional`), --blocks, --view, --up, --size and --plugin; the rest is
+    each script's own."""
+    parser = argparse.ArgumentParser()
+    for name in ("data", "array") + positional:
+        parser.add_argument(name)
+    parser.add_argument("--blocks", default="")
+    parser.add_argument("--view", default="0,10")
+    parser.add_argument("--up", default="0,0,1")
+    parser.add_argument("--size", default="1024,768")
+    parser.add_argument("--plugin",
+                        default=os.path.join(ROOT, "build/lib/ibfvs/paraview/IBFVS/IBFVS.so"))
+    return parser
+
+
+def series_view(args):
+    """The parsed view of series_arguments: (w, h), the up axis, (azimuth,
+    elevation)."""
+    return (tuple(int(v) for v in args.size.split(",")), [float(v) for v in args.up.split(",")],
+            tuple(float(v) for v in args.view.split(",")))
 
 
 def flow_of(data, array, reverse, blocks=None):

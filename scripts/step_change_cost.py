@@ -32,7 +32,6 @@ medians over every step change of every round.
                     it moved: the change's own work alone
   --plugin PATH     IBFVS.so (default: build/lib/ibfvs/paraview/IBFVS/IBFVS.so)
 """
-import argparse
 import os
 import statistics
 import time
@@ -41,23 +40,13 @@ import paraview.simple as pv
 
 import pvmeasure
 
-root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-parser = argparse.ArgumentParser()
-parser.add_argument("data")
-parser.add_argument("array")
-parser.add_argument("--blocks", default="")
-parser.add_argument("--view", default="0,10")
-parser.add_argument("--up", default="0,0,1")
-parser.add_argument("--size", default="1024,768")
+parser = pvmeasure.series_arguments()
 parser.add_argument("--renders", type=int, default=8)
 parser.add_argument("--rounds", type=int, default=4)
 parser.add_argument("--save-animation", action="store_true")
 parser.add_argument("--frames-per-step", type=int, default=0)
-parser.add_argument("--plugin", default=os.path.join(root, "build/lib/ibfvs/paraview/IBFVS/IBFVS.so"))
 args = parser.parse_args()
-w, h = (int(v) for v in args.size.split(","))
-up = [float(v) for v in args.up.split(",")]
-azimuth, elevation = (float(v) for v in args.view.split(","))
+(w, h), up, (azimuth, elevation) = pvmeasure.series_view(args)
 pv.LoadPlugin(args.plugin, remote=False, ns={})
 
 source, flow = pvmeasure.flow_of(args.data, args.array, False,

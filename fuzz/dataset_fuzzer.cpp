@@ -3,17 +3,12 @@
 // (core/support/isolation.h), our conversion of their surfaces and arrays to a
 // TriMesh, and the way back. A crash inside VTK ends only the child and is
 // an InputError here; what this harness finds is ours.
-#include <cstdlib>
-
 #include "fuzz_support.h"
 #include "ibfvs/core/mesh/dataset_io.h"
 #include "ibfvs/vtk/vtk_io.h"
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
-  // The readers' children may allocate 2 GiB (half of this), below
-  // libFuzzer's malloc limit (the 2.5 GiB RSS limit), whose report would
-  // otherwise come from the child.
-  setenv("IBFVS_MEMORY_LIMIT", "4G", 0);
+  ibfvs::fuzz::limit_readers();
   ibfvs::vtk::install_vtk_io();
   return 0;
 }

@@ -27,6 +27,16 @@ namespace ibfvs::fuzz {
   std::abort();
 }
 
+/// The readers' limits in a harness (support/isolation.h): their children
+/// may allocate 2 GiB (half of IBFVS_MEMORY_LIMIT), below libFuzzer's malloc
+/// limit (the 2.5 GiB RSS limit), whose report would otherwise come from the
+/// child; and run 5 s, within libFuzzer's -timeout of 20 s, so that a reader
+/// that never finishes is the error line it is for a user, not a timeout.
+inline void limit_readers() {
+  setenv("IBFVS_MEMORY_LIMIT", "4G", 0);
+  setenv("IBFVS_READER_SECONDS", "5", 0);
+}
+
 /// This process's own folder (several fuzzers run side by side).
 inline const std::filesystem::path& scratch_dir() {
   static const std::filesystem::path dir = [] {

@@ -1,9 +1,15 @@
 // read_mesh on one format (IBFVS_FUZZ_EXTENSION: ".off", ".obj", ".ply",
-// ".stl"): OpenMesh's readers with our checks around them. The file name
-// carries the extension, as on the command line.
+// ".stl"): OpenMesh's readers in their child process (core/support/
+// isolation.h), our checks of their answer, and the way back. The file
+// name carries the extension, as on the command line.
 
 #include "fuzz_support.h"
 #include "ibfvs/core/mesh/mesh_io.h"
+
+extern "C" int LLVMFuzzerInitialize(int*, char***) {
+  ibfvs::fuzz::limit_readers();
+  return 0;
+}
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace ibfvs;

@@ -1,8 +1,14 @@
 // read_lonlat_grid (wind: fields, relief: meshes) on every variable of a
-// netCDF file (the first four), at its first and last time index.
+// netCDF file (the first four), at its first and last time index: netCDF-C
+// in its child process (core/support/isolation.h) and the way back.
 
 #include "fuzz_support.h"
 #include "ibfvs/core/fields/lonlat_grid.h"
+
+extern "C" int LLVMFuzzerInitialize(int*, char***) {
+  ibfvs::fuzz::limit_readers();
+  return 0;
+}
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace ibfvs;

@@ -10,7 +10,7 @@
 
 #include "fuzz_support.h"
 #include "ibfvs/core/fields/vector_field.h"
-#include "ibfvs/core/mesh/mesh_source.h"
+#include "ibfvs/core/scene/mesh_source.h"
 #include "ibfvs/core/scene/scene.h"
 
 namespace {

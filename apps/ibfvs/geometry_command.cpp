@@ -10,7 +10,7 @@
 #include "ibfvs/core/geometry/curvature.h"
 #include "ibfvs/core/mesh/dataset_io.h"
 #include "ibfvs/core/mesh/mesh_io.h"
-#include "ibfvs/core/mesh/mesh_source.h"
+#include "ibfvs/core/scene/mesh_source.h"
 #include "ibfvs/core/support/error.h"
 #include "ibfvs/core/support/file_names.h"
 

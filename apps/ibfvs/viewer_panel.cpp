@@ -9,7 +9,7 @@
 #include <imgui.h>
 #include <glm/geometric.hpp>
 
-#include "ibfvs/core/scene/names.h"
+#include "ibfvs/core/support/names.h"
 #include "ibfvs/core/support/text.h"
 
 namespace ibfvs::app {

@@ -11,7 +11,7 @@
 
 #include "ibfvs/core/mesh/mesh.h"
 #include "ibfvs/core/scene/camera.h"
-#include "ibfvs/core/scene/names.h"
+#include "ibfvs/core/support/names.h"
 
 namespace ibfvs::app {
 

@@ -70,6 +70,7 @@
 #include <vtk_nlohmannjson.h>
 #include VTK_NLOHMANN_JSON(json.hpp)
 
+#include "ibfvs/core/mesh/mesh_bytes.h"
 #include "ibfvs/core/support/error.h"
 #include "ibfvs/core/support/file_names.h"
 #include "ibfvs/core/support/isolation.h"

@@ -604,7 +604,7 @@ TEST_F(RenderCommand, MalformedMeshesFailCleanly) {
   expect_error("render --mesh counts.off --out x.png", "counts.off: bad vertex count");
   file("index.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 5\n");
   expect_error("render --mesh index.off --out x.png",
-               "index.off: line 6: vertex index '5' is out of range");
+               "index.off: truncated or malformed: a face references a vertex index out of range");
   file("nan.off", "OFF\n3 1 0\n0 0 0\n1 NaN 0\n0 1 0\n3 0 1 2\n");
   expect_error("render --mesh nan.off --out x.png", "nan.off: line 4 holds a non-finite");
   file("inf.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 inf\n3 0 1 2\n");

@@ -34,7 +34,7 @@
 #include "helpers.h"
 #include "ibfvs/core/fields/vector_field.h"
 #include "ibfvs/core/mesh/dataset_io.h"
-#include "ibfvs/core/mesh/mesh_source.h"
+#include "ibfvs/core/scene/mesh_source.h"
 #include "ibfvs/core/scene/scene_prep.h"
 #include "ibfvs/core/support/error.h"
 #include "ibfvs/vtk/vtk_io.h"

@@ -1,36 +1,56 @@
 #include "ibfvs/core/fields/lonlat_grid.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
+#include <functional>
 #include <numbers>
 
+#include <fcntl.h>
 #include <netcdf.h>
+#include <netcdf_mem.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
 #include <glm/geometric.hpp>
 
 #include "ibfvs/core/mesh/procedural.h"
 #include "ibfvs/core/mesh/subdivision.h"
 #include "ibfvs/core/support/error.h"
+#include "ibfvs/core/support/isolation.h"
 #include "ibfvs/core/support/limits.h"
-#include "netcdf_precheck.h"
 
 namespace ibfvs {
 namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
 
-// Closes the file on every path out.
+// The file, mapped, opened by netCDF-C from memory; closed and unmapped on
+// every path out. From memory, netCDF-C refuses to read past the end of a
+// file cut short (NC_EPERM); from the file it would read zeros there.
 class NcFile {
  public:
   explicit NcFile(const std::filesystem::path& path) : path_(path) {
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) fail("no such file");
-    detail::precheck_netcdf(path);
-    const int status = nc_open(path.c_str(), NC_NOWRITE, &id_);
+    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0) fail(std::string("cannot open the file (") + std::strerror(errno) + ")");
+    struct stat st {};
+    if (::fstat(fd, &st) == 0 && st.st_size > 0) {
+      size_ = static_cast<std::size_t>(st.st_size);
+      void* p = ::mmap(nullptr, size_, PROT_READ, MAP_PRIVATE, fd, 0);
+      map_ = p == MAP_FAILED ? nullptr : p;
+    }
+    ::close(fd);
+    if (!map_) fail(size_ == 0 ? "the file is empty" : "cannot map the file");
+    const int status = nc_open_mem(path.c_str(), NC_NOWRITE, size_, map_, &id_);
     if (status != NC_NOERR)
       fail(std::string("not a readable netCDF file (") + nc_strerror(status) + ")");
   }
   ~NcFile() {
     if (id_ >= 0) nc_close(id_);
+    if (map_) ::munmap(map_, size_);
   }
   NcFile(const NcFile&) = delete;
   NcFile& operator=(const NcFile&) = delete;
@@ -39,11 +59,15 @@ class NcFile {
     throw InputError(one_line(path_.string() + ": " + problem));  // names are the file's bytes
   }
   void check(int status, const std::string& what) const {
+    // From memory, a read past the end is EPERM (a system error number).
+    if (status == EPERM) fail(what + ": the file ends before its data (cut short)");
     if (status != NC_NOERR) fail(what + ": " + nc_strerror(status));
   }
 
  private:
   std::filesystem::path path_;
+  void* map_ = nullptr;
+  std::size_t size_ = 0;
   int id_ = -1;
 };
 
@@ -74,14 +98,17 @@ bool attribute(int nc, int var, const char* name, double& value) {
 }
 
 // The coordinate values of dimension `dim`: its coordinate variable, or 0..n-1.
-std::vector<double> coordinates(int nc, int dim, std::size_t n) {
+std::vector<double> coordinates(const NcFile& file, int dim, std::size_t n) {
+  const int nc = file.id();
   char name[NC_MAX_NAME + 1] = {};
   nc_inq_dimname(nc, dim, name);
   std::vector<double> out(n);
   int var = -1;
-  if (nc_inq_varid(nc, name, &var) == NC_NOERR &&
-      nc_get_var_double(nc, var, out.data()) == NC_NOERR)
-    return out;
+  if (nc_inq_varid(nc, name, &var) == NC_NOERR) {
+    const int status = nc_get_var_double(nc, var, out.data());
+    if (status == NC_NOERR) return out;
+    if (status == EPERM) file.check(status, std::string("reading '") + name + "'");
+  }
   for (std::size_t i = 0; i < n; ++i) out[i] = static_cast<double>(i);
   return out;
 }
@@ -130,13 +157,21 @@ float LonLatGrid::sample(double lon_deg, double lat_deg) const {
   return static_cast<float>(v);  // NaN propagates from any missing neighbour
 }
 
-std::vector<std::string> netcdf_variables(const std::filesystem::path& path) {
-  const NcFile file(path);
-  return variable_names(file.id());
+namespace {
+
+// netCDF-C reads in a child process: a crash, a runaway allocation or a loop
+// in it is one error line (support/isolation.h), and nothing of ours
+// re-parses the file in front of it.
+IsolatedBytes read_isolated(const std::filesystem::path& path,
+                            const std::function<void(ByteWriter&)>& work) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec))
+    throw InputError(one_line(path.string() + ": no such file"));
+  return run_isolated(one_line(path.string()), "netCDF-C", work);
 }
 
-LonLatGrid read_lonlat_grid(const std::filesystem::path& path, const std::string& variable,
-                            std::size_t time_index) {
+LonLatGrid read_grid_here(const std::filesystem::path& path, const std::string& variable,
+                          std::size_t time_index) {
   const NcFile file(path);
   const int nc = file.id();
   int var = -1;
@@ -169,8 +204,8 @@ LonLatGrid read_lonlat_grid(const std::filesystem::path& path, const std::string
   } catch (const InputError& e) {
     file.fail(e.what());
   }
-  g.lat = coordinates(nc, dims[ndims - 2], ny);
-  g.lon = coordinates(nc, dims[ndims - 1], nx);
+  g.lat = coordinates(file, dims[ndims - 2], ny);
+  g.lon = coordinates(file, dims[ndims - 1], nx);
   if (!std::is_sorted(g.lon.begin(), g.lon.end()) || g.lon.front() == g.lon.back())
     file.fail("the longitudes of '" + variable + "' do not increase");
   std::size_t start[3] = {0, 0, 0}, count[3] = {1, ny, nx};
@@ -198,6 +233,37 @@ LonLatGrid read_lonlat_grid(const std::filesystem::path& path, const std::string
     g.units.resize(units_len);
     nc_get_att_text(nc, var, "units", g.units.data());
   }
+  return g;
+}
+
+}  // namespace
+
+std::vector<std::string> netcdf_variables(const std::filesystem::path& path) {
+  const IsolatedBytes bytes =
+      read_isolated(path, [&](ByteWriter& out) { out.put(variable_names(NcFile(path).id())); });
+  ByteReader in(bytes.view(), path.string());
+  return in.get_strings();
+}
+
+LonLatGrid read_lonlat_grid(const std::filesystem::path& path, const std::string& variable,
+                            std::size_t time_index) {
+  const IsolatedBytes bytes = read_isolated(path, [&](ByteWriter& out) {
+    const LonLatGrid g = read_grid_here(path, variable, time_index);
+    out.put(g.name);
+    out.put(g.units);
+    out.put(g.lon);
+    out.put(g.lat);
+    out.put(g.values);
+    out.put<std::uint64_t>(g.time_steps);
+  });
+  ByteReader in(bytes.view(), path.string());
+  LonLatGrid g;
+  g.name = in.get_string();
+  g.units = in.get_string();
+  g.lon = in.get_vector<double>();
+  g.lat = in.get_vector<double>();
+  g.values = in.get_vector<float>();
+  g.time_steps = static_cast<std::size_t>(in.get<std::uint64_t>());
   return g;
 }
 

@@ -1,6 +1,7 @@
 #include "ibfvs/core/image/image.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <memory>
 
@@ -159,6 +160,18 @@ ImageF ImageF::select_channels(int first, int count) const {
   for (std::size_t i = 0; i < n; ++i)
     for (int c = 0; c < count; ++c) out.pixels[i * count + c] = pixels[i * channels + first + c];
   return out;
+}
+
+float sample_bilinear(const ImageF& image, float x, float y, int c) {
+  const float u = x - 0.5f, v = y - 0.5f;
+  const float fu = std::floor(u), fv = std::floor(v);
+  const int i = static_cast<int>(fu), j = static_cast<int>(fv);
+  const float a = u - fu, b = v - fv;
+  const auto t = [&](int ii, int jj) {
+    return image.at(std::clamp(ii, 0, image.width - 1), std::clamp(jj, 0, image.height - 1), c);
+  };
+  return (1 - a) * (1 - b) * t(i, j) + a * (1 - b) * t(i + 1, j) + (1 - a) * b * t(i, j + 1) +
+         a * b * t(i + 1, j + 1);
 }
 
 }  // namespace ibfvs

@@ -7,7 +7,6 @@
 #include <glm/geometric.hpp>
 
 #include "ibfvs/core/support/error.h"
-#include "ibfvs/core/texture/display.h"
 
 namespace ibfvs {
 

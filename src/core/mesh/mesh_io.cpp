@@ -16,9 +16,10 @@
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
 #include <glm/geometric.hpp>
 
+#include "ibfvs/core/mesh/mesh_bytes.h"
 #include "ibfvs/core/support/error.h"
 #include "ibfvs/core/support/file_names.h"
-#include "mesh_precheck.h"
+#include "ibfvs/core/support/isolation.h"
 #include "openmesh_errors.h"
 
 namespace ibfvs {
@@ -81,17 +82,6 @@ DeclaredCounts off_header(const fs::path& path, std::istream& in) {
   }
   counts.vertices = parse_count(path, tokens[0], "vertex");
   counts.faces = parse_count(path, tokens[1], "face");
-  // One vertex, then one face, per line: fewer data lines than that is a
-  // truncated file, whatever the reader makes of the missing values.
-  std::size_t data_lines = 0;
-  for (std::string line; std::getline(in, line);) {
-    const std::size_t first = line.find_first_not_of(" \t\r");
-    if (first != std::string::npos && line[first] != '#') ++data_lines;
-  }
-  if (data_lines < *counts.vertices + *counts.faces)
-    fail(path, "truncated: the header declares " + std::to_string(*counts.vertices) +
-                   " vertices and " + std::to_string(*counts.faces) + " faces but only " +
-                   std::to_string(data_lines) + " lines of data follow");
   return counts;
 }
 
@@ -217,13 +207,6 @@ std::size_t merge_nonmanifold_copies(PolyMesh& pm, std::vector<std::size_t>& kep
   return copies;
 }
 
-std::string file_bytes(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream out;
-  out << in.rdbuf();
-  return out.str();
-}
-
 // OpenMesh's OFF reader does not skip comments; strip them (from '#' to the
 // end of the line) so that commented files from other tools read.
 std::string off_without_comments(const fs::path& path) {
@@ -238,20 +221,9 @@ std::string off_without_comments(const fs::path& path) {
   return out;
 }
 
-}  // namespace
-
-TriMesh read_mesh(const fs::path& path, MeshReadReport* report_out) {
-  MeshReadReport report;
-  std::error_code ec;
-  if (!fs::exists(path, ec)) fail(path, "no such file");
-  if (!fs::is_regular_file(path, ec)) fail(path, "not a regular file");
-  const std::uintmax_t size = fs::file_size(path, ec);
-  if (ec) fail(path, "cannot read the file size: " + ec.message());
-  if (size == 0) fail(path, "the file is empty");
-  {
-    std::ifstream probe(path, std::ios::binary);
-    if (!probe) fail(path, "cannot open the file for reading");
-  }
+// What OpenMesh makes of the file, with our checks of its answer: runs in
+// the reading child (read_mesh).
+TriMesh read_here(const fs::path& path, std::uintmax_t size, MeshReadReport& report) {
   const std::string ext = lower_extension(path);
   DeclaredCounts declared;
   {
@@ -264,8 +236,6 @@ TriMesh read_mesh(const fs::path& path, MeshReadReport* report_out) {
       declared.ascii = stl_is_ascii(path, size);
       if (!declared.ascii && (size < 84 || (size - 84) % 50 != 0))
         fail(path, "truncated or malformed binary STL (size is not 84 + 50 * triangles)");
-    } else if (ext != ".obj") {
-      fail(path, "unknown mesh format '" + ext + "' (expected .off, .obj, .ply or .stl)");
     }
   }
   // A count larger than the bytes that could hold it is a corrupt header; refuse
@@ -276,16 +246,7 @@ TriMesh read_mesh(const fs::path& path, MeshReadReport* report_out) {
                    " vertices and " + std::to_string(declared.faces.value_or(0)) +
                    " faces, more than a file of " + std::to_string(size) + " bytes can hold");
   if (declared.ascii) reject_non_finite_text(path);
-  // The whole structure, so that OpenMesh only reads well-formed files.
-  std::string off_text;
-  if (ext == ".off") {
-    off_text = declared.ascii ? off_without_comments(path) : file_bytes(path);
-    detail::precheck_off(path, off_text);
-  } else if (ext == ".obj") {
-    detail::precheck_obj(path);
-  } else if (ext == ".ply") {
-    detail::precheck_ply(path);
-  }
+  const std::string off_text = ext == ".off" && declared.ascii ? off_without_comments(path) : "";
 
   PolyMesh pm;
   pm.request_vertex_normals();
@@ -416,6 +377,56 @@ TriMesh read_mesh(const fs::path& path, MeshReadReport* report_out) {
   if (report.degenerate_removed)
     report.warnings.push_back(name + ": dropped " + std::to_string(report.degenerate_removed) +
                               " zero-area triangles");
+  return mesh;
+}
+
+void put_report(ByteWriter& out, const MeshReadReport& r) {
+  for (const std::size_t n :
+       {r.polygons_triangulated, r.faces_skipped, r.degenerate_removed, r.unreferenced_vertices})
+    out.put<std::uint64_t>(n);
+  out.put<char>(r.normals_from_file ? 1 : 0);
+  out.put(r.warnings);
+}
+
+MeshReadReport get_report(ByteReader& in) {
+  MeshReadReport r;
+  for (std::size_t* n : {&r.polygons_triangulated, &r.faces_skipped, &r.degenerate_removed,
+                         &r.unreferenced_vertices})
+    *n = static_cast<std::size_t>(in.get<std::uint64_t>());
+  r.normals_from_file = in.get<char>() != 0;
+  r.warnings = in.get_strings();
+  return r;
+}
+
+}  // namespace
+
+TriMesh read_mesh(const fs::path& path, MeshReadReport* report_out) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) fail(path, "no such file");
+  if (!fs::is_regular_file(path, ec)) fail(path, "not a regular file");
+  const std::uintmax_t size = fs::file_size(path, ec);
+  if (ec) fail(path, "cannot read the file size: " + ec.message());
+  if (size == 0) fail(path, "the file is empty");
+  {
+    std::ifstream probe(path, std::ios::binary);
+    if (!probe) fail(path, "cannot open the file for reading");
+  }
+  const std::string ext = lower_extension(path);
+  if (ext != ".off" && ext != ".obj" && ext != ".ply" && ext != ".stl")
+    fail(path, "unknown mesh format '" + ext + "' (expected .off, .obj, .ply or .stl)");
+  // OpenMesh reads in a child process: a crash, a runaway allocation or a
+  // loop in it is one error line (support/isolation.h), and nothing of ours
+  // re-parses the file in front of it.
+  const IsolatedBytes bytes =
+      run_isolated(path.string(), "OpenMesh's reader", [&](ByteWriter& out) {
+        MeshReadReport report;
+        const TriMesh mesh = read_here(path, size, report);
+        put_mesh(out, mesh);
+        put_report(out, report);
+      });
+  ByteReader in(bytes.view(), path.string());
+  TriMesh mesh = get_mesh(in);
+  MeshReadReport report = get_report(in);
   if (report_out) *report_out = std::move(report);
   return mesh;
 }

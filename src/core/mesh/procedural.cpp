@@ -9,7 +9,7 @@
 #include <glm/geometric.hpp>
 
 #include "ibfvs/core/support/error.h"
-#include "ibfvs/core/texture/noise.h"
+#include "ibfvs/core/support/hash.h"
 
 namespace ibfvs {
 namespace {

@@ -16,7 +16,7 @@
 #include "ibfvs/core/image/colormap.h"
 #include "ibfvs/core/mesh/gpu_prep.h"
 #include "ibfvs/core/mesh/mesh_io.h"
-#include "ibfvs/core/mesh/mesh_source.h"
+#include "ibfvs/core/scene/mesh_source.h"
 #include "ibfvs/core/support/error.h"
 #include "ibfvs/core/support/limits.h"
 #include "ibfvs/core/support/text.h"

@@ -1,14 +1,18 @@
 #include "ibfvs/core/support/isolation.h"
 
 #include <fcntl.h>
+#include <poll.h>
 #include <sys/mman.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
+#include <sys/syscall.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
+#include <chrono>
+#include <climits>
 #include <csignal>
 #include <cstdlib>
 #include <exception>
@@ -184,6 +188,45 @@ class Fd {
   int fd_;
 };
 
+// Waits for the child to end, into `status`; after `seconds` of wall-clock
+// time (0: no limit) kills it first. True when it was killed for time.
+bool wait_for(pid_t pid, unsigned seconds, const std::string& subject, int& status) {
+  bool killed = false;
+  if (seconds > 0) {
+    using Clock = std::chrono::steady_clock;
+    const auto deadline = Clock::now() + std::chrono::seconds(seconds);
+    const auto left_ms = [&] {
+      return std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
+    };
+    // The child's end as a file descriptor to poll (Linux 5.3); without
+    // one, a poll of waitpid every few milliseconds.
+    const Fd ended(static_cast<int>(::syscall(SYS_pidfd_open, pid, 0)));
+    for (long long pause_us = 50;;) {
+      const long long left = left_ms();
+      if (left <= 0) {
+        ::kill(pid, SIGKILL);
+        killed = true;
+        break;
+      }
+      if (ended.get() >= 0) {
+        pollfd p{ended.get(), POLLIN, 0};
+        const int r = ::poll(&p, 1, static_cast<int>(std::min<long long>(left, INT_MAX)));
+        if (r > 0 || (r < 0 && errno != EINTR)) break;
+      } else {
+        const pid_t done = ::waitpid(pid, &status, WNOHANG);
+        if (done == pid) return false;
+        if (done < 0 && errno != EINTR) break;
+        ::usleep(static_cast<useconds_t>(std::min(pause_us, left * 1000)));
+        pause_us = std::min<long long>(pause_us * 2, 10000);
+      }
+    }
+  }
+  while (::waitpid(pid, &status, 0) < 0)
+    if (errno != EINTR)
+      throw InputError(subject + ": lost the process reading it (" + std::strerror(errno) + ")");
+  return killed;
+}
+
 }  // namespace
 
 void last_words(std::string_view text) {
@@ -193,10 +236,20 @@ void last_words(std::string_view text) {
   g_last_words_size = n;
 }
 
+unsigned reader_seconds() {
+  if (const char* text = std::getenv("IBFVS_READER_SECONDS"); text && *text) {
+    char* end = nullptr;
+    const unsigned long v = std::strtoul(text, &end, 10);
+    if (end && *end == '\0' && v >= 1 && v <= 1000000) return static_cast<unsigned>(v);
+  }
+  return 60;
+}
+
 IsolationLimits reader_limits() {
   IsolationLimits limits;
   limits.memory_bytes = memory_limit() / 2;
-  limits.cpu_seconds = 3600;
+  limits.cpu_seconds = reader_seconds();
+  limits.wall_seconds = reader_seconds();
   return limits;
 }
 
@@ -241,9 +294,13 @@ IsolatedBytes run_isolated(const std::string& subject, const std::string& who,
                      ")");
   if (pid == 0) run_child(result.get(), work, limits);
   int status = 0;
-  while (::waitpid(pid, &status, 0) < 0)
-    if (errno != EINTR)
-      throw InputError(subject + ": lost the process reading it (" + std::strerror(errno) + ")");
+  const bool out_of_time = wait_for(pid, limits.wall_seconds, subject, status);
+  const auto ran_too_long = [&](unsigned seconds, const char* what) {
+    return InputError(subject + ": " + who + " ran for more than " + std::to_string(seconds) +
+                      " s of " + what + " on it and was stopped (IBFVS_READER_SECONDS=" +
+                      std::to_string(seconds * 10) + " gives it longer)");
+  };
+  if (out_of_time) throw ran_too_long(limits.wall_seconds, "wall-clock time");
 
   IsolatedBytes said = map_back(result.get());
   const std::string_view bytes = said.view();
@@ -252,9 +309,7 @@ IsolatedBytes run_isolated(const std::string& subject, const std::string& who,
     const std::string last = bytes.size() > 1 && bytes[0] == static_cast<char>(Outcome::kDied)
                                  ? std::string(bytes.substr(1))
                                  : std::string();
-    if (sig == SIGXCPU)
-      throw InputError(subject + ": " + who + " ran for more than " +
-                       std::to_string(limits.cpu_seconds) + " s of CPU time on it");
+    if (sig == SIGXCPU) throw ran_too_long(limits.cpu_seconds, "CPU time");
     if (sig == SIGKILL)
       throw InputError(subject + ": " + who +
                        " was killed while reading it (SIGKILL: out of memory?)");
@@ -318,49 +373,6 @@ const char* ByteReader::take(std::size_t n) {
   const char* p = bytes_.data() + at_;
   at_ += n;
   return p;
-}
-
-void put_mesh(ByteWriter& out, const TriMesh& mesh) {
-  out.put(mesh.positions);
-  out.put(mesh.normals);
-  out.put(mesh.triangles);
-  out.put(mesh.vectors);
-  out.put<std::uint64_t>(mesh.scalars.size());
-  for (const auto& [name, values] : mesh.scalars) {
-    out.put(name);
-    out.put(values);
-  }
-  out.put<std::uint64_t>(mesh.vector_arrays.size());
-  for (const auto& [name, values] : mesh.vector_arrays) {
-    out.put(name);
-    out.put(values);
-  }
-  out.put<std::uint64_t>(mesh.other_arrays.size());
-  for (const auto& [name, components] : mesh.other_arrays) {
-    out.put(name);
-    out.put<std::int32_t>(components);
-  }
-}
-
-TriMesh get_mesh(ByteReader& in) {
-  TriMesh mesh;
-  mesh.positions = in.get_vector<glm::vec3>();
-  mesh.normals = in.get_vector<glm::vec3>();
-  mesh.triangles = in.get_vector<Triangle>();
-  mesh.vectors = in.get_vector<glm::vec3>();
-  for (auto n = in.get<std::uint64_t>(); n > 0; --n) {
-    std::string name = in.get_string();
-    mesh.scalars[name] = in.get_vector<float>();
-  }
-  for (auto n = in.get<std::uint64_t>(); n > 0; --n) {
-    std::string name = in.get_string();
-    mesh.vector_arrays[name] = in.get_vector<glm::vec3>();
-  }
-  for (auto n = in.get<std::uint64_t>(); n > 0; --n) {
-    std::string name = in.get_string();
-    mesh.other_arrays[name] = in.get<std::int32_t>();
-  }
-  return mesh;
 }
 
 }  // namespace ibfvs

@@ -13,18 +13,6 @@ int display_stats_size(int width, int height) {
   return size;
 }
 
-float sample_bilinear(const ImageF& image, float x, float y, int c) {
-  const float u = x - 0.5f, v = y - 0.5f;
-  const float fu = std::floor(u), fv = std::floor(v);
-  const int i = static_cast<int>(fu), j = static_cast<int>(fv);
-  const float a = u - fu, b = v - fv;
-  const auto t = [&](int ii, int jj) {
-    return image.at(std::clamp(ii, 0, image.width - 1), std::clamp(jj, 0, image.height - 1), c);
-  };
-  return (1 - a) * (1 - b) * t(i, j) + a * (1 - b) * t(i + 1, j) + (1 - a) * b * t(i, j + 1) +
-         a * b * t(i + 1, j + 1);
-}
-
 int filter_taps(float length) {
   if (!(length > 0.0f)) return 0;
   return std::clamp(static_cast<int>(std::ceil(length / 3.0f)), 1, 16);

@@ -38,16 +38,6 @@ float cell_noise_value(const NoiseParams& params, int i, int j, int k, float t) 
   return a + (b - a) * ease;
 }
 
-float hash_uniform(std::uint32_t seed, std::uint64_t index) {
-  // splitmix64 of (seed, index): well mixed, cheap, portable.
-  std::uint64_t z = (static_cast<std::uint64_t>(seed) << 32) ^ (index + 0x9E3779B97F4A7C15ull);
-  z += 0x9E3779B97F4A7C15ull;
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  z ^= z >> 31;
-  return static_cast<float>(z >> 40) / static_cast<float>(1ull << 24);
-}
-
 NoiseGrid::NoiseGrid(int width, int height, const NoiseParams& params) : params_(params) {
   if (!(params.scale > 0.0f) || !std::isfinite(params.scale))
     throw SettingError("scale", "the noise scale must be a positive number of pixels");

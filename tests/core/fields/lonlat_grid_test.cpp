@@ -140,61 +140,50 @@ struct Header {
 };
 
 // Fuzzing found netCDF-C allocating what a header declares (tens of GiB for
-// a few hundred bytes) and spinning for minutes; and a file cut short reads
-// as zeros. The header is walked first: each such file is refused at once,
-// naming the problem; whole files of every classic version pass.
-TEST(LonLatGrid, MalformedAndCutShortFilesAreRefusedBeforeReading) {
+// a few hundred bytes) and spinning for minutes; and a file cut short read
+// as zeros. Nothing of ours walks the header first: netCDF-C reads in a
+// child (support/isolation.h), where such a file is one error line naming
+// it, and from memory, where reading past the end is an error, not zeros.
+TEST(LonLatGrid, MalformedAndCutShortFilesAreCleanErrors) {
   test::TempDir dir;
-  const auto expect = [&](const std::filesystem::path& file, const std::string& needle) {
+  const auto expect = [&](const std::filesystem::path& file, const std::string& needle,
+                          const std::string& variable = "U", std::size_t time = 0) {
     try {
-      read_lonlat_grid(file, "U");
-      FAIL() << "no error for " << needle;
+      read_lonlat_grid(file, variable, time);
+      FAIL() << "no error for " << file;
     } catch (const InputError& e) {
-      EXPECT_NE(std::string(e.what()).find(file.filename().string() + ": " + needle),
-                std::string::npos)
-          << e.what();
+      const std::string what = e.what();
+      EXPECT_EQ(what.rfind(file.string() + ": ", 0), 0u) << what;
+      EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+      EXPECT_NE(what.find(needle), std::string::npos) << what;
     }
   };
   // Whole files of the three classic versions read; one byte less is cut short.
-  write_winds(dir / "w.nc", 2);
-  const std::string whole = test::read_file(dir / "w.nc");
   for (const int mode : {0, NC_64BIT_OFFSET, NC_64BIT_DATA}) {
-    int nc = 0, d = 0, v = 0;
+    int nc = 0, d[2] = {}, v = 0;
     const auto path = dir / ("v" + std::to_string(mode) + ".nc");
     ASSERT_EQ(nc_create(path.c_str(), NC_CLOBBER | mode, &nc), NC_NOERR);
-    nc_def_dim(nc, "X", 7, &d);
-    nc_def_var(nc, "X", NC_DOUBLE, 1, &d, &v);
+    nc_def_dim(nc, "Y", 2, &d[0]);
+    nc_def_dim(nc, "X", 4, &d[1]);
+    nc_def_var(nc, "W", NC_DOUBLE, 2, d, &v);
     nc_enddef(nc);
-    const std::vector<double> x{0, 1, 2, 3, 4, 5, 6};
-    nc_put_var_double(nc, v, x.data());
+    const std::vector<double> w{0, 1, 2, 3, 4, 5, 6, 7};
+    nc_put_var_double(nc, v, w.data());
     nc_close(nc);
     const std::string bytes = test::read_file(path);
-    try {
-      read_lonlat_grid(path, "X");
-    } catch (const InputError& e) {
-      EXPECT_NE(std::string(e.what()).find("has 1 dimensions"), std::string::npos) << e.what();
-    }
+    EXPECT_EQ(read_lonlat_grid(path, "W").values[7], 7.0f) << mode;
     test::write_file(path, bytes.substr(0, bytes.size() - 1));
-    try {
-      read_lonlat_grid(path, "X");
-      FAIL() << "a cut file read";
-    } catch (const InputError& e) {
-      EXPECT_NE(std::string(e.what()).find("the file is cut short: variable 'X' needs " +
-                                           std::to_string(bytes.size()) + " bytes, the file has " +
-                                           std::to_string(bytes.size() - 1)),
-                std::string::npos)
-          << e.what();
-    }
+    expect(path, "reading 'W': the file ends before its data (cut short)", "W");
   }
+  write_winds(dir / "w.nc", 2);
+  const std::string whole = test::read_file(dir / "w.nc");
   EXPECT_EQ(read_lonlat_grid(dir / "w.nc", "U", 1).time_steps, 2u);
   test::write_file(dir / "cut.nc", whole.substr(0, whole.size() - 100));
-  expect(dir / "cut.nc", "the file is cut short: variable 'V' needs " +
-                             std::to_string(whole.size()) + " bytes, the file has " +
-                             std::to_string(whole.size() - 100));
-  // Headers declaring what no file of their size could hold.
-  expect(
-      test::write_file(dir / "dims.nc", Header('\1').word(0).word(0x0A).word(0x7FFFFFFF).bytes),
-      "not a valid netCDF file: it declares 2147483647 dimensions, more than the file could hold");
+  expect(dir / "cut.nc", "the file ends before its data (cut short)", "V", 1);
+  // Headers declaring what no file of their size could hold: each one line
+  // naming the file, whatever netCDF-C makes of it.
+  expect(test::write_file(dir / "dims.nc", Header('\1').word(0).word(0x0A).word(0x7FFFFFFF).bytes),
+         "");
   expect(test::write_file(dir / "att.nc", Header('\2')
                                               .word(0)
                                               .word(0)
@@ -205,25 +194,21 @@ TEST(LonLatGrid, MalformedAndCutShortFilesAreRefusedBeforeReading) {
                                               .word(2)
                                               .word(0x7FFFFFF0)
                                               .bytes),
-         "not a valid netCDF file: attribute 'title' runs past the end of the file");
+         "");
   Header rank('\1');
   rank.word(0).word(0x0A).word(1).name("x").word(4).word(0).word(0).word(0x0B).word(1).name("U");
-  expect(test::write_file(dir / "rank.nc", rank.word(2000).bytes + std::string(64, '\0')),
-         "not a valid netCDF file: variable 'U' has 2000 dimensions (at most 1024)");
+  expect(test::write_file(dir / "rank.nc", rank.word(2000).bytes + std::string(64, '\0')), "");
   Header id('\1');
   id.word(0).word(0x0A).word(1).name("x").word(4).word(0).word(0).word(0x0B).word(1).name("U");
-  expect(test::write_file(dir / "id.nc", id.word(1).word(5).bytes + std::string(64, '\0')),
-         "not a valid netCDF file: variable 'U' names dimension 5 of 1");
+  expect(test::write_file(dir / "id.nc", id.word(1).word(5).bytes + std::string(64, '\0')), "");
   // Names are the file's bytes: the message stays one line.
   expect(test::write_file(
              dir / "name.nc",
              Header('\1').word(0).word(0).word(0).word(0x0C).word(1).name("a\nb").word(99).bytes +
                  std::string(64, '\0')),
-         "not a valid netCDF file: attribute 'a?b' has an unknown type");
-  expect(test::write_file(dir / "version.nc", Header('\3').word(0).bytes),
-         "not a valid netCDF file: classic format version 3 (1, 2 and 5 exist)");
-  expect(test::write_file(dir / "short.nc", Header('\1').word(0).word(0x0A).bytes),
-         "not a valid netCDF file: it ends in dimensions");
+         "");
+  expect(test::write_file(dir / "version.nc", Header('\3').word(0).bytes), "");
+  expect(test::write_file(dir / "short.nc", Header('\1').word(0).word(0x0A).bytes), "");
 }
 
 TEST(LonLatGrid, GlobeIsAUnitGeodesicSphere) {

@@ -1,4 +1,5 @@
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 
 #include <gtest/gtest.h>
@@ -31,6 +32,7 @@ void expect_read_error(const std::filesystem::path& path, const std::string& pro
     const std::string msg = e.what();
     EXPECT_NE(msg.find(path.string()), std::string::npos) << msg;
     EXPECT_NE(msg.find(problem), std::string::npos) << "expected '" << problem << "' in: " << msg;
+    EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
   }
 }
 
@@ -182,26 +184,38 @@ TEST(MeshIo, RejectsMalformedPlyObjAndBinaryJunk) {
   expect_read_error(write_file(dir / "idx.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n"), "");
 }
 
-// Inputs the fuzzers found (fuzz/, docs/reliability.md): before the
-// structure checks, OpenMesh's readers looped forever on the first two and
-// read out of bounds on the third.
-TEST(MeshIo, FuzzerFindingsFailCleanly) {
+// Sets IBFVS_READER_SECONDS for one test.
+class ReaderSeconds {
+ public:
+  explicit ReaderSeconds(const char* seconds) { ::setenv("IBFVS_READER_SECONDS", seconds, 1); }
+  ~ReaderSeconds() { ::unsetenv("IBFVS_READER_SECONDS"); }
+  ReaderSeconds(const ReaderSeconds&) = delete;
+  ReaderSeconds& operator=(const ReaderSeconds&) = delete;
+};
+
+// Inputs the fuzzers found (fuzz/, docs/reliability.md). OpenMesh's readers
+// looped forever, printed errors forever, reserved gigabytes or read out of
+// bounds on them; they now read in a child process (support/isolation.h),
+// with nothing of ours parsing in front: each is one line naming the file,
+// within the reader's time limit (here 3 s), or a mesh that OpenMesh read.
+TEST(MeshIo, FuzzerFindingsEndCleanly) {
   TempDir dir;
+  const ReaderSeconds quick("3");
   // An OFF face of no vertices (OpenMesh's ASCII OFF reader never returned).
   expect_read_error(
       write_file(dir / "hang.off", "OFF 0\n1 2 0\n0 1 00\n 0 777777777735\n3 0 203\n"),
-      "line 1: expected the counts");
+      "OpenMesh's reader ran for more than 3 s");
   expect_read_error(write_file(dir / "empty-face.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n0\n"),
-                    "line 6: a face needs a vertex count of 3 or more, not '0'");
+                    "the header declares 1 faces but 0 were read");
   // A PLY format line with junk in its version (OpenMesh printed errors forever).
   expect_read_error(write_file(dir / "format.ply",
                                "ply\nformat ascii HHHH1.0\nelement vertex 1\nproperty float x\n"
                                "property float y\nproperty float z\nend_header\n0 0 0\n"),
-                    "line 2: expected 'format ascii|binary_little_endian|binary_big_endian 1.0'");
+                    "OpenMesh's reader ran for more than 3 s");
   expect_read_error(write_file(dir / "keyword.ply",
                                "ply\nformat ascii 1.0\nelement vertex 1\npropemat ascii 1.0\n"
                                "end_header\n0 0 0\n"),
-                    "line 4: unknown PLY header keyword 'propemat'");
+                    "cannot parse the mesh");
   // A keyword inside an obj_info line (OpenMesh's word-by-word header reader
   // took it for an element and reserved gigabytes), and an element whose
   // count no file of this size could hold.
@@ -209,31 +223,36 @@ TEST(MeshIo, FuzzerFindingsFailCleanly) {
                                "ply\nformat ascii 1.0\nelement vertex 1\nobj_info x element face "
                                "4\nproperty float x\nproperty float y\nproperty float z\n"
                                "end_header\n0 0 0\n"),
-                    "line 4: a obj_info holding the keyword 'element'");
+                    "cannot parse the mesh");
   expect_read_error(write_file(dir / "count.ply",
                                "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n"
                                "property float y\nproperty float z\nelement junk 99999999\n"
                                "end_header\n0 0 0\n"),
-                    "the header declares 99999999 junk items, more than a file of");
+                    "");
   // A negative value of an unsigned colour (OpenMesh's ASCII reader stopped
-  // at the sign and grew a list of faces until memory ran out).
-  expect_read_error(write_file(dir / "sign.ply",
-                               "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
-                               "property float y\nproperty float z\nproperty uchar red\n"
-                               "element face 1\nproperty list uchar int vertex_indices\n"
-                               "end_header\n0 0 0 255\n1 0 0 0\n0 1 0 -1\n3 0 1 2\n"),
-                    "vertex 2: '-1' is negative, but red is unsigned");
-  // An OBJ face naming a normal given after it (OpenMesh read past its array).
+  // at the sign and, in the fuzzer's input, grew a list of faces until
+  // memory ran out): here it reads.
+  EXPECT_EQ(read_mesh(write_file(dir / "sign.ply",
+                                 "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+                                 "property float y\nproperty float z\nproperty uchar red\n"
+                                 "element face 1\nproperty list uchar int vertex_indices\n"
+                                 "end_header\n0 0 0 255\n1 0 0 0\n0 1 0 -1\n3 0 1 2\n"))
+                .triangle_count(),
+            1u);
+  // An OBJ face naming a normal given after it (OpenMesh read past its
+  // array), a number out of range, a face naming a vertex given after it.
   expect_read_error(
       write_file(dir / "normal.obj", "v 1 0 0\nv 1 0 0\nv 0 1 0\nf -3//1 -2//1 -1//1\nvn 0 0 1\n"),
-      "line 4: the face names normal 1 but 0 are given before it");
-  expect_read_error(write_file(dir / "big.obj", "v 1e380 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"),
-                    "line 1: '1e380' is not a number");
-  expect_read_error(write_file(dir / "ahead.obj", "v 0 0 0\nv 1 0 0\nf 1 2 3\nv 0 1 0\n"),
-                    "line 3: the face names vertex 3 but 2 are given before it");
+      "");
+  expect_read_error(write_file(dir / "big.obj", "v 1e380 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"), "");
+  EXPECT_EQ(read_mesh(write_file(dir / "ahead.obj", "v 0 0 0\nv 1 0 0\nf 1 2 3\nv 0 1 0\n"))
+                .triangle_count(),
+            1u);
 }
 
-TEST(MeshIo, BinaryPlyAndOffAreWalkedToTheirEnd) {
+// Binary files with a face out of range, cut short or too small: OpenMesh's
+// own answers, each one line naming the file.
+TEST(MeshIo, BrokenBinaryPlyAndOffAreCleanErrors) {
   TempDir dir;
   const auto ply = [&](const char* name, std::uint8_t count, std::int32_t index, bool cut) {
     std::string bytes =
@@ -248,9 +267,9 @@ TEST(MeshIo, BinaryPlyAndOffAreWalkedToTheirEnd) {
     return write_file(dir / name, bytes);
   };
   EXPECT_EQ(read_mesh(ply("good.ply", 3, 2, false)).triangle_count(), 1u);
-  expect_read_error(ply("index.ply", 3, 7, false), "face 0: vertex index 7 is out of range");
-  expect_read_error(ply("short.ply", 3, 2, true), "truncated: the face data ends early");
-  expect_read_error(ply("two.ply", 2, 2, false), "face 0 has fewer than 3 vertices");
+  expect_read_error(ply("index.ply", 3, 7, false), "the header declares 1 faces but 0 were read");
+  expect_read_error(ply("short.ply", 3, 2, true), "Unexpected end of file");
+  expect_read_error(ply("two.ply", 2, 2, false), "the header declares 1 faces but 0 were read");
   // Binary OFF: big-endian counts, coordinates, faces.
   const auto be = [](std::uint32_t v) {
     const char b[4] = {static_cast<char>(v >> 24), static_cast<char>(v >> 16),
@@ -259,9 +278,8 @@ TEST(MeshIo, BinaryPlyAndOffAreWalkedToTheirEnd) {
   };
   std::string off = "OFF BINARY\n" + be(3) + be(1) + be(0);
   for (int k = 0; k < 9; ++k) off += be(0);
-  expect_read_error(write_file(dir / "bin.off", off + be(3) + be(0) + be(1) + be(9) + be(0)),
-                    "binary OFF face 0 names a vertex out of range");
-  expect_read_error(write_file(dir / "cut.off", off + be(3) + be(0)), "truncated binary OFF");
+  expect_read_error(write_file(dir / "bin.off", off + be(3) + be(0) + be(1) + be(9) + be(0)), "");
+  expect_read_error(write_file(dir / "cut.off", off + be(3) + be(0)), "");
 }
 
 TEST(MeshIo, BinaryPlyWithNonFiniteCoordinateIsRejected) {

@@ -8,9 +8,9 @@
 
 #include <gtest/gtest.h>
 
-#include "ibfvs/core/scene/names.h"
 #include "ibfvs/core/scene/scene.h"
 #include "ibfvs/core/support/error.h"
+#include "ibfvs/core/support/names.h"
 
 namespace ibfvs {
 namespace {

@@ -2,6 +2,9 @@
 // limit, each as the one line a user sees; the byte format it answers in.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <chrono>
 #include <csignal>
 #include <cstdlib>
 #include <cstring>
@@ -9,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "ibfvs/core/mesh/mesh_bytes.h"
 #include "ibfvs/core/mesh/procedural.h"
 #include "ibfvs/core/support/error.h"
 #include "ibfvs/core/support/isolation.h"
@@ -113,6 +117,53 @@ TEST(Isolation, TheMemoryLimitRefusesWhatAFileAsksFor) {
                                 }),
                                 small)),
             std::string(1, '\1'));
+}
+
+// A reader that never finishes stops at the limits: one that loops (CPU
+// time), and one that waits without using any (wall-clock time).
+TEST(Isolation, AReaderThatNeverFinishesIsStopped) {
+  IsolationLimits quick;
+  quick.cpu_seconds = 1;
+  quick.wall_seconds = 30;
+  const std::string loops = error_of(
+      [] {
+        volatile bool going = true;
+        while (going) {
+        }
+        return std::string();
+      },
+      quick);
+  EXPECT_NE(loops.find("the reader ran for more than 1 s of CPU time on it and was stopped"),
+            std::string::npos)
+      << loops;
+  quick.cpu_seconds = 0;
+  quick.wall_seconds = 1;
+  const auto start = std::chrono::steady_clock::now();
+  const std::string waits = error_of(
+      [] {
+        ::pause();
+        return std::string();
+      },
+      quick);
+  EXPECT_NE(waits.find("the reader ran for more than 1 s of wall-clock time on it"),
+            std::string::npos)
+      << waits;
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(10));
+  // A quick child is not held back to the limit.
+  const auto quick_start = std::chrono::steady_clock::now();
+  EXPECT_EQ(result(run_isolated("f", "r", says([] { return std::string("ok"); }), quick)), "ok");
+  EXPECT_LT(std::chrono::steady_clock::now() - quick_start, std::chrono::milliseconds(900));
+}
+
+TEST(Isolation, AReaderGetsAMinuteUnlessToldOtherwise) {
+  ::unsetenv("IBFVS_READER_SECONDS");
+  EXPECT_EQ(reader_limits().cpu_seconds, 60u);
+  EXPECT_EQ(reader_limits().wall_seconds, 60u);
+  ::setenv("IBFVS_READER_SECONDS", "600", 1);
+  EXPECT_EQ(reader_limits().wall_seconds, 600u);
+  ::setenv("IBFVS_READER_SECONDS", "soon", 1);
+  EXPECT_EQ(reader_limits().wall_seconds, 60u);
+  ::unsetenv("IBFVS_READER_SECONDS");
 }
 
 TEST(Isolation, AMeshRoundTripsAndAShortRecordIsRefused) {

@@ -13,7 +13,7 @@
 
 #include "ibfvs/core/fields/potential_flow.h"
 #include "ibfvs/core/mesh/mesh.h"
-#include "ibfvs/core/scene/names.h"
+#include "ibfvs/core/support/names.h"
 
 namespace ibfvs {
 

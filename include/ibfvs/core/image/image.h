@@ -63,4 +63,8 @@ void to_yuv420(const ImageU8& rgba, std::vector<std::uint8_t>& out);
 /// One channel of an 8-bit image as floats in [0, 1].
 ImageF to_float_channel(const ImageU8& image, int channel);
 
+/// Bilinear sample of channel c at (x, y) in pixels, texel centres at +0.5,
+/// clamped at the edges (a GL_LINEAR texture with CLAMP_TO_EDGE).
+float sample_bilinear(const ImageF& image, float x, float y, int c);
+
 }  // namespace ibfvs

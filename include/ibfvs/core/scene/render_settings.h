@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "ibfvs/core/image/colormap.h"
-#include "ibfvs/core/scene/names.h"
+#include "ibfvs/core/support/names.h"
 #include "ibfvs/core/texture/noise.h"
 #include "ibfvs/core/texture/reference.h"
 

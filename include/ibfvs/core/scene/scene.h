@@ -21,8 +21,8 @@
 #include "ibfvs/core/fields/vector_field.h"
 #include "ibfvs/core/image/colormap.h"
 #include "ibfvs/core/scene/camera.h"
-#include "ibfvs/core/scene/names.h"
 #include "ibfvs/core/scene/render_settings.h"
+#include "ibfvs/core/support/names.h"
 #include "ibfvs/core/texture/noise.h"
 #include "ibfvs/core/texture/reference.h"
 

@@ -8,7 +8,7 @@
 // re-parses the file, so nothing refuses what that library reads.
 //
 // Plus a small byte format (ByteWriter, ByteReader) for what the child hands
-// back, and a TriMesh in it.
+// back (a mesh in it: mesh/mesh_bytes.h).
 
 #include <cstdint>
 #include <cstring>
@@ -17,8 +17,6 @@
 #include <string_view>
 #include <type_traits>
 #include <vector>
-
-#include "ibfvs/core/mesh/mesh.h"
 
 namespace ibfvs {
 
@@ -29,11 +27,20 @@ struct IsolationLimits {
   std::uint64_t memory_bytes = 0;
   /// CPU seconds (RLIMIT_CPU); 0: no limit.
   unsigned cpu_seconds = 0;
+  /// Seconds of wall-clock time, after which the parent kills the child (a
+  /// reader that waits, or loops in system calls); 0: no limit.
+  unsigned wall_seconds = 0;
 };
 
 /// The limits for a file reader: half of memory_limit() (the machine's
-/// memory, or IBFVS_MEMORY_LIMIT) and an hour of CPU time.
+/// memory, or IBFVS_MEMORY_LIMIT), and reader_seconds() of CPU and of
+/// wall-clock time.
 IsolationLimits reader_limits();
+
+/// How long a reader may run on one file: 60 s, or IBFVS_READER_SECONDS
+/// (a whole number, at least 1) for files that take longer. A reader that
+/// loops stops after that, with one error line naming the file.
+unsigned reader_seconds();
 
 class ByteWriter;
 
@@ -66,7 +73,8 @@ class IsolatedBytes {
 /// "SUBJECT: too large to read (it needs more than N of memory)"; a crash
 /// as "SUBJECT: WHO crashed on it (SIGSEGV)", with its last_words. `subject`
 /// is what messages start with (the file), `who` what does the reading
-/// ("VTK's reader"). The child never returns: it leaves by _exit, so
+/// ("VTK's reader"). Running past the CPU or wall-clock limit is "SUBJECT:
+/// WHO ran for more than N s on it". The child never returns: it leaves by _exit, so
 /// neither atexit handlers nor the parent's buffered output run twice. The
 /// calling thread must hold no lock the work takes (the child has only that
 /// thread; a lock another thread held at the fork stays held there).
@@ -157,9 +165,5 @@ class ByteReader {
   std::size_t at_ = 0;
   std::string subject_;
 };
-
-/// A mesh with every array, written and read back.
-void put_mesh(ByteWriter& out, const TriMesh& mesh);
-TriMesh get_mesh(ByteReader& in);
 
 }  // namespace ibfvs

@@ -79,8 +79,4 @@ float tap_depth_tolerance(glm::vec2 map);
 glm::vec2 encode_tap_direction(glm::vec2 displacement);
 float unorm8(float value);
 
-/// Bilinear sample of channel c at (x, y) in pixels, texel centres at +0.5,
-/// clamped at the edges (a GL_LINEAR texture with CLAMP_TO_EDGE).
-float sample_bilinear(const ImageF& image, float x, float y, int c);
-
 }  // namespace ibfvs

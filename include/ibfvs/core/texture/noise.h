@@ -9,7 +9,8 @@
 #include <string_view>
 #include <vector>
 
-#include "ibfvs/core/scene/names.h"
+#include "ibfvs/core/support/hash.h"
+#include "ibfvs/core/support/names.h"
 
 namespace ibfvs {
 
@@ -91,9 +92,5 @@ float solid_phase(int i, int j, int k, std::uint32_t seed);
 /// the surface point, so the density is constant on the surface (figure 3,
 /// right) and the noise stays on the surface when the camera moves.
 float solid_noise(const NoiseParams& params, float cell, float x, float y, float z, int frame);
-
-/// Deterministic uniform numbers in [0, 1) from (seed, index): the same on
-/// every platform, unlike std::uniform_real_distribution.
-float hash_uniform(std::uint32_t seed, std::uint64_t index);
 
 }  // namespace ibfvs

@@ -8,7 +8,7 @@
 #include <glm/vec2.hpp>
 
 #include "ibfvs/core/image/image.h"
-#include "ibfvs/core/scene/names.h"
+#include "ibfvs/core/support/names.h"
 #include "ibfvs/core/texture/noise.h"
 
 namespace ibfvs {

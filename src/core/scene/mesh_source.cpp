@@ -1,4 +1,4 @@
-#include "ibfvs/core/mesh/mesh_source.h"
+#include "ibfvs/core/scene/mesh_source.h"
 
 #include <algorithm>
 #include <cctype>

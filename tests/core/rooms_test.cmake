@@ -1,0 +1,32 @@
+# The core's rooms layer (docs/design.md, "Rooms"): a room includes only
+# itself and the rooms before it in this order, and no room includes what
+# is built on the core (gl, render, vtk, the front ends).
+#   cmake -DSOURCE_DIR=<the repository> -P tests/core/rooms_test.cmake
+set(rooms support mesh geometry fields image texture scene)
+set(problems "")
+foreach(room IN LISTS rooms)
+  list(FIND rooms ${room} level)
+  file(GLOB_RECURSE files ${SOURCE_DIR}/include/ibfvs/core/${room}/*
+                          ${SOURCE_DIR}/src/core/${room}/*)
+  foreach(f IN LISTS files)
+    file(STRINGS ${f} includes REGEX "^#include \"ibfvs/")
+    foreach(line IN LISTS includes)
+      string(REGEX MATCH "ibfvs/([a-z_]+)/([a-z_]+)/" _ "${line}")
+      set(layer ${CMAKE_MATCH_1})
+      set(other ${CMAKE_MATCH_2})
+      file(RELATIVE_PATH name ${SOURCE_DIR} ${f})
+      if(NOT layer STREQUAL "core")
+        string(APPEND problems "\n  ${name}: ${line} (the core includes nothing built on it)")
+        continue()
+      endif()
+      list(FIND rooms ${other} other_level)
+      if(other_level GREATER level)
+        string(APPEND problems "\n  ${name}: ${line} (${room} comes before ${other})")
+      endif()
+    endforeach()
+  endforeach()
+endforeach()
+if(problems)
+  message(FATAL_ERROR "The core's rooms include a room after them:${problems}")
+endif()
+message(STATUS "The core's rooms layer: ${rooms}")

@@ -31,7 +31,7 @@
 #include "ibfvs/render/export.h"
 #include "ibfvs/render/session.h"
 #include "ibfvs/render/web_page.h"
-#include "ibfvs/video_writer.h"
+#include "ibfvs/video/video_writer.h"
 #ifdef IBFVS_HAVE_VTK
 #include "ibfvs/vtk/vtk_io.h"
 #endif

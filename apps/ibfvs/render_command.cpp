@@ -22,7 +22,7 @@
 #include "ibfvs/render/export.h"
 #include "ibfvs/render/session.h"
 #include "ibfvs/render/web_page.h"
-#include "ibfvs/video_writer.h"
+#include "ibfvs/video/video_writer.h"
 
 namespace ibfvs::app {
 namespace fs = std::filesystem;

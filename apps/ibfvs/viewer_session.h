@@ -19,7 +19,7 @@
 #include "ibfvs/core/scene/scene.h"
 #include "ibfvs/core/scene/scene_prep.h"
 #include "ibfvs/render/session.h"
-#include "ibfvs/video_writer.h"
+#include "ibfvs/video/video_writer.h"
 #include "ibfvs/viewer_state.h"
 
 namespace ibfvs::app {

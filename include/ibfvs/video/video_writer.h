@@ -18,7 +18,7 @@
 
 #include "ibfvs/core/image/image.h"
 #include "ibfvs/core/support/file_names.h"
-#include "ibfvs/video_encoder.h"
+#include "ibfvs/video/video_encoder.h"
 
 namespace ibfvs::app {
 

@@ -1,4 +1,4 @@
-#include "ibfvs/video_writer.h"
+#include "ibfvs/video/video_writer.h"
 
 #include <algorithm>
 #include <csignal>

@@ -1,4 +1,4 @@
-#include "ibfvs/video_encoder.h"
+#include "ibfvs/video/video_encoder.h"
 
 #include <cstring>
 #include <string>

@@ -52,13 +52,18 @@ void ViewerPanel::draw(ViewerSession& viewer, bool& show, bool& show_help, doubl
   ImGui::PushItemWidth(130);
   Scene d = viewer.desc();
   bool changed = false;
-  changed |= ImGui::SliderFloat("alpha", &d.alpha, 0.0f, 1.0f, "%.2f");
-  changed |= ImGui::SliderFloat("beta", &d.beta, 0.0f, 1.0f, "%.2f");
-  changed |= ImGui::SliderFloat("v_g", &d.vg, 0.0f, 0.5f, "%.3f");
+  // Each slider spans its key's range (scene.h, key_range).
+  const auto slider = [](const char* label, const char* key, float& value, const char* format) {
+    const KeyRange r = *key_range(key);
+    return ImGui::SliderFloat(label, &value, r.min, r.max, format);
+  };
+  changed |= slider("alpha", "alpha", d.alpha, "%.2f");
+  changed |= slider("beta", "beta", d.beta, "%.2f");
+  changed |= slider("v_g", "vg", d.vg, "%.3f");
   changed |= enum_combo("profile", d.profile);
   // The display stage and the warp (docs/quality.md).
-  changed |= ImGui::SliderFloat("filter (px)", &d.filter, 0.0f, 16.0f, "%.1f");
-  changed |= ImGui::SliderFloat("contrast", &d.contrast, 0.0f, 0.5f, "%.2f");
+  changed |= slider("filter (px)", "filter", d.filter, "%.1f");
+  changed |= slider("contrast", "contrast", d.contrast, "%.2f");
   changed |= enum_combo("resample", d.resample);
   const ImGuiColorEditFlags swatch = ImGuiColorEditFlags_NoInputs;
   changed |= ImGui::ColorEdit3("bg", &d.background.x, swatch);
@@ -140,12 +145,18 @@ void ViewerPanel::draw_save_and_record(ViewerSession& viewer) {
 // s, step, noise space, tangent mode, colour map and ranges.
 void ViewerPanel::draw_more_parameters(ViewerSession& viewer) {
   Scene d = viewer.desc();
-  if (ImGui::SliderFloat("s (noise scale)", &d.scale, 1.0f, 16.0f) &&
+  // Logarithmic: the keys' spans (key_range) reach 64 pixels, the common
+  // values are a few.
+  const KeyRange scale = *key_range("scale"), step = *key_range("step");
+  if (ImGui::SliderFloat("s (noise scale)", &d.scale, scale.min, scale.max, "%.2f",
+                         ImGuiSliderFlags_Logarithmic) &&
       d.scale != viewer.desc().scale) {
     viewer.set_noise_scale(d.scale);  // a new grid: the texture starts again
     return;
   }
-  if (ImGui::SliderFloat("step (px/frame)", &d.step, 0.25f, 8.0f) && d.step > 0.0f)
+  if (ImGui::SliderFloat("step (px/frame)", &d.step, step.min, step.max, "%.2f",
+                         ImGuiSliderFlags_Logarithmic) &&
+      d.step > 0.0f)
     viewer.set("step", format_number(d.step));
   if (enum_combo("noise space", d.noise_space)) viewer.apply_live(d);
   if (enum_combo("tangent", d.tangent)) {

@@ -250,5 +250,44 @@ TEST(ParaViewDefaults, EqualTheScenesDefaults) {
   EXPECT_EQ(value("FramesPerStep"), static_cast<double>(kDefaultFramesPerStep));
 }
 
+// Its number properties span their scene keys' ranges (key_range: the one
+// table the command line, the viewer's sliders and the mapper's clamps use),
+// and every ranged key has its property; the styles stay inside them.
+TEST(ParaViewDefaults, RangesAreTheKeysRanges) {
+  const std::string xml =
+      test::read_file(fs::path(IBFVS_SOURCE_DIR) / "paraview/IBFVS/IBFVSRepresentation.xml");
+  const std::pair<const char*, const char*> properties[] = {
+      {"Alpha", "alpha"},       {"Beta", "beta"},      {"NoiseScale", "scale"},
+      {"StepPixels", "step"},   {"NoiseRate", "vg"},   {"FilterLength", "filter"},
+      {"Contrast", "contrast"}, {"Sharpen", "sharpen"}};
+  for (const auto& [property, key] : properties) {
+    const std::regex re("name=\"" + std::string(property) +
+                        "\"[\\s\\S]*?<DoubleRangeDomain name=\"range\" min=\"([^\"]*)\" "
+                        "max=\"([^\"]*)\"");
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(xml, m, re)) << property << " has no range in the XML";
+    const std::optional<KeyRange> r = key_range(key);
+    ASSERT_TRUE(r) << key << " has no range";
+    EXPECT_FLOAT_EQ(std::stof(m[1].str()), r->min) << property;
+    EXPECT_FLOAT_EQ(std::stof(m[2].str()), r->max) << property;
+  }
+  for (const SceneKey& k : scene_keys()) {
+    if (!key_range(k.name)) continue;
+    EXPECT_TRUE(std::any_of(std::begin(properties), std::end(properties),
+                            [&](const auto& p) { return k.name == p.second; }))
+        << k.name << " has a range but no ParaView property here";
+  }
+  for (const auto& style : EnumNames<Style>::table) {
+    Scene s;
+    apply_style(s, style.value);
+    for (const auto& [key, value] : {std::pair{"alpha", s.alpha},
+                                     {"beta", s.beta},
+                                     {"filter", s.filter},
+                                     {"contrast", s.contrast},
+                                     {"sharpen", s.sharpen}})
+      EXPECT_EQ(clamp_to_key_range(key, value), value) << style.name << " " << key;
+  }
+}
+
 }  // namespace
 }  // namespace ibfvs

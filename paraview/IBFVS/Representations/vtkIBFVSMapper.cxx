@@ -14,6 +14,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <glm/common.hpp>
@@ -99,7 +100,7 @@ class vtkIBFVSMapper::Internals {
   bool settings_changed = false;  // live settings: applied without starting afresh
   bool restart = true;            // a new seed, or asked: the texture starts afresh
   bool regrid = false;            // a new noise scale: a new renderer, the texture goes on
-  ibfvs::FramePacer pacer;  // texture frames of each render (Frames Per Step)
+  ibfvs::FramePacer pacer;        // texture frames of each render (Frames Per Step)
 
   // ---- the surface
   vtkMTimeType input_time = 0;
@@ -190,6 +191,14 @@ void vtkIBFVSMapper::SetVectors(int association, const char* name) {
   this->Modified();
 }
 
+namespace {
+// A property's value within its scene key's range (the library's one table,
+// ibfvs::key_range; the XML's domains are checked against it).
+float in_range(std::string_view key, double value) {
+  return ibfvs::clamp_to_key_range(key, static_cast<float>(value));
+}
+}  // namespace
+
 #define IBFVS_SETTING(Name, Type, member, conversion, restarts)                     \
   void vtkIBFVSMapper::Set##Name(Type value) {                                      \
     auto v = conversion;                                                            \
@@ -198,10 +207,10 @@ void vtkIBFVSMapper::SetVectors(int association, const char* name) {
     (restarts ? this->Internal->restart : this->Internal->settings_changed) = true; \
     this->Modified();                                                               \
   }
-IBFVS_SETTING(Alpha, double, alpha, static_cast<float>(std::clamp(value, 0.0, 1.0)), false)
-IBFVS_SETTING(Beta, double, beta, static_cast<float>(std::clamp(value, 0.0, 1.0)), false)
+IBFVS_SETTING(Alpha, double, alpha, in_range("alpha", value), false)
+IBFVS_SETTING(Beta, double, beta, in_range("beta", value), false)
 void vtkIBFVSMapper::SetNoiseScale(double pixels) {
-  const auto v = static_cast<float>(std::clamp(pixels, 1.0, 64.0));
+  const float v = in_range("scale", pixels);
   if (this->Internal->scene.scale == v) return;
   this->Internal->scene.scale = v;
   this->Internal->regrid = true;
@@ -220,16 +229,16 @@ void vtkIBFVSMapper::Restart() {
   this->Modified();
 }
 
-IBFVS_SETTING(StepPixels, double, step, static_cast<float>(std::clamp(value, 0.0, 64.0)), false)
+IBFVS_SETTING(StepPixels, double, step, in_range("step", value), false)
 IBFVS_SETTING(TimeProfile, int, profile,
               static_cast<ibfvs::NoiseProfile>(
                   std::clamp(value, 0, static_cast<int>(ibfvs::NoiseProfile::Random))),
               false)
-IBFVS_SETTING(NoiseRate, double, vg, static_cast<float>(std::clamp(value, 0.0, 1.0)), false)
+IBFVS_SETTING(NoiseRate, double, vg, in_range("vg", value), false)
 IBFVS_SETTING(ImageNormalize, int, image_normalize, value != 0, false)
-IBFVS_SETTING(FilterLength, double, filter, static_cast<float>(std::clamp(value, 0.0, 32.0)), false)
-IBFVS_SETTING(Contrast, double, contrast, static_cast<float>(std::clamp(value, 0.0, 0.5)), false)
-IBFVS_SETTING(Sharpen, double, sharpen, static_cast<float>(std::clamp(value, 0.0, 4.0)), false)
+IBFVS_SETTING(FilterLength, double, filter, in_range("filter", value), false)
+IBFVS_SETTING(Contrast, double, contrast, in_range("contrast", value), false)
+IBFVS_SETTING(Sharpen, double, sharpen, in_range("sharpen", value), false)
 IBFVS_SETTING(Resample, int, resample, static_cast<ibfvs::Resample>(std::clamp(value, 0, 2)), false)
 IBFVS_SETTING(Seed, int, seed, static_cast<std::uint32_t>(std::max(value, 0)), true)
 #undef IBFVS_SETTING
@@ -525,8 +534,9 @@ void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor) {
     }
     in.colour_key.clear();
     in.data_changed = in.data_changed || !same;
-    in.points_moved = in.points_moved || (last && in.mesh && last->triangles == in.mesh->triangles &&
-                                          last->positions != in.mesh->positions);
+    in.points_moved =
+        in.points_moved || (last && in.mesh && last->triangles == in.mesh->triangles &&
+                            last->positions != in.mesh->positions);
   }
   if (in.problem.empty() && epoxy_gl_version() < 45) {
     in.problem = "needs OpenGL 4.5 (this context has " + std::to_string(epoxy_gl_version() / 10) +

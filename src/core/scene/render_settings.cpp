@@ -3,6 +3,7 @@
 #include <cmath>
 #include <string>
 
+#include "ibfvs/core/scene/scene.h"
 #include "ibfvs/core/support/error.h"
 #include "ibfvs/core/support/limits.h"
 
@@ -11,6 +12,12 @@ namespace {
 
 bool in_unit(float v) {
   return v >= 0.0f && v <= 1.0f;
+}
+
+// Within the scene key's range (scene.h, key_range): one table.
+bool in_key_range(std::string_view key, float v) {
+  const KeyRange r = *key_range(key);
+  return v >= r.min && v <= r.max;
 }
 
 }  // namespace
@@ -25,18 +32,18 @@ void RenderSettings::validate() const {
   } catch (const InputError& e) {
     throw SettingError("size", e.what());
   }
-  if (!in_unit(alpha)) throw SettingError("alpha", "must be between 0 and 1");
-  if (!in_unit(beta)) throw SettingError("beta", "must be between 0 and 1");
+  if (!in_key_range("alpha", alpha)) throw SettingError("alpha", "must be between 0 and 1");
+  if (!in_key_range("beta", beta)) throw SettingError("beta", "must be between 0 and 1");
   if (!color_table.empty() && color_table.size() != 256)
     throw SettingError("color_map", "a host's colour table needs 256 colours, not " +
                                         std::to_string(color_table.size()));
   if (!(image_step >= 0.0f) || !std::isfinite(image_step))
     throw SettingError("step", "the image-space step must be a finite number of pixels >= 0");
-  if (!(sharpen >= 0.0f && sharpen <= 4.0f))
+  if (!in_key_range("sharpen", sharpen))
     throw SettingError("sharpen", "must be between 0 (off) and 4");
-  if (!(filter_length >= 0.0f && filter_length <= 32.0f))
+  if (!in_key_range("filter", filter_length))
     throw SettingError("filter", "the filter length must be between 0 and 32 pixels");
-  if (!(contrast >= 0.0f && contrast <= 0.5f))
+  if (!in_key_range("contrast", contrast))
     throw SettingError("contrast", "the RMS contrast must be between 0 (off) and 0.5");
   if (object_noise && (!(object_cell > 0.0f) || !std::isfinite(object_cell)))
     throw SettingError("noise_space", "object: the cell size must be positive");

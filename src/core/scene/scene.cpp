@@ -3,6 +3,7 @@
 // Sections: the key table | settings | scene files | styles. The value
 // types (GridScalar, Displacement, ScalarRange, TimeRange): scene_values.cpp.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <map>
@@ -85,6 +86,29 @@ namespace {
 
 void require(bool ok, const char* problem) {
   if (!ok) throw InputError(problem);
+}
+
+// The number keys' ranges (scene.h, KeyRange).
+struct NamedRange {
+  std::string_view name;
+  KeyRange range;
+};
+constexpr NamedRange kKeyRanges[] = {
+    {"alpha", {0.0f, 1.0f, true}},   {"beta", {0.0f, 1.0f, true}},
+    {"scale", {1.0f, 64.0f, false}}, {"vg", {0.0f, 1.0f, false}},
+    {"step", {0.0f, 64.0f, false}},  {"filter", {0.0f, 32.0f, true}},
+    {"sharpen", {0.0f, 4.0f, true}}, {"contrast", {0.0f, 0.5f, true}},
+};
+
+// Refuses a value outside the key's enforced range: "must be between MIN
+// and MAX" (with " (off)" after a minimum that turns the effect off, and
+// the unit after the maximum).
+void require_in_range(std::string_view name, float v, bool min_is_off = false,
+                      std::string_view unit = "") {
+  const KeyRange r = *key_range(name);
+  if (!(v >= r.min && v <= r.max))
+    throw InputError("must be between " + format_number(r.min) + (min_is_off ? " (off)" : "") +
+                     " and " + format_number(r.max) + std::string(unit));
 }
 
 std::vector<SceneKey> make_keys() {
@@ -213,9 +237,8 @@ std::vector<SceneKey> make_keys() {
        [](const Scene& s) { return s.surface_image.empty() ? none() : one(s.surface_image); }},
       // ---- texture
       IBFVS_NUMBER_KEY(alpha, "blend weight of fresh noise (eq. 5, 12), 0..1",
-                       require(v >= 0.0f && v <= 1.0f, "must be between 0 and 1")),
-      IBFVS_NUMBER_KEY(beta, "texture against shading (eq. 11), 0..1",
-                       require(v >= 0.0f && v <= 1.0f, "must be between 0 and 1")),
+                       require_in_range("alpha", v)),
+      IBFVS_NUMBER_KEY(beta, "texture against shading (eq. 11), 0..1", require_in_range("beta", v)),
       IBFVS_NUMBER_KEY(scale, "noise grid spacing s in pixels (eq. 6), at least 1",
                        require(v >= 1.0f, "the noise scale must be at least 1 pixel")),
       IBFVS_ENUM_KEY(profile, NoiseProfile, "time profile w (eq. 8)"),
@@ -241,15 +264,15 @@ std::vector<SceneKey> make_keys() {
       IBFVS_NUMBER_KEY(filter,
                        "display only: Gaussian filter along the curved streamline over F_t, "
                        "its length in pixels, 0..32 (0 off)",
-                       require(v >= 0.0f && v <= 32.0f, "must be between 0 and 32 pixels")),
+                       require_in_range("filter", v, false, " pixels")),
       IBFVS_NUMBER_KEY(sharpen,
                        "display only: each filter tap plus k times its excess over its two "
                        "neighbours 1.5 pixels across the flow, 0..4 (0 off): thinner lines",
-                       require(v >= 0.0f && v <= 4.0f, "must be between 0 (off) and 4")),
+                       require_in_range("sharpen", v, true)),
       IBFVS_NUMBER_KEY(contrast,
                        "display only: RMS contrast of the shown texture, mean 0.5, 0..0.5 (0: "
                        "as synthesised; section 3.4)",
-                       require(v >= 0.0f && v <= 0.5f, "must be between 0 (off) and 0.5")),
+                       require_in_range("contrast", v, true)),
       IBFVS_ENUM_KEY(inject, InjectMode, "how noise enters the texture"),
       {"background", KeyKind::Vector, "background colour B, R,G,B in 0..1",
        [](Scene& s, std::string_view t) { s.background = colour(t); },
@@ -375,6 +398,17 @@ std::vector<SceneKey> make_keys() {
 const std::vector<SceneKey>& scene_keys() {
   static const std::vector<SceneKey> keys = make_keys();
   return keys;
+}
+
+std::optional<KeyRange> key_range(std::string_view name) {
+  for (const NamedRange& r : kKeyRanges)
+    if (r.name == name) return r.range;
+  return std::nullopt;
+}
+
+float clamp_to_key_range(std::string_view name, float value) {
+  const std::optional<KeyRange> r = key_range(name);
+  return r ? std::clamp(value, r->min, r->max) : value;
 }
 
 const SceneKey* find_scene_key(std::string_view name) {

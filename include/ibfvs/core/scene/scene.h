@@ -224,6 +224,22 @@ const std::vector<SceneKey>& scene_keys();
 /// The key named `name`, or nullptr.
 const SceneKey* find_scene_key(std::string_view name);
 
+/// The span of a number key, one table for every front end: the command
+/// line's and the scene files' checks, RenderSettings::validate, the
+/// viewer's sliders, the ParaView representation's property domains (a
+/// test compares its XML) and its clamps.
+struct KeyRange {
+  float min = 0.0f;
+  float max = 0.0f;
+  /// true: values outside are refused; false: the span a slider offers
+  /// (a typed value beyond it is valid).
+  bool enforced = false;
+};
+/// The range of number key `name`; nullopt for a key that has none.
+std::optional<KeyRange> key_range(std::string_view name);
+/// `value` clamped to the range of `name` (a key that has one).
+float clamp_to_key_range(std::string_view name, float value);
+
 /// Sets one key from text. Throws SettingError(key, problem) for an unknown key
 /// or a bad value.
 void apply_setting(Scene& scene, std::string_view key, std::string_view text);

@@ -123,45 +123,17 @@ class Animation {
     return top_first<ImageF, float>(session_->renderer().read_texture(), false);
   }
 
-  // Any key: texture settings live, the step rescales dt, the camera moves,
-  // the size resamples the texture; anything else prepares the scene again
-  // (the texture starts afresh).
+  // Any keys, by the session's rules (Session::set, key_effect): texture
+  // settings, the step, the noise grid, the tangent mode, the camera and the
+  // size change on the running animation; anything else prepares the scene
+  // again (the texture starts afresh).
   void set(const Options& options) {
     Scene desc = desc_;
     std::vector<Setting> settings;
-    bool live = true, camera = false, step = false, size = false;
-    for (const auto& [key, text] : options) {
-      settings.push_back({key, text, ""});
-      camera = camera || key == "camera" || key == "look_at" || key == "fov" || key == "ortho";
-      step = step || key == "step";
-      size = size || key == "size";
-      live = live &&
-             (is_live_texture_key(key) || key == "camera" || key == "look_at" || key == "fov" ||
-              key == "ortho" || key == "step" || key == "orbit" || key == "size");
-    }
+    for (const auto& [key, text] : options) settings.push_back({key, text, ""});
     apply_settings(desc, settings);
     const Current current(*this);
-    if (live && size) session_->resize(desc.width, desc.height);
-    if (!live) {
-      session_ = std::make_unique<Session>(prepare(desc));
-      desc_ = desc;
-      return;
-    }
-    PreparedScene& p = session_->scene();
-    RenderSettings s = session_->renderer().settings();
-    apply_texture_settings(desc, s);
-    s.validate();
-    session_->renderer().update_settings(s);
-    p.settings = s;
-    if (step) session_->set_dt(session_->dt() * desc.step / desc_.step);
-    if (camera) {
-      CameraParams params = desc.camera;
-      params.up = p.camera.up;
-      p.camera = params;
-      session_->camera() = Camera(mesh_bounds(*p.mesh), params,
-                                  static_cast<float>(p.width) / static_cast<float>(p.height));
-    }
-    p.scene = desc;
+    if (!session_->set(desc)) session_ = std::make_unique<Session>(prepare(desc));
     desc_ = desc;
   }
 

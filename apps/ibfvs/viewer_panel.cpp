@@ -151,7 +151,7 @@ void ViewerPanel::draw_more_parameters(ViewerSession& viewer) {
   if (ImGui::SliderFloat("s (noise scale)", &d.scale, scale.min, scale.max, "%.2f",
                          ImGuiSliderFlags_Logarithmic) &&
       d.scale != viewer.desc().scale) {
-    viewer.set_noise_scale(d.scale);  // a new grid: the texture starts again
+    viewer.set_noise_scale(d.scale);  // a new grid: the texture goes on
     return;
   }
   if (ImGui::SliderFloat("step (px/frame)", &d.step, step.min, step.max, "%.2f",

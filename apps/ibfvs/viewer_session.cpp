@@ -91,50 +91,39 @@ void ViewerSession::load(const std::string& path) {
 void ViewerSession::set(const std::string& key, const std::string& value) {
   Scene desc = desc_;
   apply_setting(desc, key, value);
-  if (key == "step") {
-    session_->set_dt(session_->dt() * desc.step / desc_.step);
-    apply_live(desc);  // the image-normalised step too
-  } else if (key == "scale") {
-    set_noise_scale(desc.scale);
-  } else if (key == "tangent") {
-    set_tangent(desc.tangent);
-  } else if (is_live_texture_key(key)) {
-    apply_live(desc);
-  } else if (!reload(desc)) {
-    throw InputError(message);
-  }
+  apply_live(desc);
 }
 
 void ViewerSession::apply_live(const Scene& desc) {
-  RenderSettings s = renderer().settings();
-  const bool object_noise = s.object_noise;
-  apply_texture_settings(desc, s);
-  if (s.object_noise && !object_noise) {
-    // s pixels at the distance of the mesh centre, as prepare_scene does.
-    const Camera c = camera_.camera();
-    s.object_cell = s.noise.scale * 2.0f * c.distance_world() *
-                    std::tan(glm::radians(c.params().fov_deg) * 0.5f) /
-                    static_cast<float>(scene().height);
+  // The session's rules (Session::set, key_effect); the viewer keeps its own
+  // camera, dt (it follows the zoom) and window size.
+  const std::vector<std::string_view> keys = changed_keys(desc_, desc);
+  const auto any = [&](std::initializer_list<KeyEffect> effects) {
+    return std::any_of(keys.begin(), keys.end(), [&](std::string_view k) {
+      return std::find(effects.begin(), effects.end(), key_effect(k)) != effects.end();
+    });
+  };
+  const Camera view = camera_.camera();
+  if (!any({KeyEffect::kSize}) && session_->set(desc, &view)) {
+    if (any({KeyEffect::kCamera}))
+      camera_ = ViewerCamera(mesh_bounds(*scene().mesh), scene().camera, aspect_of(scene()));
+    desc_ = desc;
+    if (any({KeyEffect::kStep, KeyEffect::kTangent, KeyEffect::kCamera})) update_dt();
+    return;
   }
-  s.validate();
-  renderer().update_settings(s);
-  scene().settings = s;
-  desc_ = desc;
+  if (!reload(desc)) throw InputError(message);
 }
 
 void ViewerSession::set_noise_scale(float scale) {
-  RenderSettings s = renderer().settings();
-  s.noise.scale = scale;
-  s.validate();
-  scene().settings = s;
-  session_->rebuild();
-  desc_.scale = scale;
+  Scene desc = desc_;
+  desc.scale = scale;
+  apply_live(desc);
 }
 
 void ViewerSession::set_tangent(TangentMode mode) {
-  session_->set_field(evaluate_field(*scene().mesh, scene().field_spec, mode));
-  desc_.tangent = mode;
-  update_dt();
+  Scene desc = desc_;
+  desc.tangent = mode;
+  apply_live(desc);
 }
 
 void ViewerSession::save_scene(const std::filesystem::path& file) {

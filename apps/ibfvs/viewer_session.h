@@ -57,14 +57,18 @@ class ViewerSession {
   void apply_style(Style style);
   /// A mesh, or a scene file (*.toml).
   void load(const std::string& path);
-  /// Any scene key: texture settings change live, the step rescales dt,
-  /// anything else prepares the scene again. Throws SettingError for a bad
-  /// key or value (nothing changes), InputError when preparing fails.
+  /// Any scene key, by the session's rules (Session::set, key_effect):
+  /// texture settings, the step, the noise grid, the tangent mode and the
+  /// camera change on the running animation; anything else (and the size,
+  /// which is the window's) prepares the scene again. Throws SettingError
+  /// for a bad key or value (nothing changes), InputError when preparing
+  /// fails.
   void set(const std::string& key, const std::string& value);
-  /// Texture settings of `desc` that the renderer takes without a rebuild.
+  /// The same for a scene with any keys changed (the panel's).
   void apply_live(const Scene& desc);
-  /// A new noise grid (the texture starts again).
+  /// A new noise grid; the texture goes on.
   void set_noise_scale(float scale);
+  /// The field evaluated again with `mode`; the texture goes on.
   void set_tangent(TangentMode mode);
   /// The typed scene with the camera, size and frame count of now:
   /// `ibfvs render FILE` gives this frame. Throws InputError.

@@ -216,7 +216,9 @@ class Animation(_ibfvs.Animation):
         self._data = (points, triangles, point_arrays, cell_arrays)
 
     def set(self, **options):
-        """Change settings: texture settings and the camera live, others rebuild."""
+        """Change settings on the running animation where they allow it (texture
+        settings, step, scale, seed, tangent, camera, size: the session's rules,
+        as the viewer's); others prepare the scene again (the texture restarts)."""
         self._set(_options(options))
 
     def frames(self, count, *, alpha=False):

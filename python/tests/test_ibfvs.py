@@ -121,7 +121,9 @@ def test_live_settings_keep_the_animation_and_others_rebuild():
     assert anim.frame == 4
     anim.step(1)
     assert (anim.image()[0, 0, :3] == 0).all()  # the new background, live
-    anim.set(scale=4)  # a new noise grid: the scene is prepared again
+    anim.set(scale=4)  # a new noise grid: the texture goes on (as in the viewer)
+    assert anim.frame == 5
+    anim.set(color_by="speed")  # the scene prepared again: the texture starts afresh
     assert anim.frame == 0
     with pytest.raises(ValueError, match="alpha"):
         anim.set(alpha=7)

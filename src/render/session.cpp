@@ -2,8 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 #include <utility>
 
+#include <glm/trigonometric.hpp>
+
+#include "ibfvs/core/fields/vector_field.h"
 #include "ibfvs/core/support/error.h"
 #include "ibfvs/gl/objects.h"
 
@@ -167,6 +171,75 @@ void Session::advance() {
   seek(static_cast<double>(k) / scene_.scene.frames_per_step);
   if (k > 0 && scene_.scene.orbit != 0.0f) camera_.orbit(scene_.scene.orbit);
   render(camera_);
+}
+
+bool Session::set(const Scene& next, const Camera* seen_by) {
+  const Scene& now = scene_.scene;
+  std::set<KeyEffect> effects;
+  for (const std::string_view key : changed_keys(now, next)) {
+    KeyEffect effect = key_effect(key);
+    // A percentile range needs the scalars again; a tangent mode, the
+    // steps of an unsteady field.
+    const auto by_percentile = [](const std::optional<ScalarRange>& r) {
+      return !r || r->percentile;
+    };
+    if ((key == "color_range" && by_percentile(next.color_range)) ||
+        (key == "beta_range" && by_percentile(next.beta_range)) ||
+        (effect == KeyEffect::kTangent && scene_.step_count > 1))
+      effect = KeyEffect::kPrepare;
+    if (effect == KeyEffect::kPrepare) return false;
+    effects.insert(effect);
+  }
+  const auto has = [&](KeyEffect e) { return effects.count(e) > 0; };
+
+  // Everything checked before anything changes.
+  RenderSettings settings = renderer_->settings();
+  apply_texture_settings(next, settings);
+  settings.noise.scale = next.scale;
+  settings.noise.seed = next.seed;
+  if (settings.object_noise && !renderer_->settings().object_noise) {
+    // s pixels at the distance of the mesh centre, as prepare_scene does.
+    const Camera& c = seen_by ? *seen_by : camera_;
+    settings.object_cell = settings.noise.scale * 2.0f * c.distance_world() *
+                           std::tan(glm::radians(c.params().fov_deg) * 0.5f) /
+                           static_cast<float>(scene_.height);
+  }
+  {
+    RenderSettings sized = settings;  // the size too, before anything changes
+    sized.width = next.width;
+    sized.height = next.height;
+    sized.validate();
+  }
+  std::vector<glm::vec3> field;
+  if (has(KeyEffect::kTangent))
+    field = evaluate_field(*scene_.mesh, scene_.field_spec, next.tangent);
+
+  const float step_ratio = now.step > 0.0f ? next.step / now.step : 1.0f;
+  const bool reseeded = next.seed != now.seed;
+  scene_.scene = next;
+  scene_.settings = settings;
+  // A new view: dt (the step is in pixels) and the object-space cell for it.
+  const bool refit = has(KeyEffect::kCamera) && !has(KeyEffect::kSize);
+  if (has(KeyEffect::kCamera)) {
+    CameraParams params = next.camera;
+    params.up = scene_.camera.up;  // the prepared scene's up (a key of its own)
+    scene_.camera = params;
+    camera_ = Camera(mesh_bounds(*scene_.mesh), params, aspect_of(scene_));
+    if (refit) {
+      scene_ = resized(scene_, scene_.width, scene_.height);
+      dt_ = scene_.dt;
+    }
+  }
+  if (has(KeyEffect::kNoise))
+    rebuild(reseeded);
+  else
+    renderer_->update_settings(scene_.settings);
+  if (has(KeyEffect::kTangent)) set_field(std::move(field));
+  if (has(KeyEffect::kSize))
+    resize(next.width, next.height);  // dt from the new size, view and step
+  else if (has(KeyEffect::kStep) && !refit)
+    dt_ *= step_ratio;
+  return true;
 }
 
 void Session::set_field(std::vector<glm::vec3> field) {

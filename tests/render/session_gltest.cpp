@@ -6,12 +6,14 @@
 
 #include <gtest/gtest.h>
 
+#include <string>
 #include <vector>
 
 #include "gl_fixture.h"
 #include "ibfvs/core/scene/camera.h"
 #include "ibfvs/core/scene/scene.h"
 #include "ibfvs/core/scene/scene_prep.h"
+#include "ibfvs/core/support/error.h"
 #include "ibfvs/gl/objects.h"
 #include "ibfvs/render/ibfvs_renderer.h"
 #include "ibfvs/render/session.h"
@@ -116,6 +118,57 @@ TEST_F(SessionGLTest, LocksAtItsFrameAndMovesToTheLockCamera) {
   for (int k = 0; k < 3; ++k) session.advance();
   // Locked: F_t no longer changes.
   EXPECT_EQ(session.renderer().read_texture().pixels, before.pixels);
+}
+
+// Session::set, the one set of rules the viewer and Python follow: what the
+// running animation takes (the texture going on) and what it leaves to a
+// new session.
+TEST_F(SessionGLTest, SettingsChangeOnTheRunningAnimationByTheKeysRules) {
+  Session session(prepare_scene(small_scene()));
+  for (int k = 0; k < 6; ++k) session.advance();
+  const ImageF texture = session.renderer().read_texture();
+  const auto changed = [&](const char* key, const char* value) {
+    Scene next = session.scene().scene;
+    apply_setting(next, key, value);
+    return session.set(next);
+  };
+  // Texture settings: the next frame takes them; the texture is as it was.
+  ASSERT_TRUE(changed("alpha", "0.3"));
+  ASSERT_TRUE(changed("filter", "8"));
+  EXPECT_EQ(session.renderer().settings().alpha, 0.3f);
+  EXPECT_EQ(session.renderer().settings().filter_length, 8.0f);
+  EXPECT_EQ(session.renderer().read_texture().pixels, texture.pixels);
+  EXPECT_EQ(session.frame(), 6);
+  // The step: dt follows it.
+  const float dt = session.dt();
+  ASSERT_TRUE(changed("step", std::to_string(2.0f * session.scene().scene.step).c_str()));
+  EXPECT_FLOAT_EQ(session.dt(), 2.0f * dt);
+  // A new noise grid: the texture goes on.
+  ASSERT_TRUE(changed("scale", "3"));
+  EXPECT_EQ(session.renderer().settings().noise.scale, 3.0f);
+  EXPECT_EQ(session.renderer().read_texture().pixels, texture.pixels);
+  // The camera: the view moves, dt is the step's for it.
+  ASSERT_TRUE(changed("camera", "60,10,0"));
+  EXPECT_EQ(session.camera().params().azimuth_deg, 60.0f);
+  EXPECT_GT(session.dt(), 0.0f);
+  EXPECT_NE(session.dt(), 2.0f * dt);
+  // A new size: the texture resampled to it.
+  ASSERT_TRUE(changed("size", "64x48"));
+  EXPECT_EQ(session.renderer().read_texture().width, 64);
+  EXPECT_EQ(session.renderer().read_texture().height, 48);
+  EXPECT_EQ(session.frame(), 6);
+  // A new seed: the texture starts afresh.
+  ASSERT_TRUE(changed("seed", "7"));
+  EXPECT_EQ(session.frame(), 0);
+  // Keys that need the scene prepared again, and values that are not
+  // valid: nothing changes.
+  EXPECT_FALSE(changed("color_by", "speed"));
+  EXPECT_TRUE(session.scene().scene.color_by.empty());
+  Scene bad = session.scene().scene;
+  bad.alpha = 1.5f;
+  EXPECT_THROW(session.set(bad), SettingError);
+  EXPECT_EQ(session.renderer().settings().alpha, 0.3f);
+  EXPECT_EQ(session.scene().scene.alpha, 0.3f);
 }
 
 TEST_F(SessionGLTest, LeavesTheHostsGlStateAsItFoundIt) {

@@ -98,6 +98,19 @@ class Session {
   [[nodiscard]] float dt() const { return dt_; }
   void set_dt(float dt) { dt_ = dt; }
 
+  /// Takes `next`, the running scene with some keys changed, the way a
+  /// running animation should (key_effect, one table for every front end):
+  /// texture and display settings live; a new step rescales dt; a new noise
+  /// scale rebuilds the grid and a new seed restarts it; a new tangent mode
+  /// evaluates a steady field again; the camera keys move the view; a new
+  /// size resamples the texture. The texture goes on through each of these.
+  /// `seen_by`: the camera the frames are drawn with, where the caller has
+  /// its own (the viewer): an object-space noise cell is sized for it.
+  /// Returns false, changing nothing, when a key needs the scene prepared
+  /// again (the mesh, the field, a scalar, a percentile range, ...): the
+  /// caller makes a new Session from prepare_scene(next). Throws
+  /// SettingError, changing nothing, for settings that are not valid.
+  bool set(const Scene& next, const Camera* seen_by = nullptr);
   /// Replaces the field (same vertex count), keeping the texture.
   void set_field(std::vector<glm::vec3> field);
   /// Goes on with new data: a host's next time step, moved points, a changed

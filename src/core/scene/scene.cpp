@@ -400,6 +400,33 @@ const std::vector<SceneKey>& scene_keys() {
   return keys;
 }
 
+KeyEffect key_effect(std::string_view name) {
+  using E = KeyEffect;
+  static const std::map<std::string_view, KeyEffect> effects = {
+      {"alpha", E::kLive},         {"beta", E::kLive},        {"vg", E::kLive},
+      {"profile", E::kLive},       {"spike_width", E::kLive}, {"background", E::kLive},
+      {"surface_color", E::kLive}, {"color_map", E::kLive},   {"color_range", E::kLive},
+      {"beta_range", E::kLive},    {"advect_view", E::kLive}, {"inject", E::kLive},
+      {"noise_space", E::kLive},   {"filter", E::kLive},      {"contrast", E::kLive},
+      {"resample", E::kLive},      {"sharpen", E::kLive},     {"image_normalize", E::kLive},
+      {"step", E::kStep},          {"scale", E::kNoise},      {"seed", E::kNoise},
+      {"tangent", E::kTangent},    {"camera", E::kCamera},    {"look_at", E::kCamera},
+      {"ortho", E::kCamera},       {"fov", E::kCamera},       {"orbit", E::kCamera},
+      {"size", E::kSize},          {"frames", E::kNone},      {"frames_per_step", E::kNone},
+      {"fps", E::kNone},           {"out", E::kNone},         {"texture_out", E::kNone},
+      {"export", E::kNone},        {"quiet", E::kNone},       {"style", E::kNone},
+  };
+  const auto it = effects.find(name);
+  return it == effects.end() ? E::kPrepare : it->second;
+}
+
+std::vector<std::string_view> changed_keys(const Scene& before, const Scene& after) {
+  std::vector<std::string_view> out;
+  for (const SceneKey& key : scene_keys())
+    if (key.get(before) != key.get(after)) out.push_back(key.name);
+  return out;
+}
+
 std::optional<KeyRange> key_range(std::string_view name) {
   for (const NamedRange& r : kKeyRanges)
     if (r.name == name) return r.range;

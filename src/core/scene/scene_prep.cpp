@@ -256,19 +256,19 @@ PreparedScene resized(const PreparedScene& prepared, int width, int height) {
 std::optional<PreparedScene> restyled(const PreparedScene& prepared, Style style) {
   Scene s = prepared.scene;
   apply_style(s, style);
-  // Keys a restyle carries besides the live texture keys: the noise grid
-  // and dt are rebuilt below.
-  static const std::set<std::string_view> rebuilt = {"style", "scale", "seed", "step",
-                                                     "image_normalize"};
-  for (const SceneKey& key : scene_keys()) {
-    if (key.get(s) == key.get(prepared.scene)) continue;
+  // The keys a restyle carries (key_effect): live ones, the noise grid and
+  // the step (dt is computed again below).
+  for (const std::string_view key : changed_keys(prepared.scene, s)) {
     // A percentile range (unset: p1,p99) needs the scalars again.
     const auto by_percentile = [](const std::optional<ScalarRange>& r) {
       return !r || r->percentile;
     };
-    const bool percentile = (key.name == "color_range" && by_percentile(s.color_range)) ||
-                            (key.name == "beta_range" && by_percentile(s.beta_range));
-    if ((is_live_texture_key(key.name) && !percentile) || rebuilt.count(key.name)) continue;
+    const bool percentile = (key == "color_range" && by_percentile(s.color_range)) ||
+                            (key == "beta_range" && by_percentile(s.beta_range));
+    const KeyEffect effect = key_effect(key);
+    if ((effect == KeyEffect::kLive && !percentile) || effect == KeyEffect::kNoise ||
+        effect == KeyEffect::kStep || effect == KeyEffect::kNone)
+      continue;
     return std::nullopt;
   }
   PreparedScene p = prepared;
@@ -302,14 +302,6 @@ void apply_texture_settings(const Scene& s, RenderSettings& settings) {
     settings.color_range = {s.color_range->lo, s.color_range->hi};
   if (s.beta_range && !s.beta_range->percentile)
     settings.beta_range = {s.beta_range->lo, s.beta_range->hi};
-}
-
-bool is_live_texture_key(std::string_view key) {
-  static const std::set<std::string_view> live = {
-      "alpha",       "beta",        "vg",         "profile",     "background", "surface_color",
-      "color_map",   "color_range", "beta_range", "advect_view", "inject",     "spike_width",
-      "noise_space", "filter",      "contrast",   "resample",    "sharpen"};
-  return live.count(key) > 0;
 }
 
 glm::vec3 thinnest_axis(const TriMesh& mesh) {

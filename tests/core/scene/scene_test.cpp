@@ -8,7 +8,9 @@
 
 #include <gtest/gtest.h>
 
+#include "ibfvs/core/scene/render_settings.h"
 #include "ibfvs/core/scene/scene.h"
+#include "ibfvs/core/scene/scene_prep.h"
 #include "ibfvs/core/support/error.h"
 #include "ibfvs/core/support/names.h"
 
@@ -103,6 +105,37 @@ TEST(SceneKeys, EveryKeyIsSetByTheBusySceneAndReadsBack) {
     EXPECT_EQ(key.get(again), texts) << key.name;
     EXPECT_FALSE(key.help.empty()) << key.name;
   }
+}
+
+// The rules for changing a key on a running animation (key_effect): every
+// key is in the table; each live key is one that apply_texture_settings
+// carries to the renderer (its busy value gives other settings), and each
+// key that apply_texture_settings carries is live, a step or the noise grid.
+TEST(SceneKeys, EveryKeyHasItsEffectAndTheLiveOnesReachTheRenderer) {
+  const Scene busy = busy_scene();
+  RenderSettings plain;
+  apply_texture_settings(Scene{}, plain);
+  for (const SceneKey& key : scene_keys()) {
+    Scene one;
+    for (const std::string& t : key.get(busy)) key.set(one, t);
+    RenderSettings settings;
+    apply_texture_settings(one, settings);
+    const KeyEffect effect = key_effect(key.name);
+    const bool percentile = (key.name == "color_range" || key.name == "beta_range") &&
+                            key.get(busy).front().front() == 'p';
+    if (effect == KeyEffect::kLive && !percentile) {
+      EXPECT_NE(settings, plain) << key.name << " is live but the renderer does not take it";
+    } else if (effect != KeyEffect::kStep && effect != KeyEffect::kNoise) {
+      EXPECT_EQ(settings, plain) << key.name << " reaches the renderer but is not live";
+    }
+  }
+  EXPECT_EQ(key_effect("mesh"), KeyEffect::kPrepare);
+  EXPECT_EQ(key_effect("alpha"), KeyEffect::kLive);
+  EXPECT_EQ(key_effect("no such key"), KeyEffect::kPrepare);
+  Scene a, b;
+  apply_setting(b, "filter", "8");
+  apply_setting(b, "mesh", "torus");
+  EXPECT_EQ(changed_keys(a, b), (std::vector<std::string_view>{"mesh", "filter"}));
 }
 
 TEST(SceneKeys, TomlRoundTrip) {

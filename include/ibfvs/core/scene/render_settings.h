@@ -88,6 +88,7 @@ struct RenderSettings {
 
   /// Throws SettingError naming the first impossible value by its scene key.
   void validate() const;
+  bool operator==(const RenderSettings&) const = default;
 };
 
 }  // namespace ibfvs

@@ -224,6 +224,24 @@ const std::vector<SceneKey>& scene_keys();
 /// The key named `name`, or nullptr.
 const SceneKey* find_scene_key(std::string_view name);
 
+/// What a running animation does when a key changes (Session::set): one
+/// table for the viewer, Python and the restyling of a page, so that they
+/// follow the same rules.
+enum class KeyEffect {
+  kLive,     ///< a texture or display setting the next frame takes (alpha, filter, colours, ...)
+  kStep,     ///< dt follows the new step
+  kNoise,    ///< a new noise grid (scale, seed); the texture goes on (a new seed: afresh)
+  kTangent,  ///< the field evaluated again; the texture goes on
+  kCamera,   ///< the view moves (camera, look_at, ortho, fov, orbit)
+  kSize,     ///< the texture resampled to the new image size
+  kNone,     ///< read as the animation runs or only by a front end (frames, out, style, ...)
+  kPrepare,  ///< the scene prepared again (mesh, field, scalars, ...): the texture starts afresh
+};
+/// The effect of changing key `name` (kPrepare for a name that is no key).
+KeyEffect key_effect(std::string_view name);
+/// The keys whose values differ between two scenes, in table order.
+std::vector<std::string_view> changed_keys(const Scene& before, const Scene& after);
+
 /// The span of a number key, one table for every front end: the command
 /// line's and the scene files' checks, RenderSettings::validate, the
 /// viewer's sliders, the ParaView representation's property domains (a

@@ -75,10 +75,6 @@ struct PreparedScene {
 /// which need the mesh and camera, are left as they are.
 void apply_texture_settings(const Scene& scene, RenderSettings& settings);
 
-/// True for a key whose change apply_texture_settings carries to a running
-/// renderer (alpha, beta, vg, profile, colours, filter, contrast, ...).
-bool is_live_texture_key(std::string_view key);
-
 /// Checks the scene and prepares it. Throws InputError naming the file, or
 /// SettingError naming the key whose value is wrong.
 PreparedScene prepare_scene(const Scene& scene);
@@ -107,7 +103,7 @@ PreparedScene resized(const PreparedScene& prepared, int width, int height);
 
 /// The prepared scene with `style`'s look, as the viewer's style keys give it
 /// (the style's defaults over the scene), when that look takes the same data:
-/// what changes is texture settings (is_live_texture_key), the noise scale
+/// what changes is texture settings (key_effect: kLive), the noise scale
 /// and seed and the step (dt follows). Empty when the style needs other data:
 /// curvature colours, a field of its own (the particles and principal styles
 /// are pictures of the principal directions), random cells, its own camera.

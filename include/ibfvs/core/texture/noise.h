@@ -46,6 +46,7 @@ struct NoiseParams {
   float rate = 0.02f;                           ///< v_g: profile periods per frame
   std::uint32_t seed = 1;                       ///< seeds the phases phi_ij
   float spike_width = 0.1f;                     ///< fraction of the period a spike is on
+  bool operator==(const NoiseParams&) const = default;
 };
 
 /// w(t) for the periodic profiles (Random is not periodic: cell_noise_value).

@@ -36,9 +36,7 @@ void ViewerCamera::zoom(float steps) {
 
 void ViewerCamera::pan(glm::vec2 pixels, int height) {
   const Camera c = camera();
-  const float world_per_pixel = 2.0f * c.distance_world() *
-                                std::tan(glm::radians(params_.fov_deg) * 0.5f) /
-                                static_cast<float>(std::max(height, 1));
+  const float world_per_pixel = c.world_per_pixel(height);
   const glm::mat4 view = c.view();
   // Rows of the view matrix: the camera's right and up axes in world space.
   const glm::vec3 right(view[0][0], view[1][0], view[2][0]);

@@ -5,8 +5,6 @@
 #include <set>
 #include <utility>
 
-#include <glm/trigonometric.hpp>
-
 #include "ibfvs/core/fields/vector_field.h"
 #include "ibfvs/core/support/error.h"
 #include "ibfvs/gl/objects.h"
@@ -200,9 +198,7 @@ bool Session::set(const Scene& next, const Camera* seen_by) {
   if (settings.object_noise && !renderer_->settings().object_noise) {
     // s pixels at the distance of the mesh centre, as prepare_scene does.
     const Camera& c = seen_by ? *seen_by : camera_;
-    settings.object_cell = settings.noise.scale * 2.0f * c.distance_world() *
-                           std::tan(glm::radians(c.params().fov_deg) * 0.5f) /
-                           static_cast<float>(scene_.height);
+    settings.object_cell = settings.noise.scale * c.world_per_pixel(scene_.height);
   }
   {
     RenderSettings sized = settings;  // the size too, before anything changes

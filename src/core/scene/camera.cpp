@@ -31,6 +31,11 @@ float Camera::distance_world() const {
   return 1.03f * radius / std::sin(std::min(half_v, half_h));
 }
 
+float Camera::world_per_pixel(int height) const {
+  return 2.0f * distance_world() * std::tan(glm::radians(params_.fov_deg) * 0.5f) /
+         static_cast<float>(std::max(height, 1));
+}
+
 namespace {
 
 // The rotation that takes +Y to `up` (the identity for +Y), so that azimuth

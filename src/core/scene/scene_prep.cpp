@@ -234,10 +234,7 @@ float fit_to_image(PreparedScene& p, int width, int height) {
   p.dt = s.dt > 0.0f ? s.dt : (speed > 0.0f ? s.step / speed : 0.0f);
   p.max_px = s.image_normalize && speed > 0.0f ? s.step : speed * p.dt;
   if (p.settings.object_noise) {
-    const float world_per_pixel = 2.0f * camera.distance_world() *
-                                  std::tan(glm::radians(p.camera.fov_deg) * 0.5f) /
-                                  static_cast<float>(height);
-    p.settings.object_cell = p.settings.noise.scale * world_per_pixel;
+    p.settings.object_cell = p.settings.noise.scale * camera.world_per_pixel(height);
   }
   return speed;
 }

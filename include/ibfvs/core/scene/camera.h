@@ -42,6 +42,9 @@ class Camera {
   [[nodiscard]] const CameraParams& params() const { return params_; }
   /// Distance from the eye to the centre, in world units.
   [[nodiscard]] float distance_world() const;
+  /// World units a pixel spans at the centre's depth, in an image `height`
+  /// pixels high (perspective, and the orthographic view's same framing).
+  [[nodiscard]] float world_per_pixel(int height) const;
 
  private:
   Bounds bounds_;

@@ -82,6 +82,18 @@ DeclaredCounts off_header(const fs::path& path, std::istream& in) {
   }
   counts.vertices = parse_count(path, tokens[0], "vertex");
   counts.faces = parse_count(path, tokens[1], "face");
+  // OpenMesh reads one vertex, then one face, per line, and makes up what a
+  // missing line would hold (garbage, differing from build to build): fewer
+  // data lines than that is a truncated file.
+  std::size_t data_lines = 0;
+  for (std::string line; std::getline(in, line);) {
+    const std::size_t first = line.find_first_not_of(" \t\r");
+    if (first != std::string::npos && line[first] != '#') ++data_lines;
+  }
+  if (data_lines < *counts.vertices + *counts.faces)
+    fail(path, "truncated: the header declares " + std::to_string(*counts.vertices) +
+                   " vertices and " + std::to_string(*counts.faces) + " faces but only " +
+                   std::to_string(data_lines) + " lines of data follow");
   return counts;
 }
 

@@ -1,7 +1,12 @@
-// Sections: settings from the properties; the surface and its arrays; the
-// processes' agreement each frame; drawing; after FXAA; compositing under
-// MPI.
+// Sections: settings from the properties; after FXAA; one frame (the order
+// of its steps). The surface and its colours, the processes' agreement and
+// compositing, and ParaView's camera are units of their own (IBFVSSurface,
+// IBFVSRanks, IBFVSView).
 #include "vtkIBFVSMapper.h"
+
+#include "IBFVSRanks.h"
+#include "IBFVSSurface.h"
+#include "IBFVSView.h"
 
 #include <epoxy/gl.h>
 
@@ -20,30 +25,19 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
-#include "ibfvs/core/fields/vector_field.h"
-#include "ibfvs/core/image/composite.h"
 #include "ibfvs/core/scene/scene.h"
 #include "ibfvs/core/scene/scene_prep.h"
 #include "ibfvs/core/support/error.h"
 #include "ibfvs/gl/objects.h"
 #include "ibfvs/render/session.h"
-#include "ibfvs/vtk/vtk_io.h"
 
 #include "vtkActor.h"
 #include "vtkCallbackCommand.h"
-#include "vtkCamera.h"
-#include "vtkColorTransferFunction.h"
 #include "vtkCommand.h"
 #include "vtkDataObject.h"
-#include "vtkLookupTable.h"
-#include "vtkMath.h"
-#include "vtkMatrix3x3.h"
-#include "vtkMatrix4x4.h"
 #include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
-#include "vtkOpenGLActor.h"
-#include "vtkOpenGLCamera.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLState.h"
 #include "vtkProperty.h"
@@ -54,42 +48,6 @@
 #include "vtkWeakPointer.h"
 
 vtkStandardNewMacro(vtkIBFVSMapper);
-
-namespace {
-
-// The values each rank contributes to the frame's first reduction (a
-// maximum): whether some rank cannot draw the texture; whether the texture
-// starts afresh (a new seed, a first surface), the view's size changed, the
-// noise grid changed, or some rank's data changed (all then do alike, so
-// that the frame counters and noise stay equal), and moved its points; the
-// whole surface's speed and bounds.
-enum Header {
-  kBad,
-  kRestart,
-  kResize,
-  kRegrid,
-  kChanged,
-  kMoved,
-  kSpeed,
-  kMinX,
-  kMinY,
-  kMinZ,  // negated
-  kMaxX,
-  kMaxY,
-  kMaxZ,
-  kHeaderSize
-};
-
-glm::mat4 from_vtk_transposed(vtkMatrix4x4* m) {
-  // GetKeyMatrices hands matrices transposed for OpenGL: their storage is
-  // the column-major order glm reads.
-  glm::mat4 out;
-  for (int c = 0; c < 4; ++c)
-    for (int r = 0; r < 4; ++r) out[c][r] = static_cast<float>(m->GetElement(c, r));
-  return out;
-}
-
-}  // namespace
 
 class vtkIBFVSMapper::Internals {
  public:
@@ -251,149 +209,6 @@ const char* vtkIBFVSMapper::GetProblem() {
   return this->Internal->last_problem.c_str();
 }
 
-// ------------------------------------------------------------ the surface
-
-namespace {
-
-std::string array_names(const ibfvs::TriMesh& mesh) {
-  std::string names;
-  const auto add = [&](const std::string& name, int components) {
-    names += (names.empty() ? "" : ", ") + name + " (" + std::to_string(components) + ")";
-  };
-  for (const auto& a : mesh.scalars) add(a.first, 1);
-  for (const auto& a : mesh.vector_arrays) add(a.first, 3);
-  for (const auto& a : mesh.other_arrays) add(a.first, a.second);
-  return names.empty() ? "none" : names;
-}
-
-// The surface of this rank's piece with the chosen vectors; `problem` says
-// why there is none. An empty piece is no problem (null mesh).
-std::shared_ptr<ibfvs::TriMesh> take_surface(vtkDataObject* input, const std::string& vectors,
-                                             bool cells_apart, std::string& problem, float& speed) {
-  problem.clear();
-  speed = 0.0f;
-  if (!input || input->GetNumberOfElements(vtkDataObject::POINT) == 0) {
-    return nullptr;
-  }
-  try {
-    auto mesh =
-        std::make_shared<ibfvs::TriMesh>(ibfvs::vtk::surface_mesh(input, "the input", cells_apart));
-    bool any_vectors = false;
-    for (const auto& a : mesh->vector_arrays) any_vectors = any_vectors || a.first != "Normals";
-    if (!any_vectors) {
-      problem =
-          "the data has no 3-component array to take as vectors (arrays: " + array_names(*mesh) +
-          ")";
-      return nullptr;
-    }
-    if (vectors.empty()) {
-      problem =
-          "no vector array chosen: set Vectors (SelectInputVectors) to a point or cell "
-          "array of 3 components (arrays: " +
-          array_names(*mesh) + ")";
-      return nullptr;
-    }
-    const auto it = mesh->vector_arrays.find(vectors);
-    if (it == mesh->vector_arrays.end()) {
-      if (mesh->scalars.count(vectors))
-        problem = "the array '" + vectors + "' has 1 component; IBFVS needs 3-component vectors";
-      else if (const auto other = mesh->other_arrays.find(vectors);
-               other != mesh->other_arrays.end())
-        problem = "the array '" + vectors + "' has " + std::to_string(other->second) +
-                  " components; IBFVS needs 3-component vectors";
-      else
-        problem = "no array named '" + vectors + "' (arrays: " + array_names(*mesh) + ")";
-      return nullptr;
-    }
-    mesh->vectors = it->second;
-    for (const glm::vec3& v : mesh->vectors) {
-      const float s = glm::length(v);
-      if (std::isfinite(s)) speed = std::max(speed, s);
-    }
-    // Normals from the data where it has them (ParaView's geometry filter,
-    // or a filter that computed them with ghost cells): pieces then shade
-    // alike along their boundaries.
-    if (const auto n = mesh->vector_arrays.find("Normals"); n != mesh->vector_arrays.end()) {
-      mesh->normals = n->second;
-      for (glm::vec3& v : mesh->normals) {
-        const float l = glm::length(v);
-        v = l > 0.0f && std::isfinite(l) ? v / l : glm::vec3(0.0f, 0.0f, 1.0f);
-      }
-    }
-    return mesh;
-  } catch (const std::exception& e) {
-    problem = e.what();
-    return nullptr;
-  }
-}
-
-// Whether the Surface representation would colour by a cell array: what
-// ParaView's ColorBy(("CELLS", name)) sets.
-bool colours_cells(int scalar_mode) {
-  return scalar_mode == VTK_SCALAR_MODE_USE_CELL_FIELD_DATA ||
-         scalar_mode == VTK_SCALAR_MODE_USE_CELL_DATA;
-}
-
-// The colour ParaView's table gives values it cannot map (NaN).
-std::optional<glm::vec3> nan_colour(vtkScalarsToColors* lut) {
-  double c[3];
-  if (auto* f = vtkColorTransferFunction::SafeDownCast(lut)) {
-    f->GetNanColor(c);
-  } else if (auto* t = vtkLookupTable::SafeDownCast(lut)) {
-    const double* rgba = t->GetNanColor();
-    std::copy(rgba, rgba + 3, c);
-  } else {
-    return std::nullopt;
-  }
-  return glm::vec3(c[0], c[1], c[2]);
-}
-
-// Positions in ParaView's lookup table for each vertex (of the prepared
-// mesh, in its order), and the table at 256 points: the colour of a scalar
-// the way the Surface representation maps it (linear or log scale,
-// magnitude or component of a vector array). NaN stays NaN: the shader then
-// shows the surface colour, which the caller sets to the table's NaN colour.
-bool map_colours(const ibfvs::TriMesh& mesh, const char* name, vtkScalarsToColors* lut,
-                 std::vector<float>& t, std::vector<glm::vec3>& table) {
-  if (!name || !*name || !lut) return false;
-  std::vector<float> values;
-  if (const auto s = mesh.scalars.find(name); s != mesh.scalars.end()) {
-    values = s->second;
-  } else if (const auto v = mesh.vector_arrays.find(name); v != mesh.vector_arrays.end()) {
-    const bool component = lut->GetVectorMode() == vtkScalarsToColors::COMPONENT;
-    const int c = std::clamp(lut->GetVectorComponent(), 0, 2);
-    values.reserve(v->second.size());
-    for (const glm::vec3& x : v->second) values.push_back(component ? x[c] : glm::length(x));
-  } else {
-    return false;
-  }
-  const double* range = lut->GetRange();
-  const bool log = lut->UsingLogScale() != 0 && range[0] > 0.0 && range[1] > 0.0;
-  const auto f = [log](double x) { return log ? std::log10(x) : x; };
-  const double lo = f(range[0]), hi = f(range[1]);
-  const double span = hi > lo ? hi - lo : 1.0;
-  t.resize(values.size());
-  for (std::size_t i = 0; i < values.size(); ++i) {
-    if (std::isnan(values[i])) {
-      t[i] = values[i];
-      continue;
-    }
-    const double x = log && values[i] <= 0.0f ? lo : f(values[i]);
-    const double u = (x - lo) / span;
-    t[i] = std::isfinite(u) ? static_cast<float>(std::clamp(u, 0.0, 1.0)) : 0.0f;
-  }
-  table.resize(256);
-  for (int i = 0; i < 256; ++i) {
-    const double u = lo + span * i / 255.0;
-    double rgb[3];
-    lut->GetColor(log ? std::pow(10.0, u) : u, rgb);
-    table[static_cast<std::size_t>(i)] = glm::vec3(rgb[0], rgb[1], rgb[2]);
-  }
-  return true;
-}
-
-}  // namespace
-
 // ------------------------------------------------------------ after FXAA
 
 // ParaView's views antialias by default with FXAA, an image-space filter the
@@ -439,168 +254,44 @@ void vtkIBFVSMapper::RedrawAfterFXAA() {
   in.window->GetState()->Reset();
 }
 
-// ------------------------------------------------------------ under MPI
-
-// After each frame, F_t (and F, where the contrast statistics are due) is
-// composited by nearest depth across the ranks; an empty piece takes part
-// with empty images.
-void vtkIBFVSMapper::CompositeFrame(vtkMultiProcessController* controller) {
-  Internals& in = *this->Internal;
-  ibfvs::Session* session = in.session.get();
-  const ibfvs::gl::SavedState saved;  // the reads bind the library's framebuffers
-  const int w = in.width, h = in.height;
-  ibfvs::ImageF depth = session ? session->renderer().read_depth() : ibfvs::ImageF(w, h, 1, 1.0f);
-  ibfvs::ImageF texture = session ? session->renderer().read_texture_raw()
-                                  : ibfvs::ImageF(w, h, ibfvs::IbfvsRenderer::kRawChannels, 0.0f);
-  // Every rank counts its renderer's frames alike: the statistics are due on the same ones.
-  const bool statistics =
-      in.scene.contrast > 0.0f && in.renderer_frame % ibfvs::IbfvsRenderer::kStatsEvery == 0;
-  ibfvs::ImageF output;
-  std::vector<ibfvs::ImageF*> images{&texture};
-  if (statistics) {
-    output = session ? session->renderer().read_output_raw() : ibfvs::ImageF(w, h, 4, 0.0f);
-    images.push_back(&output);
-  }
-  ibfvs::CompositeGroup group;
-  group.rank = controller->GetLocalProcessId();
-  group.size = controller->GetNumberOfProcesses();
-  group.min_all = [controller](std::span<std::uint64_t> values) {
-    std::vector<unsigned long> send(values.begin(), values.end());
-    controller->AllReduce(send.data(), reinterpret_cast<unsigned long*>(values.data()),
-                          static_cast<vtkIdType>(values.size()), vtkCommunicator::MIN_OP);
-  };
-  group.sum_all = [controller](std::span<float> values) {
-    std::vector<float> send(values.begin(), values.end());
-    controller->AllReduce(send.data(), values.data(), static_cast<vtkIdType>(values.size()),
-                          vtkCommunicator::SUM_OP);
-  };
-  ibfvs::composite_nearest(images, depth, group);
-  if (session) {
-    session->renderer().write_texture_raw(texture);
-    if (statistics) {
-      session->renderer().write_output_raw(output);
-      session->renderer().run_deferred_statistics();
-    }
-  }
-}
-
 // ------------------------------------------------------------ one frame
 
-void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor) {
+// This process's surface again (the data or the vectors changed): whether
+// the texture must take on a change, and whether the points moved.
+void vtkIBFVSMapper::TakeSurface(vtkDataObject* input, vtkMTimeType input_time, bool cells_apart) {
   Internals& in = *this->Internal;
-  in.redraw = false;
-  auto* window = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
-  // Picking, and translucency (depth peeling draws a different number of
-  // times on each rank): the plain surface, decided alike on every rank
-  // before any collective.
-  if (ren->GetSelector() || !window || actor->GetProperty()->GetOpacity() < 1.0) {
-    in.last_problem = ren->GetSelector() ? "" : "IBFVS draws opaque surfaces (Opacity 1)";
-    this->Superclass::Render(ren, actor);
-    return;
+  in.retake = false;
+  in.input = input;
+  in.input_time = input_time;
+  in.input_vectors = in.vectors;
+  in.cells_apart = cells_apart;
+  std::shared_ptr<ibfvs::TriMesh> last = std::move(in.mesh);
+  in.mesh = ibfvs::paraview::take_surface(input, in.vectors, cells_apart, in.problem, in.speed);
+  // The same content again (a time within the same step, a pipeline that
+  // ran again): nothing changed for the texture.
+  const bool same = last && in.mesh && last->positions == in.mesh->positions &&
+                    last->triangles == in.mesh->triangles && last->vectors == in.mesh->vectors &&
+                    last->scalars == in.mesh->scalars &&
+                    last->vector_arrays == in.mesh->vector_arrays;
+  if (in.mesh && !in.mesh->positions.empty()) {
+    const ibfvs::Bounds bounds = ibfvs::mesh_bounds(*in.mesh);
+    in.lower = bounds.min;
+    in.upper = bounds.max;
   }
-  in.window = window;
+  in.colour_key.clear();
+  in.data_changed = in.data_changed || !same;
+  in.points_moved = in.points_moved || (last && in.mesh && last->triangles == in.mesh->triangles &&
+                                        last->positions != in.mesh->positions);
+}
 
-  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
-  const int ranks = controller ? controller->GetNumberOfProcesses() : 1;
-
-  // ---- this rank's surface (again only when the data or the vectors changed)
-  vtkDataObject* input = this->GetInputDataObject(0, 0);
-  const vtkMTimeType input_time = input ? input->GetMTime() : 0;
-  const char* colour_array = this->GetScalarVisibility() ? this->GetArrayName() : nullptr;
-  const bool cells_apart = colour_array && *colour_array && colours_cells(this->GetScalarMode());
-  // Not every frame while the surface cannot be drawn (bad vectors): taking
-  // it is most of such a frame (motorbike: 500 ms against 120 for Surface).
-  if (in.retake || input != in.input || input_time != in.input_time ||
-      in.vectors != in.input_vectors || cells_apart != in.cells_apart) {
-    in.retake = false;
-    in.input = input;
-    in.input_time = input_time;
-    in.input_vectors = in.vectors;
-    in.cells_apart = cells_apart;
-    std::shared_ptr<ibfvs::TriMesh> last = std::move(in.mesh);
-    in.mesh = take_surface(input, in.vectors, cells_apart, in.problem, in.speed);
-    // The same content again (a time within the same step, a pipeline that
-    // ran again): nothing changed for the texture.
-    const bool same = last && in.mesh && last->positions == in.mesh->positions &&
-                      last->triangles == in.mesh->triangles && last->vectors == in.mesh->vectors &&
-                      last->scalars == in.mesh->scalars &&
-                      last->vector_arrays == in.mesh->vector_arrays;
-    if (in.mesh && !in.mesh->positions.empty()) {
-      in.lower = in.upper = in.mesh->positions.front();
-      for (const glm::vec3& p : in.mesh->positions) {
-        in.lower = glm::min(in.lower, p);
-        in.upper = glm::max(in.upper, p);
-      }
-    }
-    in.colour_key.clear();
-    in.data_changed = in.data_changed || !same;
-    in.points_moved =
-        in.points_moved || (last && in.mesh && last->triangles == in.mesh->triangles &&
-                            last->positions != in.mesh->positions);
-  }
-  if (in.problem.empty() && epoxy_gl_version() < 45) {
-    in.problem = "needs OpenGL 4.5 (this context has " + std::to_string(epoxy_gl_version() / 10) +
-                 "." + std::to_string(epoxy_gl_version() % 10) + ")";
-  }
-
-  int width = 0, height = 0, x0 = 0, y0 = 0;
-  ren->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
-  width = std::max(width, 1);
-  height = std::max(height, 1);
-
-  // ---- the ranks agree: all draw the texture or none, all take a change alike
-  double header[kHeaderSize];
-  header[kBad] = in.problem.empty() ? 0.0 : 1.0;
-  header[kRestart] = in.restart || (in.mesh && !in.session) ? 1.0 : 0.0;
-  header[kResize] = width != in.width || height != in.height ? 1.0 : 0.0;
-  header[kRegrid] = in.regrid ? 1.0 : 0.0;
-  header[kChanged] = in.data_changed ? 1.0 : 0.0;
-  header[kMoved] = in.points_moved ? 1.0 : 0.0;
-  header[kSpeed] = in.speed;
-  for (int k = 0; k < 3; ++k) {
-    header[kMinX + k] = -1e300;
-    header[kMaxX + k] = -1e300;
-  }
-  if (in.mesh) {
-    for (int k = 0; k < 3; ++k) {
-      header[kMinX + k] = -static_cast<double>(in.lower[k]);
-      header[kMaxX + k] = static_cast<double>(in.upper[k]);
-    }
-  }
-  if (ranks > 1) {
-    double global[kHeaderSize];
-    controller->AllReduce(header, global, kHeaderSize, vtkCommunicator::MAX_OP);
-    std::copy(global, global + kHeaderSize, header);
-  }
-  if (header[kBad] > 0.0) {
-    const std::string problem =
-        !in.problem.empty()
-            ? in.problem
-            : std::string(
-                  "another process's piece cannot be drawn with IBFVS (its warning says why)");
-    if (problem != in.warned) {
-      vtkWarningMacro(<< "IBFVS: " << problem << "; drawing the plain surface.");
-      in.warned = problem;
-    }
-    in.last_problem = problem;
-    in.session.reset();
-    this->Superclass::Render(ren, actor);
-    return;
-  }
-  in.warned.clear();
-  in.last_problem.clear();
-
-  // ---- the session: made, or taking on a new size, noise grid or data
-  // (the texture goes on from where it is; only a restart starts afresh).
-  // The texture frames of this render: one, and at a change of the data the
-  // frames the renders of the last data fell short of Frames Per Step
-  // (ibfvs::FramePacer: Save Animation gives each step all of them at its
-  // own data, Play and Sequence mode one a render), all of them where the
-  // points moved.
-  const bool restart = header[kRestart] > 0.0;
-  const bool changed = header[kChanged] > 0.0 || restart;
-  const bool new_renderer = restart || header[kResize] > 0.0 || header[kRegrid] > 0.0;
-  const int frames = in.pacer.next(changed, restart, header[kMoved] > 0.0);
+// The session made (a restart, a first surface), or taking on a new size,
+// noise grid or data as all processes agreed: the texture goes on from where
+// it is, only a restart starts it afresh.
+void vtkIBFVSMapper::UpdateSession(const ibfvs::paraview::Agreement& all, int width, int height) {
+  Internals& in = *this->Internal;
+  const bool restart = all.restart;
+  const bool changed = all.changed || restart;
+  const bool new_renderer = restart || all.resize || all.regrid;
   try {
     if (restart || (!in.mesh && in.session)) {
       in.session.reset();
@@ -615,8 +306,8 @@ void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor) {
             std::make_unique<ibfvs::Session>(ibfvs::prepare_scene(s, *in.mesh, "the input"));
       }
     } else if (in.session) {
-      if (header[kResize] > 0.0) in.session->resize(width, height);
-      if (header[kRegrid] > 0.0) {
+      if (all.resize) in.session->resize(width, height);
+      if (all.regrid) {
         in.session->scene().scene.scale = in.scene.scale;
         in.session->scene().settings.noise.scale = in.scene.scale;
         in.session->rebuild(false);
@@ -641,80 +332,157 @@ void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor) {
   in.regrid = false;
   in.data_changed = false;
   in.points_moved = false;
+}
+
+// The settings, ParaView's colours and dt for this frame's session (which
+// must exist); the view to draw it in. `deferred`: the statistics wait for
+// the composite (several processes).
+ibfvs::ViewState vtkIBFVSMapper::ApplySettings(vtkRenderer* ren, vtkActor* actor,
+                                               const char* colour_array,
+                                               const ibfvs::paraview::Agreement& all, int width,
+                                               int height, bool deferred) {
+  Internals& in = *this->Internal;
+  ibfvs::Session* session = in.session.get();
+  const float diagonal = all.diagonal();
+  if (diagonal > 0.0f && std::isfinite(diagonal))
+    session->renderer().set_probe_length(1e-3f * diagonal);
+  ibfvs::RenderSettings settings = session->renderer().settings();
+  const ibfvs::RenderSettings before = settings;
+  ibfvs::apply_texture_settings(in.scene, settings);
+  double diffuse[3];
+  actor->GetProperty()->GetDiffuseColor(diffuse);
+  settings.surface_color = glm::vec3(diffuse[0], diffuse[1], diffuse[2]);
+  // Colour by ParaView's own colour map, when the Surface representation
+  // would, at the prepared mesh's vertices (ordered for the GPU: not the
+  // input's order).
+  vtkScalarsToColors* lut = this->GetLookupTable();
+  const std::string key = std::string(colour_array ? colour_array : "") + "|" +
+                          std::to_string(lut ? lut->GetMTime() : 0) + "|" +
+                          std::to_string(this->GetScalarMode());
+  if (key != in.colour_key) {
+    in.colour_key = key;
+    in.colour_table.clear();
+    if (ibfvs::paraview::map_colours(*session->scene().mesh, colour_array, lut, in.colour_t,
+                                     in.colour_table))
+      session->renderer().set_scalars(in.colour_t, {});
+  }
+  if (!in.colour_table.empty())
+    if (const std::optional<glm::vec3> nan = ibfvs::paraview::nan_colour(lut))
+      settings.surface_color = *nan;
+  settings.use_color = !in.colour_table.empty();
+  settings.color_table = in.colour_table;
+  settings.color_range = glm::vec2(0.0f, 1.0f);
+  if (in.settings_changed || settings.use_color != before.use_color ||
+      settings.color_table != before.color_table ||
+      settings.surface_color != before.surface_color) {
+    session->renderer().update_settings(settings);
+    in.settings_changed = false;
+  }
+
+  const ibfvs::ViewState view = ibfvs::paraview::view_of(ren, actor);
+  // dt: the fastest vector of the whole surface moves StepPixels pixels
+  // at the focal point (every vector does, normalised in image space).
+  const double world_per_pixel = ibfvs::paraview::world_per_pixel(ren, width, height);
+  float dt = 0.0f;
+  if (in.scene.step > 0.0f && all.speed > 0.0f)
+    dt = in.scene.image_normalize ? 1.0f
+                                  : static_cast<float>(in.scene.step * world_per_pixel / all.speed);
+  session->set_dt(dt);
+  session->renderer().defer_statistics(deferred);
+  return view;
+}
+
+void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor) {
+  Internals& in = *this->Internal;
+  in.redraw = false;
+  auto* window = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
+  // Picking, and translucency (depth peeling draws a different number of
+  // times on each rank): the plain surface, decided alike on every rank
+  // before any collective.
+  if (ren->GetSelector() || !window || actor->GetProperty()->GetOpacity() < 1.0) {
+    in.last_problem = ren->GetSelector() ? "" : "IBFVS draws opaque surfaces (Opacity 1)";
+    this->Superclass::Render(ren, actor);
+    return;
+  }
+  in.window = window;
+
+  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+  const int ranks = controller ? controller->GetNumberOfProcesses() : 1;
+
+  // ---- this rank's surface (again only when the data or the vectors changed)
+  vtkDataObject* input = this->GetInputDataObject(0, 0);
+  const vtkMTimeType input_time = input ? input->GetMTime() : 0;
+  const char* colour_array = this->GetScalarVisibility() ? this->GetArrayName() : nullptr;
+  const bool cells_apart =
+      colour_array && *colour_array && ibfvs::paraview::colours_cells(this->GetScalarMode());
+  // Not every frame while the surface cannot be drawn (bad vectors): taking
+  // it is most of such a frame (motorbike: 500 ms against 120 for Surface).
+  if (in.retake || input != in.input || input_time != in.input_time ||
+      in.vectors != in.input_vectors || cells_apart != in.cells_apart) {
+    this->TakeSurface(input, input_time, cells_apart);
+  }
+  if (in.problem.empty() && epoxy_gl_version() < 45) {
+    in.problem = "needs OpenGL 4.5 (this context has " + std::to_string(epoxy_gl_version() / 10) +
+                 "." + std::to_string(epoxy_gl_version() % 10) + ")";
+  }
+
+  int width = 0, height = 0, x0 = 0, y0 = 0;
+  ren->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
+  width = std::max(width, 1);
+  height = std::max(height, 1);
+
+  // ---- the ranks agree: all draw the texture or none, all take a change alike
+  ibfvs::paraview::Agreement mine;
+  mine.bad = !in.problem.empty();
+  mine.restart = in.restart || (in.mesh && !in.session);
+  mine.resize = width != in.width || height != in.height;
+  mine.regrid = in.regrid;
+  mine.changed = in.data_changed;
+  mine.moved = in.points_moved;
+  mine.speed = in.speed;
+  if (in.mesh) mine.bounds = {in.lower, in.upper};
+  const ibfvs::paraview::Agreement all = ibfvs::paraview::agree(mine, controller);
+  if (all.bad) {
+    const std::string problem =
+        !in.problem.empty()
+            ? in.problem
+            : std::string(
+                  "another process's piece cannot be drawn with IBFVS (its warning says why)");
+    if (problem != in.warned) {
+      vtkWarningMacro(<< "IBFVS: " << problem << "; drawing the plain surface.");
+      in.warned = problem;
+    }
+    in.last_problem = problem;
+    in.session.reset();
+    this->Superclass::Render(ren, actor);
+    return;
+  }
+  in.warned.clear();
+  in.last_problem.clear();
+
+  // ---- the session: made, or taking on a new size, noise grid or data
+  // (the texture goes on from where it is; only a restart starts afresh).
+  // The texture frames of this render: one, and at a change of the data the
+  // frames the renders of the last data fell short of Frames Per Step
+  // (ibfvs::FramePacer: Save Animation gives each step all of them at its
+  // own data, Play and Sequence mode one a render), all of them where the
+  // points moved.
+  const int frames = in.pacer.next(all.changed || all.restart, all.restart, all.moved);
+  this->UpdateSession(all, width, height);
 
   ibfvs::Session* session = in.session.get();
   ibfvs::ViewState view;
   if (session) {
-    const double dx = header[kMaxX] + header[kMinX], dy = header[kMaxY] + header[kMinY],
-                 dz = header[kMaxZ] + header[kMinZ];
-    const double diagonal = std::sqrt(dx * dx + dy * dy + dz * dz);
-    if (diagonal > 0.0 && std::isfinite(diagonal))
-      session->renderer().set_probe_length(static_cast<float>(1e-3 * diagonal));
-    ibfvs::RenderSettings settings = session->renderer().settings();
-    const ibfvs::RenderSettings before = settings;
-    ibfvs::apply_texture_settings(in.scene, settings);
-    double diffuse[3];
-    actor->GetProperty()->GetDiffuseColor(diffuse);
-    settings.surface_color = glm::vec3(diffuse[0], diffuse[1], diffuse[2]);
-    // Colour by ParaView's own colour map, when the Surface representation
-    // would, at the prepared mesh's vertices (ordered for the GPU: not the
-    // input's order).
-    vtkScalarsToColors* lut = this->GetLookupTable();
-    const std::string key = std::string(colour_array ? colour_array : "") + "|" +
-                            std::to_string(lut ? lut->GetMTime() : 0) + "|" +
-                            std::to_string(this->GetScalarMode());
-    if (key != in.colour_key) {
-      in.colour_key = key;
-      in.colour_table.clear();
-      if (map_colours(*session->scene().mesh, colour_array, lut, in.colour_t, in.colour_table))
-        session->renderer().set_scalars(in.colour_t, {});
-    }
-    if (!in.colour_table.empty())
-      if (const std::optional<glm::vec3> nan = nan_colour(lut)) settings.surface_color = *nan;
-    settings.use_color = !in.colour_table.empty();
-    settings.color_table = in.colour_table;
-    settings.color_range = glm::vec2(0.0f, 1.0f);
-    if (in.settings_changed || settings.use_color != before.use_color ||
-        settings.color_table != before.color_table ||
-        settings.surface_color != before.surface_color) {
-      session->renderer().update_settings(settings);
-      in.settings_changed = false;
-    }
-
-    // ParaView's camera and the actor's transform.
-    vtkMatrix4x4 *wcvc = nullptr, *vcdc = nullptr, *wcdc = nullptr;
-    vtkMatrix3x3* normal = nullptr;
-    auto* camera = vtkOpenGLCamera::SafeDownCast(ren->GetActiveCamera());
-    camera->GetKeyMatrices(ren, wcvc, normal, vcdc, wcdc);
-    view = ibfvs::ViewState{from_vtk_transposed(wcvc), from_vtk_transposed(vcdc)};
-    if (!actor->GetIsIdentity()) {
-      vtkMatrix4x4* mcwc = nullptr;
-      vtkMatrix3x3* actor_normal = nullptr;
-      static_cast<vtkOpenGLActor*>(actor)->GetKeyMatrices(mcwc, actor_normal);
-      view.view = view.view * from_vtk_transposed(mcwc);
-    }
-    // dt: the fastest vector of the whole surface moves StepPixels pixels
-    // at the focal point (every vector does, normalised in image space).
-    const double extent =
-        camera->GetParallelProjection()
-            ? 2.0 * camera->GetParallelScale()
-            : 2.0 * camera->GetDistance() *
-                  std::tan(vtkMath::RadiansFromDegrees(camera->GetViewAngle()) / 2.0);
-    const double pixels = camera->GetUseHorizontalViewAngle() ? width : height;
-    const double world_per_pixel = extent / std::max(pixels, 1.0);
-    float dt = 0.0f;
-    if (in.scene.step > 0.0f && header[kSpeed] > 0.0)
-      dt = in.scene.image_normalize
-               ? 1.0f
-               : static_cast<float>(in.scene.step * world_per_pixel / header[kSpeed]);
-    session->set_dt(dt);
-    session->renderer().defer_statistics(ranks > 1);
+    view = this->ApplySettings(ren, actor, colour_array, all, width, height, ranks > 1);
   }
 
   // ---- the frames, each composited under MPI (every rank renders alike)
   for (int k = 0; k < frames; ++k) {
     if (session) session->render(view);
-    if (ranks > 1) this->CompositeFrame(controller);
+    if (ranks > 1)
+      ibfvs::paraview::composite_frame(
+          controller, session, width, height,
+          in.scene.contrast > 0.0f && in.renderer_frame % ibfvs::IbfvsRenderer::kStatsEvery == 0);
     ++in.frame;
     ++in.renderer_frame;
   }

@@ -16,7 +16,12 @@
 #include "IBFVSRepresentationsModule.h"  // export macro
 #include "vtkCompositePolyDataMapper2.h"
 
-class vtkMultiProcessController;
+namespace ibfvs {
+struct ViewState;
+namespace paraview {
+struct Agreement;
+}
+}  // namespace ibfvs
 
 class IBFVSREPRESENTATIONS_EXPORT vtkIBFVSMapper : public vtkCompositePolyDataMapper2 {
  public:
@@ -64,8 +69,12 @@ class IBFVSREPRESENTATIONS_EXPORT vtkIBFVSMapper : public vtkCompositePolyDataMa
   vtkIBFVSMapper(const vtkIBFVSMapper&) = delete;
   void operator=(const vtkIBFVSMapper&) = delete;
 
+  void TakeSurface(vtkDataObject* input, vtkMTimeType input_time, bool cells_apart);
+  void UpdateSession(const ibfvs::paraview::Agreement& all, int width, int height);
+  ibfvs::ViewState ApplySettings(vtkRenderer* ren, vtkActor* actor, const char* colour_array,
+                                 const ibfvs::paraview::Agreement& all, int width, int height,
+                                 bool deferred);
   void ObserveRenderer(vtkRenderer* ren);
-  void CompositeFrame(vtkMultiProcessController* controller);
   void RedrawAfterFXAA();
 
   class Internals;

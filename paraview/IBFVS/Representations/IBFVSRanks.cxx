@@ -1,0 +1,112 @@
+// The mapper's processes under MPI: their agreement before each frame, and
+// the compositing of the texture after it (vtkIBFVSMapper.cxx).
+#include "IBFVSRanks.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <glm/geometric.hpp>
+
+#include "ibfvs/core/image/composite.h"
+#include "ibfvs/gl/objects.h"
+#include "ibfvs/render/session.h"
+
+#include "vtkCommunicator.h"
+#include "vtkMultiProcessController.h"
+
+namespace ibfvs::paraview {
+namespace {
+
+// The agreement as one reduction (a maximum): flags as 0 or 1, the speed,
+// the bounds' lower corner negated (the maximum of the negation is the
+// minimum); no bounds as the lowest value.
+enum Slot {
+  kBad,
+  kRestart,
+  kResize,
+  kRegrid,
+  kChanged,
+  kMoved,
+  kSpeed,
+  kMinX,
+  kMaxX = kMinX + 3,
+  kSize = kMaxX + 3
+};
+constexpr double kNone = -1e300;
+
+}  // namespace
+
+float Agreement::diagonal() const {
+  return bounds ? glm::length(bounds->second - bounds->first) : 0.0f;
+}
+
+Agreement agree(const Agreement& mine, vtkMultiProcessController* controller) {
+  double slots[kSize];
+  const bool flags[] = {mine.bad, mine.restart, mine.resize, mine.regrid, mine.changed, mine.moved};
+  for (int k = 0; k < kSpeed; ++k) slots[k] = flags[k] ? 1.0 : 0.0;
+  slots[kSpeed] = mine.speed;
+  for (int k = 0; k < 3; ++k) {
+    slots[kMinX + k] = mine.bounds ? -static_cast<double>(mine.bounds->first[k]) : kNone;
+    slots[kMaxX + k] = mine.bounds ? static_cast<double>(mine.bounds->second[k]) : kNone;
+  }
+  if (controller && controller->GetNumberOfProcesses() > 1) {
+    double all[kSize];
+    controller->AllReduce(slots, all, kSize, vtkCommunicator::MAX_OP);
+    std::copy(all, all + kSize, slots);
+  }
+  Agreement out;
+  bool* const out_flags[] = {&out.bad,    &out.restart, &out.resize,
+                             &out.regrid, &out.changed, &out.moved};
+  for (int k = 0; k < kSpeed; ++k) *out_flags[k] = slots[k] > 0.0;
+  out.speed = static_cast<float>(slots[kSpeed]);
+  if (slots[kMaxX] > kNone) {
+    glm::vec3 lower, upper;
+    for (int k = 0; k < 3; ++k) {
+      lower[k] = static_cast<float>(-slots[kMinX + k]);
+      upper[k] = static_cast<float>(slots[kMaxX + k]);
+    }
+    out.bounds = {lower, upper};
+  }
+  return out;
+}
+
+void composite_frame(vtkMultiProcessController* controller, ibfvs::Session* session, int width,
+                     int height, bool statistics) {
+  const ibfvs::gl::SavedState saved;  // the reads bind the library's framebuffers
+  const int w = width, h = height;
+  ibfvs::ImageF depth = session ? session->renderer().read_depth() : ibfvs::ImageF(w, h, 1, 1.0f);
+  ibfvs::ImageF texture = session ? session->renderer().read_texture_raw()
+                                  : ibfvs::ImageF(w, h, ibfvs::IbfvsRenderer::kRawChannels, 0.0f);
+  ibfvs::ImageF output;
+  std::vector<ibfvs::ImageF*> images{&texture};
+  if (statistics) {
+    output = session ? session->renderer().read_output_raw() : ibfvs::ImageF(w, h, 4, 0.0f);
+    images.push_back(&output);
+  }
+  ibfvs::CompositeGroup group;
+  group.rank = controller->GetLocalProcessId();
+  group.size = controller->GetNumberOfProcesses();
+  group.min_all = [controller](std::span<std::uint64_t> values) {
+    std::vector<unsigned long> send(values.begin(), values.end());
+    controller->AllReduce(send.data(), reinterpret_cast<unsigned long*>(values.data()),
+                          static_cast<vtkIdType>(values.size()), vtkCommunicator::MIN_OP);
+  };
+  group.sum_all = [controller](std::span<float> values) {
+    std::vector<float> send(values.begin(), values.end());
+    controller->AllReduce(send.data(), values.data(), static_cast<vtkIdType>(values.size()),
+                          vtkCommunicator::SUM_OP);
+  };
+  ibfvs::composite_nearest(images, depth, group);
+  if (session) {
+    session->renderer().write_texture_raw(texture);
+    if (statistics) {
+      session->renderer().write_output_raw(output);
+      session->renderer().run_deferred_statistics();
+    }
+  }
+}
+
+}  // namespace ibfvs::paraview

@@ -1,0 +1,51 @@
+// The mapper's processes under MPI (VTK's global controller): their
+// agreement before each frame, so that all draw the texture or none and all
+// take a change alike (their frame counters and noise stay equal), and the
+// compositing of the texture after each frame, by nearest depth
+// (ibfvs/core/image/composite.h).
+#ifndef IBFVSRanks_h
+#define IBFVSRanks_h
+
+#include <optional>
+#include <utility>
+
+#include <glm/vec3.hpp>
+
+class vtkMultiProcessController;
+
+namespace ibfvs {
+class Session;
+}
+
+namespace ibfvs::paraview {
+
+/// What a process says before a frame; agree() gives every process the same.
+struct Agreement {
+  bool bad = false;      ///< a piece cannot be drawn with the texture: all draw plain
+  bool restart = false;  ///< the texture starts afresh (a new seed, a first surface)
+  bool resize = false;   ///< the view's size changed
+  bool regrid = false;   ///< the noise grid changed
+  bool changed = false;  ///< the data changed
+  bool moved = false;    ///< and its points moved
+  float speed = 0.0f;    ///< the fastest vector
+  /// The surface's bounds (lower, upper); none for an empty piece.
+  std::optional<std::pair<glm::vec3, glm::vec3>> bounds;
+  /// The length of the bounds' diagonal (0 without bounds).
+  [[nodiscard]] float diagonal() const;
+};
+
+/// Every process's agreement: any flag of any process, the fastest vector
+/// and the bounds of all pieces. One collective; without a controller, or
+/// alone, `mine`.
+Agreement agree(const Agreement& mine, vtkMultiProcessController* controller);
+
+/// After a frame: F_t (and F, where `statistics`, the contrast statistics,
+/// are due) composited by nearest depth across the processes, written back,
+/// and the statistics run on the composite. `session` is null for an empty
+/// piece, which takes part with empty images of width x height. Collective.
+void composite_frame(vtkMultiProcessController* controller, ibfvs::Session* session, int width,
+                     int height, bool statistics);
+
+}  // namespace ibfvs::paraview
+
+#endif

@@ -1,0 +1,57 @@
+// ParaView's camera as the library's view (vtkIBFVSMapper.cxx).
+#include "IBFVSView.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/mat4x4.hpp>
+
+#include "vtkActor.h"
+#include "vtkMath.h"
+#include "vtkMatrix3x3.h"
+#include "vtkMatrix4x4.h"
+#include "vtkOpenGLActor.h"
+#include "vtkOpenGLCamera.h"
+#include "vtkRenderer.h"
+
+namespace ibfvs::paraview {
+namespace {
+
+glm::mat4 from_vtk_transposed(vtkMatrix4x4* m) {
+  // GetKeyMatrices hands matrices transposed for OpenGL: their storage is
+  // the column-major order glm reads.
+  glm::mat4 out;
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r) out[c][r] = static_cast<float>(m->GetElement(c, r));
+  return out;
+}
+
+}  // namespace
+
+ibfvs::ViewState view_of(vtkRenderer* ren, vtkActor* actor) {
+  vtkMatrix4x4 *wcvc = nullptr, *vcdc = nullptr, *wcdc = nullptr;
+  vtkMatrix3x3* normal = nullptr;
+  auto* camera = vtkOpenGLCamera::SafeDownCast(ren->GetActiveCamera());
+  camera->GetKeyMatrices(ren, wcvc, normal, vcdc, wcdc);
+  ibfvs::ViewState view{from_vtk_transposed(wcvc), from_vtk_transposed(vcdc)};
+  if (!actor->GetIsIdentity()) {
+    vtkMatrix4x4* mcwc = nullptr;
+    vtkMatrix3x3* actor_normal = nullptr;
+    static_cast<vtkOpenGLActor*>(actor)->GetKeyMatrices(mcwc, actor_normal);
+    view.view = view.view * from_vtk_transposed(mcwc);
+  }
+  return view;
+}
+
+double world_per_pixel(vtkRenderer* ren, int width, int height) {
+  vtkCamera* camera = ren->GetActiveCamera();
+  const double extent =
+      camera->GetParallelProjection()
+          ? 2.0 * camera->GetParallelScale()
+          : 2.0 * camera->GetDistance() *
+                std::tan(vtkMath::RadiansFromDegrees(camera->GetViewAngle()) / 2.0);
+  const double pixels = camera->GetUseHorizontalViewAngle() ? width : height;
+  return extent / std::max(pixels, 1.0);
+}
+
+}  // namespace ibfvs::paraview

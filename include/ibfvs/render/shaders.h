@@ -62,7 +62,7 @@ std::string grid_fragment_source(Dialect dialect = Dialect::Gl45);
 std::string stats_fragment_source(bool mono_texture, Dialect dialect = Dialect::Gl45);
 /// Copies F and the surface's depth into a host's framebuffer (ParaView's),
 /// the background left as the host drew it; with u_interior 1 not at the
-/// surface's silhouettes (host_shader.cpp).
+/// surface's silhouettes (src/render/glsl/host_fragment.glsl).
 extern const char* const kHostFragment;
 
 }  // namespace ibfvs::shaders

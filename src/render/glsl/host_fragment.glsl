@@ -1,10 +1,7 @@
-// The host pass: F and the surface's depth into a host's framebuffer
-// (ParaView's), desktop GL only; the other passes' sources are in shaders.cpp.
-#include "ibfvs/render/shaders.h"
-
-namespace ibfvs::shaders {
-
-const char* const kHostFragment = R"(#version 450 core
+#version 450 core
+// Copies F and the surface's depth into a host's framebuffer (ParaView's),
+// the background left as the host drew it; with u_interior 1 not at the
+// surface's silhouettes. Desktop GL only.
 layout(binding = 0) uniform sampler2D u_output;
 layout(binding = 1) uniform sampler2D u_depth;
 uniform ivec2 u_origin;  // the host viewport's lower left corner
@@ -27,6 +24,3 @@ void main() {
   o_color = vec4(texelFetch(u_output, p, 0).rgb, 1.0);
   gl_FragDepth = d;
 }
-)";
-
-}  // namespace ibfvs::shaders

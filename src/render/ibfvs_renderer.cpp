@@ -11,6 +11,7 @@
 #include "ibfvs/core/texture/display.h"
 #include "ibfvs/render/pass_settings.h"
 #include "ibfvs/render/shaders.h"
+#include "ibfvs/render/texture_units.h"
 
 namespace ibfvs {
 namespace {
@@ -87,7 +88,7 @@ IbfvsRenderer::IbfvsRenderer(const RenderSettings& settings) : settings_(setting
   grid_spike_width_ = grid_program_.location("u_spike_width");
   grid_seed_ = grid_program_.location("u_seed");
   empty_vao_ = gl::VertexArray::create();
-  host_program_ = gl::Program(shaders::grid_vertex_source(), shaders::kHostFragment);
+  host_program_ = gl::Program(shaders::grid_vertex_source(), shaders::host_fragment_source());
   host_origin_ = host_program_.location("u_origin");
   host_interior_ = host_program_.location("u_interior");
   apply_settings();
@@ -317,7 +318,7 @@ void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
       gl::set_face_culling(0);
       grid_program_.use();
       grid_program_.set(grid_noise_time_, noise_time);
-      phases_.bind(0);
+      phases_.bind(units::kPhases);
       // Only the cells the surface can read: the whole grid is a full-screen
       // pass of two hashes per cell (in ParaView, 5 ms of the motorbike's
       // 90; the box saves 3 of them).
@@ -355,12 +356,12 @@ void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
       v.resolve.set(v.ru.tap_depth, tap_depth_[current_]);
       v.resolve.set(v.ru.new_tap_depth, tap_depth_[next]);
     }
-    texture_[current_].bind(0);
-    if (taps_[current_]) taps_[current_].bind(5);
-    grid_.bind(1);
-    color_map_.bind(2);
-    if (surface_image_) surface_image_.bind(3);
-    stats_.bind(4);
+    texture_[current_].bind(units::kPrevious);
+    if (taps_[current_]) taps_[current_].bind(units::kTaps);
+    grid_.bind(units::kGrid);
+    color_map_.bind(units::kColorMap);
+    if (surface_image_) surface_image_.bind(units::kSurfaceImage);
+    stats_.bind(units::kStats);
     vao_.bind();
     gl::draw_triangles(index_count_, true);
     if (v.resolve) resolve_pass(v, resolve_framebuffer_[next]);
@@ -420,8 +421,8 @@ void IbfvsRenderer::resolve_pass(const Variant& v, gl::Framebuffer& fb) {
   gl::test_depth_behind_surface(true);  // the surface's pixels, each once
   gl::scissor(true, surface_box_);
   v.resolve.use();  // the IBFVS pass's textures stay bound, units 0-5
-  gbuffer_[0].bind(6);
-  gbuffer_[1].bind(7);
+  gbuffer_[0].bind(units::kGBuffer0);
+  gbuffer_[1].bind(units::kGBuffer1);
   gl::draw_attributeless_triangle(empty_vao_);
   gl::scissor(false);
   gl::test_depth_behind_surface(false);
@@ -436,11 +437,11 @@ void IbfvsRenderer::display_pass(const Variant& v) {
   v.display.set(v.display_texture_shift, texture_shift_);
   // The taps it reads are the last frame's, stored under that frame's map.
   v.display.set(v.display_tap_depth, tap_depth_[current_]);
-  seed_.bind(1);
-  base_.bind(2);
-  stats_.bind(4);
-  taps_[current_].bind(5);
-  taps_[1 - current_].bind(3);  // this frame's: the flow's direction
+  seed_.bind(units::kStart);
+  base_.bind(units::kBase);
+  stats_.bind(units::kStats);
+  taps_[current_].bind(units::kTaps);
+  taps_[1 - current_].bind(units::kTapsNow);  // this frame's: the flow's direction
   gl::draw_attributeless_triangle(empty_vao_);
   gl::scissor(false);
   gl::test_depth_behind_surface(false);
@@ -523,8 +524,8 @@ void IbfvsRenderer::statistics_pass(int texture_index, int frame) {
   const auto f = static_cast<float>(frame);
   sp.program.set(sp.offset,
                  glm::vec2(std::fmod(f * 0.6180340f, 1.0f), std::fmod(f * 0.3819660f, 1.0f)));
-  texture_[texture_index].bind(0);
-  output_.bind(1);
+  texture_[texture_index].bind(units::kTexture);
+  output_.bind(units::kShown);
   gl::set_running_average(kStatsWeight);
   gl::draw_attributeless_triangle(empty_vao_);
   gl::set_running_average(0.0f);
@@ -676,8 +677,8 @@ void IbfvsRenderer::draw_to_host(glm::ivec2 origin, bool interior) const {
   host_program_.use();
   host_program_.set(host_origin_, origin);
   host_program_.set(host_interior_, interior ? 1 : 0);
-  output_.bind(0);
-  depth_.bind(1);
+  output_.bind(units::kOutput);
+  depth_.bind(units::kDepth);
   // Only where the surface can be: the pass writes gl_FragDepth, so no depth
   // test spares the rest (on the motorbike, in ParaView, a tenth of a frame).
   gl::scissor(true, surface_box_ + glm::ivec4(origin, 0, 0));

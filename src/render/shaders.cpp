@@ -8,6 +8,7 @@
 #include "glsl_sources.h"
 #include "ibfvs/core/texture/display.h"
 #include "ibfvs/render/pass_settings.h"
+#include "ibfvs/render/texture_units.h"
 
 namespace ibfvs::shaders {
 
@@ -16,13 +17,18 @@ namespace {
 // What differs between the dialects, in this one place: the version line,
 // WebGL2's required precisions, and sampler units, which GLSL ES 3.00 cannot
 // declare in the shader (layout(binding) is ES 3.10): an ES runtime sets
-// them by name (glUniform1i) to the numbers BINDING(n) gives here.
+// them by name (glUniform1i) to the numbers the UNIT_ defines give here.
 std::string prelude(Dialect dialect) {
-  if (dialect == Dialect::Es300)
-    return "#version 300 es\n"
-           "precision highp float;\nprecision highp int;\nprecision highp sampler2D;\n"
-           "#define BINDING(n)\n";
-  return "#version 450 core\n#define BINDING(n) layout(binding = n)\n";
+  std::string text =
+      dialect == Dialect::Es300
+          ? "#version 300 es\n"
+            "precision highp float;\nprecision highp int;\nprecision highp sampler2D;\n"
+            "#define BINDING(n)\n"
+          : "#version 450 core\n#define BINDING(n) layout(binding = n)\n";
+  // Every sampler's unit by name (texture_units.h): BINDING(UNIT_PREVIOUS).
+  for (const units::NamedUnit& u : units::kAll)
+    text += std::string("#define UNIT_") + u.name + " " + std::to_string(u.unit) + "\n";
+  return text;
 }
 
 std::string with_defines(const ShaderFeatures& features, const std::string& body, bool profile,
@@ -57,7 +63,9 @@ std::string with_defines(const ShaderFeatures& features, const std::string& body
 
 }  // namespace
 
-const char* const kHostFragment = glsl::host_fragment;
+std::string host_fragment_source() {
+  return prelude(Dialect::Gl45) + glsl::host_fragment;
+}
 
 namespace {
 

@@ -13,7 +13,7 @@ import { MeshoptDecoder } from "meshoptimizer/decoder";
 import { type Camera, type Look, type SceneHeader, type Uniform, decodeBase64, halfToFloat, view }
   from "./format";
 import { Surfaces } from "./surfaces";
-import { compile, framebuffer, locate, setUniform, texture } from "./webgl";
+import { bindSampler, compile, framebuffer, locate, setUniform, texture } from "./webgl";
 
 // ---------------------------------------------------------------- the page's elements
 
@@ -275,8 +275,7 @@ export class PageRenderer {
     gl.disable(gl.CULL_FACE);
     gl.useProgram(this.grid);
     gl.uniform1f(locate(gl, this.grid, "u_noise_time"), noiseTime);
-    gl.activeTexture(gl.TEXTURE0);
-    gl.bindTexture(gl.TEXTURE_2D, this.phases!);
+    bindSampler(gl, this.grid, "u_phases", this.phases!);
     gl.bindVertexArray(this.empty);
     gl.drawArrays(gl.TRIANGLES, 0, 3);
     // The IBFVS pass into F_t (next) and F.
@@ -313,16 +312,12 @@ export class PageRenderer {
     gl.uniform1f(at("u_noise_time"), noiseTime);
     this.tapDepth[next] = tapDepthMap(pr);
     gl.uniform2f(at("u_tap_depth"), ...this.tapDepth[next]);
-    const bind = (unit: number, t: WebGLTexture) => {
-      gl.activeTexture(gl.TEXTURE0 + unit);
-      gl.bindTexture(gl.TEXTURE_2D, t);
-    };
-    bind(0, this.textures[this.current]);
-    if (this.taps.length) bind(5, this.taps[this.current]);
-    bind(1, this.gridTexture!);
-    bind(2, this.colorMap);
-    if (this.surfaceImage) bind(3, this.surfaceImage);
-    bind(4, this.statsTexture);
+    bindSampler(gl, p, "u_previous", this.textures[this.current]);
+    if (this.taps.length) bindSampler(gl, p, "u_taps", this.taps[this.current]);
+    bindSampler(gl, p, "u_grid", this.gridTexture!);
+    bindSampler(gl, p, "u_color_map", this.colorMap);
+    if (this.surfaceImage) bindSampler(gl, p, "u_surface_image", this.surfaceImage);
+    bindSampler(gl, p, "u_stats", this.statsTexture);
     gl.bindFramebuffer(gl.FRAMEBUFFER, this.fbs[next]);
     gl.drawElements(gl.TRIANGLES, mesh.count, gl.UNSIGNED_INT, 0);
     gl.disable(gl.CULL_FACE);
@@ -335,11 +330,12 @@ export class PageRenderer {
       gl.useProgram(this.display);
       gl.uniform2f(locate(gl, this.display, "u_texture_shift"), 0, 0);
       gl.uniform2f(locate(gl, this.display, "u_tap_depth"), ...this.tapDepth[this.current]); // the last frame's taps
-      bind(1, this.seed!);
-      bind(2, this.base!);
-      bind(4, this.statsTexture);
-      bind(5, this.taps[this.current]);
-      bind(3, this.taps[next]); // this frame's: the flow's direction
+      const d = this.display;
+      bindSampler(gl, d, "u_start", this.seed!);
+      bindSampler(gl, d, "u_base", this.base!);
+      bindSampler(gl, d, "u_stats", this.statsTexture);
+      bindSampler(gl, d, "u_taps", this.taps[this.current]);
+      bindSampler(gl, d, "u_taps_now", this.taps[next]); // this frame's: the flow's direction
       gl.bindVertexArray(this.empty);
       gl.drawArrays(gl.TRIANGLES, 0, 3);
       gl.depthMask(true);
@@ -355,8 +351,8 @@ export class PageRenderer {
       gl.uniform1i(locate(gl, this.stats, "u_stats_size"), s.stats.size);
       const f = this.frame;
       gl.uniform2f(locate(gl, this.stats, "u_offset"), (f * 0.618034) % 1, (f * 0.381966) % 1);
-      bind(0, this.textures[next]);
-      bind(1, this.output);
+      bindSampler(gl, this.stats, "u_texture", this.textures[next]);
+      bindSampler(gl, this.stats, "u_shown", this.output);
       gl.enable(gl.BLEND);
       gl.blendColor(0, 0, 0, s.stats.weight);
       gl.blendFunc(gl.CONSTANT_ALPHA, gl.ONE_MINUS_CONSTANT_ALPHA);

@@ -1,5 +1,6 @@
 // WebGL2 objects for the page's renderer: programs (sampler units from the
-// generator's BINDING(n) marks), uniforms by name, textures, framebuffers.
+// generator's BINDING(UNIT_NAME) marks), textures bound to samplers by name,
+// uniforms by name, textures, framebuffers.
 import type { Uniform } from "./format";
 
 // ---------------------------------------------------------------- WebGL objects
@@ -17,12 +18,34 @@ export function compile(gl: WebGL2RenderingContext, vertex: string, fragment: st
   gl.linkProgram(program);
   if (!gl.getProgramParameter(program, gl.LINK_STATUS)) throw new Error("link: " + gl.getProgramInfoLog(program));
   // Sampler units: GLSL ES has no layout(binding); the sources keep the
-  // generator's BINDING(n) marks, and the units are set from them by name.
+  // generator's BINDING(UNIT_NAME) marks and its prelude defines each
+  // UNIT_NAME (the library's one table, texture_units.h): the units are set
+  // from them by name, and kept for bindSampler.
   gl.useProgram(program);
-  for (const source of [vertex, fragment])
-    for (const m of source.matchAll(/BINDING\((\d+)\)\s+uniform\s+\w+\s+(\w+)/g))
-      gl.uniform1i(gl.getUniformLocation(program, m[2]), parseInt(m[1], 10));
+  const units = new Map<string, number>();
+  for (const source of [vertex, fragment]) {
+    const defined = new Map<string, number>();
+    for (const m of source.matchAll(/#define (UNIT_\w+) (\d+)/g)) defined.set(m[1], parseInt(m[2], 10));
+    for (const m of source.matchAll(/BINDING\((\w+)\)\s+uniform\s+\w+\s+(\w+)/g)) {
+      const unit = defined.get(m[1]);
+      if (unit === undefined) throw new Error(`shader: ${m[2]}'s unit ${m[1]} is not defined`);
+      units.set(m[2], unit);
+      gl.uniform1i(gl.getUniformLocation(program, m[2]), unit);
+    }
+  }
+  samplerUnits.set(program, units);
   return program;
+}
+
+// Each program's samplers and their units (compile).
+const samplerUnits = new WeakMap<WebGLProgram, Map<string, number>>();
+
+/** Binds `t` to the sampler `name` of `program` (to its unit); nothing for a sampler the program does not declare. */
+export function bindSampler(gl: WebGL2RenderingContext, program: WebGLProgram, name: string, t: WebGLTexture): void {
+  const unit = samplerUnits.get(program)?.get(name);
+  if (unit === undefined) return;
+  gl.activeTexture(gl.TEXTURE0 + unit);
+  gl.bindTexture(gl.TEXTURE_2D, t);
 }
 
 // Uniform locations, looked up once per program and name (not every frame).

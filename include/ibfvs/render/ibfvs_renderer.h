@@ -1,23 +1,30 @@
 #pragma once
 // The IBFVS texture synthesis on OpenGL 4.5 (paper sections 3.2-3.3,
-// equations 10-13), one geometry pass per frame:
+// equations 10-13). A frame runs these passes, each compiled with only the
+// features in use (shaders.h; their samplers' units: texture_units.h):
 //
-//   clear F_t' and F to the background B, clear depth            (steps 2, 4)
-//   draw the mesh once into two colour attachments (MRT):
-//     t = T(r - v dt): homogeneous per vertex, divided per pixel   (step 3, eq. 13)
-//     F_t'(x) = (1 - alpha) F_t(t(x)) + alpha G(x; k)             (steps 4-5, eq. 10)
-//       with F_t(t(x)) replaced by fresh noise G where t(x) is not on the
-//       same surface in the last frame (its depth is stored with F_t)
-//     F(x)    = beta D(F_t')(x) + (1 - beta) F_s(x)               (step 7, eq. 11)
-//       D, for display only (the feedback loop stays the paper's): a filter
-//       along the flow and a contrast stage (section 3.4); D before the
-//       contrast stage goes to F's alpha channel
-//   swap F_t and F_t' (ping-pong)                                 (step 6)
-//   if contrast: mean and deviation of D over the surface, on a grid of
-//   sample points mipmapped to one texel, for the next frame's contrast
-//
-// Everything per pixel happens in the one geometry pass: on llvmpipe a second
-// full-screen pass costs more than the whole synthesis at 1024x1024.
+//   grid      G_ij = w(v_g k + phi_ij) once per grid point        (eq. 8)
+//   IBFVS     the mesh drawn once; per pixel:                       (steps 2-7)
+//               t = T(r - v dt), homogeneous per vertex, divided per pixel (eq. 13)
+//               F_t'(x) = (1 - alpha) F_t(t(x)) + alpha G(x; k)     (eq. 10)
+//                 with fresh noise where t(x) is not on the same surface in
+//                 the last frame (its depth is stored with F_t)
+//               F(x) = beta D(F_t')(x) + (1 - beta) F_s(x)          (eq. 11)
+//             or, deferred (pass_settings.h: deferred_pass), in two halves:
+//             the mesh writes t(x), depths and shading into two images
+//             (G-buffer), and a full-screen resolve over the surface's
+//             pixels does the rest: on a CPU rasteriser most fragments of
+//             small triangles never reach the costly half
+//   display   with a tap texture (pass_settings.h: tap_texture): D, the
+//             filter along the flow and the contrast stage (section 3.4),
+//             and F, once per pixel of the surface; else D runs in the
+//             IBFVS pass. D is for display only: the feedback loop stays
+//             the paper's
+//   swap      F_t and F_t' (ping-pong)                              (step 6)
+//   stats     every kStatsEvery frames, with contrast: the mean and
+//             deviation of D over the surface, blended into a running
+//             average the next frames' contrast stage reads
+//   host      draw_to_host: F and its depth into a host's framebuffer
 //
 // The depth test keeps only the nearest surface per pixel, so gamma = alpha
 // exactly on the projected surface and 0 on the background (eq. 12) without

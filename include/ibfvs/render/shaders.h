@@ -63,6 +63,6 @@ std::string stats_fragment_source(bool mono_texture, Dialect dialect = Dialect::
 /// Copies F and the surface's depth into a host's framebuffer (ParaView's),
 /// the background left as the host drew it; with u_interior 1 not at the
 /// surface's silhouettes (src/render/glsl/host_fragment.glsl).
-extern const char* const kHostFragment;
+std::string host_fragment_source();
 
 }  // namespace ibfvs::shaders

@@ -1,7 +1,7 @@
 // The display filter and its taps, in the IBFVS pass or (with the tap
 // texture) in the display pass.
 #ifdef IBFVS_TAP_TEXTURE
-BINDING(5) uniform sampler2D u_taps;  // the last frame's tap texture
+BINDING(UNIT_TAPS) uniform sampler2D u_taps;  // the last frame's tap texture
 #define IBFVS_TAPS u_taps
 // The tap texture in 8 bits a channel (core/texture/display.h, which
 // ReferenceIbfvs shares): the sharpened value spread about 0.5, the log eye

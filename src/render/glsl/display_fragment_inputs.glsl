@@ -3,11 +3,11 @@
 // test keeping the surface's pixels. The display filter is most of a frame
 // on llvmpipe, and in the IBFVS pass it ran for every fragment drawn (small
 // triangles shade whole blocks of pixels, and hidden ones shade too).
-BINDING(1) uniform sampler2D u_start;  // (the first tap, t(x)'s depth or kNoFilter, displacement)
-BINDING(2) uniform sampler2D u_base;   // ((1 - beta) F_s, beta)
-BINDING(3) uniform sampler2D u_taps_now;  // this frame's taps: the flow's direction at each pixel
+BINDING(UNIT_START) uniform sampler2D u_start;  // (the first tap, t(x)'s depth or kNoFilter, displacement)
+BINDING(UNIT_BASE) uniform sampler2D u_base;   // ((1 - beta) F_s, beta)
+BINDING(UNIT_TAPS_NOW) uniform sampler2D u_taps_now;  // this frame's taps: the flow's direction at each pixel
 #ifdef IBFVS_CONTRAST
-BINDING(4) uniform sampler2D u_stats;  // 1 x 1: (sum l, sum l^2, count)
+BINDING(UNIT_STATS) uniform sampler2D u_stats;  // 1 x 1: (sum l, sum l^2, count)
 #endif
 uniform vec2 u_inverse_size;   // 1 / image size in pixels
 uniform vec2 u_texture_shift;  // pixels: F_t moved with the mouse for this frame (3.7)

@@ -1,9 +1,8 @@
-#version 450 core
 // Copies F and the surface's depth into a host's framebuffer (ParaView's),
 // the background left as the host drew it; with u_interior 1 not at the
-// surface's silhouettes. Desktop GL only.
-layout(binding = 0) uniform sampler2D u_output;
-layout(binding = 1) uniform sampler2D u_depth;
+// surface's silhouettes. Desktop GL only (host_fragment_source).
+BINDING(UNIT_OUTPUT) uniform sampler2D u_output;
+BINDING(UNIT_DEPTH) uniform sampler2D u_depth;
 uniform ivec2 u_origin;  // the host viewport's lower left corner
 uniform int u_interior;  // 1: not at the silhouettes (drawing again over FXAA)
 out vec4 o_color;

@@ -21,8 +21,8 @@ in vec3 v_position_object;
 #else
 // The deferred pass's second half (deferred_pass in pass_settings.h): what
 // the first half left per pixel of the surface, in place of the varyings.
-BINDING(6) uniform sampler2D u_gbuffer0;  // (t(x) unshifted, or kBehind.., from depth, depth)
-BINDING(7) uniform sampler2D u_gbuffer1;  // (fwidth(depth), diffuse and flow, v_scalars)
+BINDING(UNIT_GBUFFER0) uniform sampler2D u_gbuffer0;  // (t(x) unshifted, or kBehind.., from depth, depth)
+BINDING(UNIT_GBUFFER1) uniform sampler2D u_gbuffer1;  // (fwidth(depth), diffuse and flow, v_scalars)
 #endif
 // What the pass needs of the surface under this pixel: from the varyings,
 // or in the deferred pass's second half from the first half's two images.

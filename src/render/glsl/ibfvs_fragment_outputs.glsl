@@ -37,10 +37,10 @@ layout(location = IBFVS_FLOW_LOCATION) out vec2 o_flow;  // this frame's displac
 flat in vec2 v_contrast;  // (mean, gain) of the contrast stage
 #endif
 #if defined(IBFVS_CONTRAST) && defined(IBFVS_RESOLVE)
-BINDING(4) uniform sampler2D u_stats;  // 1 x 1: (sum l, sum l^2, count)
+BINDING(UNIT_STATS) uniform sampler2D u_stats;  // 1 x 1: (sum l, sum l^2, count)
 #endif
-BINDING(0) uniform sampler2D u_previous;  // F_t of the last frame
-BINDING(1) uniform sampler2D u_grid;      // w(v_g k + phi_ij), this frame's grid values
+BINDING(UNIT_PREVIOUS) uniform sampler2D u_previous;  // F_t of the last frame
+BINDING(UNIT_GRID) uniform sampler2D u_grid;      // w(v_g k + phi_ij), this frame's grid values
 
 uniform float u_alpha;
 #ifdef IBFVS_COMPENSATE
@@ -55,11 +55,11 @@ uniform ivec2 u_phase_size;
 uniform vec3 u_surface_color;
 uniform int u_locked;        // section 3.7: map F_t, do not update it
 #ifdef IBFVS_SURFACE_IMAGE
-BINDING(3) uniform sampler2D u_surface_image;  // equirectangular, lon -180..180
+BINDING(UNIT_SURFACE_IMAGE) uniform sampler2D u_surface_image;  // equirectangular, lon -180..180
 uniform vec3 u_image_centre; // centre of the spherical mapping
 #endif
 #ifdef IBFVS_COLOR_SCALAR
-BINDING(2) uniform sampler2D u_color_map;  // 256 x 1
+BINDING(UNIT_COLOR_MAP) uniform sampler2D u_color_map;  // 256 x 1
 uniform vec2 u_color_range;  // scalar values at the ends of the map
 #endif
 #ifdef IBFVS_BETA_SCALAR

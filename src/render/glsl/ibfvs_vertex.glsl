@@ -57,7 +57,7 @@ out vec3 v_position_object;  // for the spherical image map and the solid noise
 #if defined(IBFVS_CONTRAST) && !defined(IBFVS_TAP_TEXTURE)
 // The contrast stage's mean and gain from the last frame's statistics, read
 // per vertex (the same for all) rather than per pixel.
-BINDING(4) uniform sampler2D u_stats;  // 1 x 1: (sum l, sum l^2, count)
+BINDING(UNIT_STATS) uniform sampler2D u_stats;  // 1 x 1: (sum l, sum l^2, count)
 flat out vec2 v_contrast;
 #endif
 void main() {

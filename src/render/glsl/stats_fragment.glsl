@@ -4,8 +4,8 @@
 // average (weight 0.25, every 4th frame) that the next frames' contrast stage
 // reads (no read-back to the CPU).
 layout(location = 0) out vec4 o_stats;
-BINDING(0) uniform sampler2D u_texture;  // F_t, depth in the last channel
-BINDING(1) uniform sampler2D u_shown;    // F, D(F_t) before the contrast stage in alpha
+BINDING(UNIT_TEXTURE) uniform sampler2D u_texture;  // F_t, depth in the last channel
+BINDING(UNIT_SHOWN) uniform sampler2D u_shown;    // F, D(F_t) before the contrast stage in alpha
 uniform vec2 u_image_size;
 uniform int u_stats_size;
 uniform vec2 u_offset;  // in grid cells, in [0, 1): a different sample grid each frame

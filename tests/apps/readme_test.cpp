@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <regex>
 #include <sstream>
 #include <string>
@@ -248,6 +249,40 @@ TEST(ParaViewDefaults, EqualTheScenesDefaults) {
   EXPECT_EQ(value("Resample"), static_cast<double>(s.resample));  // the enum's numbers
   EXPECT_EQ(value("Seed"), static_cast<double>(s.seed));
   EXPECT_EQ(value("FramesPerStep"), static_cast<double>(kDefaultFramesPerStep));
+}
+
+// Its enumerations are the library's name tables (EnumNames): every value,
+// by its integer, with the name capitalised; none more.
+template <class E>
+void expect_xml_enumeration(const std::string& xml, const std::string& property) {
+  const std::size_t at = xml.find("name=\"" + property + "\"");
+  ASSERT_NE(at, std::string::npos) << property;
+  const std::size_t begin = xml.find("<EnumerationDomain", at);
+  const std::size_t end = xml.find("</EnumerationDomain>", begin);
+  ASSERT_NE(end, std::string::npos) << property;
+  const std::string domain = xml.substr(begin, end - begin);
+  std::map<int, std::string> entries;
+  const std::regex entry(
+      R"re(<Entry (?:text="([^"]*)" value="(\d+)"|value="(\d+)" text="([^"]*)")/>)re");
+  for (std::sregex_iterator it(domain.begin(), domain.end(), entry), stop; it != stop; ++it) {
+    const std::smatch& m = *it;
+    const bool text_first = m[1].matched;
+    entries[std::stoi(text_first ? m[2].str() : m[3].str())] = text_first ? m[1].str() : m[4].str();
+  }
+  std::map<int, std::string> expected;
+  for (const auto& e : EnumNames<E>::table) {
+    std::string name(e.name);
+    name[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(name[0])));
+    expected.emplace(static_cast<int>(e.value), name);
+  }
+  EXPECT_EQ(entries, expected) << property;
+}
+
+TEST(ParaViewDefaults, EnumerationsAreTheNameTables) {
+  const std::string xml =
+      test::read_file(fs::path(IBFVS_SOURCE_DIR) / "paraview/IBFVS/IBFVSRepresentation.xml");
+  expect_xml_enumeration<NoiseProfile>(xml, "TimeProfile");
+  expect_xml_enumeration<Resample>(xml, "Resample");
 }
 
 // Its number properties span their scene keys' ranges (key_range: the one

@@ -155,6 +155,20 @@ namespace {
 float in_range(std::string_view key, double value) {
   return ibfvs::clamp_to_key_range(key, static_cast<float>(value));
 }
+// An enumeration property's integer as the enum, clamped to the values of
+// its name table (the XML's entries are the table's: a test checks).
+template <class E>
+E in_enum(int value) {
+  int lo = value, hi = value;
+  bool first = true;
+  for (const auto& e : ibfvs::EnumNames<E>::table) {
+    const int v = static_cast<int>(e.value);
+    lo = first ? v : std::min(lo, v);
+    hi = first ? v : std::max(hi, v);
+    first = false;
+  }
+  return static_cast<E>(std::clamp(value, lo, hi));
+}
 }  // namespace
 
 #define IBFVS_SETTING(Name, Type, member, conversion, restarts)                     \
@@ -188,16 +202,13 @@ void vtkIBFVSMapper::Restart() {
 }
 
 IBFVS_SETTING(StepPixels, double, step, in_range("step", value), false)
-IBFVS_SETTING(TimeProfile, int, profile,
-              static_cast<ibfvs::NoiseProfile>(
-                  std::clamp(value, 0, static_cast<int>(ibfvs::NoiseProfile::Random))),
-              false)
+IBFVS_SETTING(TimeProfile, int, profile, in_enum<ibfvs::NoiseProfile>(value), false)
 IBFVS_SETTING(NoiseRate, double, vg, in_range("vg", value), false)
 IBFVS_SETTING(ImageNormalize, int, image_normalize, value != 0, false)
 IBFVS_SETTING(FilterLength, double, filter, in_range("filter", value), false)
 IBFVS_SETTING(Contrast, double, contrast, in_range("contrast", value), false)
 IBFVS_SETTING(Sharpen, double, sharpen, in_range("sharpen", value), false)
-IBFVS_SETTING(Resample, int, resample, static_cast<ibfvs::Resample>(std::clamp(value, 0, 2)), false)
+IBFVS_SETTING(Resample, int, resample, in_enum<ibfvs::Resample>(value), false)
 IBFVS_SETTING(Seed, int, seed, static_cast<std::uint32_t>(std::max(value, 0)), true)
 #undef IBFVS_SETTING
 

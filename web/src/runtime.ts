@@ -6,43 +6,14 @@
 // contrast statistics, and shows F. Only what WebGL2 needs differently is
 // here: sampler units set by name, extension checks, the canvas.
 //
-// Sections: the page's elements; the renderer; the camera and input; start.
-// The scene format is in format.ts, the WebGL objects in webgl.ts.
+// Sections: the renderer; the camera. The page around it (its elements, the
+// input, recording, the loop) is page.ts, the scene format format.ts, the
+// WebGL objects webgl.ts.
 import { mat4, vec3 } from "gl-matrix";
-import { MeshoptDecoder } from "meshoptimizer/decoder";
-import { type Camera, type Look, type SceneHeader, type Uniform, decodeBase64, halfToFloat, view }
+import { type Camera, type Look, type SceneHeader, type Uniform, halfToFloat, view }
   from "./format";
 import { Surfaces } from "./surfaces";
 import { bindSampler, compile, framebuffer, locate, setUniform, texture } from "./webgl";
-
-// ---------------------------------------------------------------- the page's elements
-
-function say(root: HTMLElement, text: string): void {
-  const p = document.createElement("p");
-  p.className = "ibfvs-message";
-  p.textContent = text;
-  root.replaceChildren(p);
-  console.warn("ibfvs: " + text);
-}
-
-function slider(panel: HTMLElement, label: string, min: number, max: number, value: number,
-                change: (v: number) => void): HTMLInputElement {
-  const wrap = document.createElement("label");
-  wrap.textContent = label + " ";
-  const input = document.createElement("input");
-  input.type = "range";
-  input.min = String(min);
-  input.max = String(max);
-  input.step = String((max - min) / 100);
-  input.value = String(value);
-  input.dataset.name = label;
-  input.addEventListener("input", () => change(parseFloat(input.value)));
-  wrap.appendChild(input);
-  panel.appendChild(wrap);
-  return input;
-}
-
-// ---------------------------------------------------------------- the renderer
 
 /// The tap texture's depth map, (ln lo, 1 / (ln hi - ln lo)) from the projection's near and far
 /// planes, lo at least hi / 1000: tap_depth_map() of core/texture/display.cpp (column-major).
@@ -262,6 +233,19 @@ export class PageRenderer {
   }
 
   /// One frame seen through `view` and `projection`; dt 0 stands still.
+  /** The next frame of the page's own run, in Session::advance's order: at
+   * the lock frame the texture locks and the view moves to the lock view
+   * (before that frame is drawn); after frame 0 the camera orbits. */
+  advance(nav: Navigation, dtFactor: number): void {
+    const scene = this.scene;
+    if (scene.lock && this.frame === scene.lock.frame && !this.locked) {
+      this.lock();
+      nav.moveTo(scene.lock);
+    }
+    if (scene.orbit && this.frame > 0) nav.orbit += scene.orbit.degrees;
+    this.render(nav.view(), nav.projection(), this.look.dt * dtFactor);
+  }
+
   render(view: mat4, projection: mat4, dt: number): void {
     const gl = this.gl, s = this.scene;
     const vp = mat4.multiply(mat4.create(), projection, view);
@@ -385,7 +369,7 @@ export class PageRenderer {
 /// Turns, pans and zooms about the scene's centre: the view turned in eye
 /// space about the centre, the image scaled and moved in clip space (the
 /// projection's depth, and so the depth test, unchanged).
-class Navigation {
+export class Navigation {
   turn = mat4.create();
   zoom = 1;
   pan = [0, 0];
@@ -431,239 +415,4 @@ class Navigation {
     mat4.rotateX(r, r, dy * 0.005);
     mat4.multiply(this.turn, r, this.turn);
   }
-}
-
-// ---------------------------------------------------------------- start
-
-export function start(root: HTMLElement, scene: SceneHeader, data: ArrayBuffer): PageRenderer | null {
-  const canvas = document.createElement("canvas");
-  canvas.width = scene.width;
-  canvas.height = scene.height;
-  canvas.className = "ibfvs-canvas";
-  // No alpha: F's alpha holds the statistics input, not coverage.
-  const gl = canvas.getContext("webgl2", { alpha: false, antialias: false, preserveDrawingBuffer: true });
-  if (!gl) {
-    say(root, "This page needs WebGL2, which this browser does not offer (or has switched off): " +
-              "the animated texture cannot be shown.");
-    return null;
-  }
-  const missing = ["EXT_color_buffer_float", "OES_texture_float_linear", "EXT_float_blend"]
-    .filter((name) => !gl.getExtension(name));
-  if (missing.length) {
-    say(root, "This page needs float render targets, which this browser's WebGL2 lacks (" +
-              missing.join(", ") + "): the animated texture cannot be shown.");
-    return null;
-  }
-  let renderer: PageRenderer;
-  try {
-    renderer = new PageRenderer(gl, scene, data);
-  } catch (e) {
-    say(root, "The page could not start its renderer: " + (e as Error).message);
-    return null;
-  }
-  root.replaceChildren(canvas);
-  const panel = document.createElement("div");
-  panel.className = "ibfvs-panel";
-  root.appendChild(panel);
-  const nav = new Navigation(scene);
-  let playing = true;
-  const play = document.createElement("button");
-  play.textContent = "Pause";
-  play.addEventListener("click", () => {
-    playing = !playing;
-    play.textContent = playing ? "Pause" : "Play";
-  });
-  panel.appendChild(play);
-  // A scene with a lock (the topology style) plays to it and stays: Replay starts it again.
-  if (scene.lock) {
-    const replay = document.createElement("button");
-    replay.textContent = "Replay";
-    replay.addEventListener("click", () => {
-      renderer.reset();
-      nav.moveTo(scene);
-    });
-    panel.appendChild(replay);
-  }
-  // The styles that take the page's data (the scene's own first): each
-  // brings its own sliders.
-  let dtFactor = 1;
-  const controls = document.createElement("span");
-  controls.style.display = "contents"; // its sliders flow in the panel
-  const lookControls = () => {
-    controls.replaceChildren();
-    dtFactor = 1;
-    const uniform = (name: string) => renderer.look.uniforms.find((u) => u.name === name);
-    for (const [name, label] of [["u_alpha", "alpha"], ["u_beta", "beta"]] as const) {
-      const u = uniform(name);
-      if (!u) continue;
-      slider(controls, label, 0, 1, u.values[0], (v) => {
-        u.values[0] = v;
-        renderer.applySettings([u]);
-      });
-    }
-    // The step: pixels per frame of every point (image-space normalisation),
-    // else a factor on the look's dt.
-    const imageStep = uniform("u_image_step");
-    if (imageStep && imageStep.values[0] > 0) {
-      slider(controls, "step (px)", 0.25, 8, imageStep.values[0], (v) => {
-        imageStep.values[0] = v;
-        renderer.applySettings([imageStep]);
-      });
-    } else {
-      slider(controls, "speed", 0, 4, 1, (v) => (dtFactor = v));
-    }
-    // The noise scale, from the look's own up (the phases cover finer grids only).
-    const noiseScale = uniform("u_noise_scale");
-    if (noiseScale) {
-      const base = noiseScale.values[0];
-      slider(controls, "noise scale (px)", base, 6 * base, base, (v) => renderer.setNoiseScale(v));
-    }
-  };
-  if (scene.looks.length > 1) {
-    const wrap = document.createElement("label");
-    wrap.textContent = "style ";
-    const menu = document.createElement("select");
-    menu.dataset.name = "style";
-    scene.looks.forEach((look, i) => {
-      const option = document.createElement("option");
-      option.value = String(i);
-      option.textContent = look.name;
-      option.title = look.description;
-      menu.appendChild(option);
-    });
-    menu.addEventListener("change", () => {
-      renderer.setLook(parseInt(menu.value, 10));
-      lookControls();
-    });
-    wrap.appendChild(menu);
-    panel.appendChild(wrap);
-  }
-  lookControls();
-  panel.appendChild(controls);
-  // Time steps: a slider over the steps, moving while playing.
-  let time = 0;
-  let timeSlider: HTMLInputElement | null = null;
-  if (scene.steps > 1) {
-    timeSlider = slider(panel, "time step", 0, scene.steps, 0, (v) => {
-      time = v;
-      renderer.setTime(time);
-    });
-    timeSlider.step = "0.01";
-  }
-  const save = document.createElement("button");
-  save.textContent = "Save PNG";
-  save.addEventListener("click", () => {
-    const a = document.createElement("a");
-    a.download = scene.name + ".png";
-    a.href = canvas.toDataURL("image/png");
-    a.click();
-  });
-  panel.appendChild(save);
-  // A WebM of the canvas while recording (MediaRecorder), saved on stop.
-  if (typeof MediaRecorder !== "undefined" && "captureStream" in canvas) {
-    const record = document.createElement("button");
-    record.textContent = "Record WebM";
-    let recorder: MediaRecorder | null = null;
-    record.addEventListener("click", () => {
-      if (recorder) {
-        recorder.stop();
-        return;
-      }
-      const chunks: Blob[] = [];
-      recorder = new MediaRecorder(canvas.captureStream(30), { mimeType: "video/webm" });
-      recorder.ondataavailable = (e) => chunks.push(e.data);
-      recorder.onstop = () => {
-        const blob = new Blob(chunks, { type: "video/webm" });
-        (window as unknown as { ibfvsRecording: number }).ibfvsRecording = blob.size;
-        const a = document.createElement("a");
-        a.download = scene.name + ".webm";
-        a.href = URL.createObjectURL(blob);
-        a.click();
-        recorder = null;
-        record.textContent = "Record WebM";
-      };
-      recorder.start(250);
-      record.textContent = "Stop recording";
-    });
-    panel.appendChild(record);
-  }
-
-  // Mouse, pen and touch: one pointer turns (or pans with shift), two pinch to zoom.
-  let last: [number, number] | null = null;
-  const pointers = new Map<number, [number, number]>();
-  const spread = () => {
-    const [a, b] = [...pointers.values()];
-    return Math.hypot(a[0] - b[0], a[1] - b[1]);
-  };
-  canvas.addEventListener("pointerdown", (e) => {
-    pointers.set(e.pointerId, [e.clientX, e.clientY]);
-    last = [e.clientX, e.clientY];
-    canvas.setPointerCapture(e.pointerId);
-  });
-  const lift = (e: PointerEvent) => {
-    pointers.delete(e.pointerId);
-    last = null;
-  };
-  canvas.addEventListener("pointercancel", lift);
-  canvas.addEventListener("pointermove", (e) => {
-    if (pointers.size === 2 && pointers.has(e.pointerId)) {
-      const before = spread();
-      pointers.set(e.pointerId, [e.clientX, e.clientY]);
-      if (before > 0) nav.zoom = Math.min(Math.max((nav.zoom * spread()) / before, 0.1), 20);
-      return;
-    }
-    if (pointers.has(e.pointerId)) pointers.set(e.pointerId, [e.clientX, e.clientY]);
-    if (!last) return;
-    if (e.shiftKey) {
-      nav.pan[0] += (2 * (e.clientX - last[0])) / scene.width;
-      nav.pan[1] -= (2 * (e.clientY - last[1])) / scene.height;
-    } else {
-      nav.drag(e.clientX - last[0], e.clientY - last[1]);
-    }
-    last = [e.clientX, e.clientY];
-  });
-  canvas.addEventListener("pointerup", lift);
-  canvas.addEventListener("wheel", (e) => {
-    e.preventDefault();
-    nav.zoom = Math.min(Math.max(nav.zoom * Math.exp(-e.deltaY * 0.001), 0.1), 20);
-  }, { passive: false });
-  document.addEventListener("keydown", (e) => {
-    if (e.key === " ") play.click();
-  });
-
-  const tick = () => {
-    if (playing) {
-      // Frame k at time k / frames_per_step, as Session::advance.
-      if (scene.steps > 1) {
-        renderer.setTime(time);
-        if (timeSlider) timeSlider.value = String(time);
-      }
-      if (scene.lock && renderer.frame === scene.lock.frame && !renderer.locked) {
-        renderer.lock(); // as Session::advance: before the lock frame is drawn
-        nav.moveTo(scene.lock);
-      }
-      if (scene.orbit && renderer.frame > 0) nav.orbit += scene.orbit.degrees;
-      renderer.render(nav.view(), nav.projection(), renderer.look.dt * dtFactor);
-    }
-    renderer.present();
-    const w = window as unknown as { ibfvsFrames: number; ibfvsTime: number; ibfvsLocked: boolean };
-    w.ibfvsFrames = renderer.frame;
-    w.ibfvsLocked = renderer.locked;
-    w.ibfvsTime = time;
-    if (playing && scene.steps > 1) time = (time + 1 / scene.frames_per_step) % scene.steps;
-    requestAnimationFrame(tick);
-  };
-  requestAnimationFrame(tick);
-  return renderer;
-}
-
-const root = document.getElementById("ibfvs");
-const header = document.getElementById("ibfvs-scene");
-const block = document.getElementById("ibfvs-data");
-if (root && header && block) {
-  const scene = JSON.parse(header.textContent!) as SceneHeader;
-  const data = decodeBase64(block.textContent!);
-  MeshoptDecoder.ready.then(
-    () => start(root, scene, data),
-    (e: Error) => say(root, "This page needs WebAssembly to unpack its mesh: " + e.message));
 }

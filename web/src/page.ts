@@ -1,0 +1,305 @@
+// The page around the renderer (docs/web.md): the canvas and its WebGL2
+// context, the panel (play, the styles and their sliders, the time steps,
+// saving a PNG, recording a WebM), the mouse, pen and touch, and the loop.
+// The renderer and its camera are runtime.ts; Session::advance's order of a
+// frame is PageRenderer.advance.
+//
+// Sections: the page's elements; the context; the panel; recording; input;
+// start.
+import { MeshoptDecoder } from "meshoptimizer/decoder";
+import { type SceneHeader, decodeBase64 } from "./format";
+import { Navigation, PageRenderer } from "./runtime";
+
+// ---------------------------------------------------------------- the page's elements
+
+function say(root: HTMLElement, text: string): void {
+  const p = document.createElement("p");
+  p.className = "ibfvs-message";
+  p.textContent = text;
+  root.replaceChildren(p);
+  console.warn("ibfvs: " + text);
+}
+
+function slider(panel: HTMLElement, label: string, min: number, max: number, value: number,
+                change: (v: number) => void): HTMLInputElement {
+  const wrap = document.createElement("label");
+  wrap.textContent = label + " ";
+  const input = document.createElement("input");
+  input.type = "range";
+  input.min = String(min);
+  input.max = String(max);
+  input.step = String((max - min) / 100);
+  input.value = String(value);
+  input.dataset.name = label;
+  input.addEventListener("input", () => change(parseFloat(input.value)));
+  wrap.appendChild(input);
+  panel.appendChild(wrap);
+  return input;
+}
+
+// What the panel, the input and the loop share.
+interface PageState {
+  playing: boolean;
+  dtFactor: number; // the speed slider's factor on the look's dt
+  time: number; // in time steps
+  timeSlider: HTMLInputElement | null;
+  play: HTMLButtonElement;
+}
+
+// ---------------------------------------------------------------- the context
+
+// The canvas and its renderer; null, with a message in the page, where
+// this browser's WebGL2 cannot run it.
+function openRenderer(root: HTMLElement, scene: SceneHeader, data: ArrayBuffer):
+    { canvas: HTMLCanvasElement; renderer: PageRenderer } | null {
+  const canvas = document.createElement("canvas");
+  canvas.width = scene.width;
+  canvas.height = scene.height;
+  canvas.className = "ibfvs-canvas";
+  // No alpha: F's alpha holds the statistics input, not coverage.
+  const gl = canvas.getContext("webgl2", { alpha: false, antialias: false, preserveDrawingBuffer: true });
+  if (!gl) {
+    say(root, "This page needs WebGL2, which this browser does not offer (or has switched off): " +
+              "the animated texture cannot be shown.");
+    return null;
+  }
+  const missing = ["EXT_color_buffer_float", "OES_texture_float_linear", "EXT_float_blend"]
+    .filter((name) => !gl.getExtension(name));
+  if (missing.length) {
+    say(root, "This page needs float render targets, which this browser's WebGL2 lacks (" +
+              missing.join(", ") + "): the animated texture cannot be shown.");
+    return null;
+  }
+  let renderer: PageRenderer;
+  try {
+    renderer = new PageRenderer(gl, scene, data);
+  } catch (e) {
+    say(root, "The page could not start its renderer: " + (e as Error).message);
+    return null;
+  }
+  root.replaceChildren(canvas);
+  return { canvas, renderer };
+}
+
+// ---------------------------------------------------------------- the panel
+
+function addPanel(root: HTMLElement, canvas: HTMLCanvasElement, scene: SceneHeader,
+                  renderer: PageRenderer, nav: Navigation): PageState {
+  const panel = document.createElement("div");
+  panel.className = "ibfvs-panel";
+  root.appendChild(panel);
+  const play = document.createElement("button");
+  const state: PageState = { playing: true, dtFactor: 1, time: 0, timeSlider: null, play };
+  play.textContent = "Pause";
+  play.addEventListener("click", () => {
+    state.playing = !state.playing;
+    play.textContent = state.playing ? "Pause" : "Play";
+  });
+  panel.appendChild(play);
+  // A scene with a lock (the topology style) plays to it and stays: Replay starts it again.
+  if (scene.lock) {
+    const replay = document.createElement("button");
+    replay.textContent = "Replay";
+    replay.addEventListener("click", () => {
+      renderer.reset();
+      nav.moveTo(scene);
+    });
+    panel.appendChild(replay);
+  }
+  // The styles that take the page's data (the scene's own first): each
+  // brings its own sliders.
+  const controls = document.createElement("span");
+  controls.style.display = "contents"; // its sliders flow in the panel
+  const lookControls = () => {
+    controls.replaceChildren();
+    state.dtFactor = 1;
+    const uniform = (name: string) => renderer.look.uniforms.find((u) => u.name === name);
+    for (const [name, label] of [["u_alpha", "alpha"], ["u_beta", "beta"]] as const) {
+      const u = uniform(name);
+      if (!u) continue;
+      slider(controls, label, 0, 1, u.values[0], (v) => {
+        u.values[0] = v;
+        renderer.applySettings([u]);
+      });
+    }
+    // The step: pixels per frame of every point (image-space normalisation),
+    // else a factor on the look's dt.
+    const imageStep = uniform("u_image_step");
+    if (imageStep && imageStep.values[0] > 0) {
+      slider(controls, "step (px)", 0.25, 8, imageStep.values[0], (v) => {
+        imageStep.values[0] = v;
+        renderer.applySettings([imageStep]);
+      });
+    } else {
+      slider(controls, "speed", 0, 4, 1, (v) => (state.dtFactor = v));
+    }
+    // The noise scale, from the look's own up (the phases cover finer grids only).
+    const noiseScale = uniform("u_noise_scale");
+    if (noiseScale) {
+      const base = noiseScale.values[0];
+      slider(controls, "noise scale (px)", base, 6 * base, base, (v) => renderer.setNoiseScale(v));
+    }
+  };
+  if (scene.looks.length > 1) {
+    const wrap = document.createElement("label");
+    wrap.textContent = "style ";
+    const menu = document.createElement("select");
+    menu.dataset.name = "style";
+    scene.looks.forEach((look, i) => {
+      const option = document.createElement("option");
+      option.value = String(i);
+      option.textContent = look.name;
+      option.title = look.description;
+      menu.appendChild(option);
+    });
+    menu.addEventListener("change", () => {
+      renderer.setLook(parseInt(menu.value, 10));
+      lookControls();
+    });
+    wrap.appendChild(menu);
+    panel.appendChild(wrap);
+  }
+  lookControls();
+  panel.appendChild(controls);
+  // Time steps: a slider over the steps, moving while playing.
+  if (scene.steps > 1) {
+    state.timeSlider = slider(panel, "time step", 0, scene.steps, 0, (v) => {
+      state.time = v;
+      renderer.setTime(state.time);
+    });
+    state.timeSlider.step = "0.01";
+  }
+  const save = document.createElement("button");
+  save.textContent = "Save PNG";
+  save.addEventListener("click", () => {
+    const a = document.createElement("a");
+    a.download = scene.name + ".png";
+    a.href = canvas.toDataURL("image/png");
+    a.click();
+  });
+  panel.appendChild(save);
+  addRecorder(panel, canvas, scene.name);
+  return state;
+}
+
+// ---------------------------------------------------------------- recording
+
+// A WebM of the canvas while recording (MediaRecorder), saved on stop.
+function addRecorder(panel: HTMLElement, canvas: HTMLCanvasElement, name: string): void {
+  if (typeof MediaRecorder !== "undefined" && "captureStream" in canvas) {
+    const record = document.createElement("button");
+    record.textContent = "Record WebM";
+    let recorder: MediaRecorder | null = null;
+    record.addEventListener("click", () => {
+      if (recorder) {
+        recorder.stop();
+        return;
+      }
+      const chunks: Blob[] = [];
+      recorder = new MediaRecorder(canvas.captureStream(30), { mimeType: "video/webm" });
+      recorder.ondataavailable = (e) => chunks.push(e.data);
+      recorder.onstop = () => {
+        const blob = new Blob(chunks, { type: "video/webm" });
+        (window as unknown as { ibfvsRecording: number }).ibfvsRecording = blob.size;
+        const a = document.createElement("a");
+        a.download = name + ".webm";
+        a.href = URL.createObjectURL(blob);
+        a.click();
+        recorder = null;
+        record.textContent = "Record WebM";
+      };
+      recorder.start(250);
+      record.textContent = "Stop recording";
+    });
+    panel.appendChild(record);
+  }
+}
+
+// ---------------------------------------------------------------- input
+
+function attachInput(canvas: HTMLCanvasElement, scene: SceneHeader, nav: Navigation,
+                     state: PageState): void {
+  // Mouse, pen and touch: one pointer turns (or pans with shift), two pinch to zoom.
+  let last: [number, number] | null = null;
+  const pointers = new Map<number, [number, number]>();
+  const spread = () => {
+    const [a, b] = [...pointers.values()];
+    return Math.hypot(a[0] - b[0], a[1] - b[1]);
+  };
+  canvas.addEventListener("pointerdown", (e) => {
+    pointers.set(e.pointerId, [e.clientX, e.clientY]);
+    last = [e.clientX, e.clientY];
+    canvas.setPointerCapture(e.pointerId);
+  });
+  const lift = (e: PointerEvent) => {
+    pointers.delete(e.pointerId);
+    last = null;
+  };
+  canvas.addEventListener("pointercancel", lift);
+  canvas.addEventListener("pointermove", (e) => {
+    if (pointers.size === 2 && pointers.has(e.pointerId)) {
+      const before = spread();
+      pointers.set(e.pointerId, [e.clientX, e.clientY]);
+      if (before > 0) nav.zoom = Math.min(Math.max((nav.zoom * spread()) / before, 0.1), 20);
+      return;
+    }
+    if (pointers.has(e.pointerId)) pointers.set(e.pointerId, [e.clientX, e.clientY]);
+    if (!last) return;
+    if (e.shiftKey) {
+      nav.pan[0] += (2 * (e.clientX - last[0])) / scene.width;
+      nav.pan[1] -= (2 * (e.clientY - last[1])) / scene.height;
+    } else {
+      nav.drag(e.clientX - last[0], e.clientY - last[1]);
+    }
+    last = [e.clientX, e.clientY];
+  });
+  canvas.addEventListener("pointerup", lift);
+  canvas.addEventListener("wheel", (e) => {
+    e.preventDefault();
+    nav.zoom = Math.min(Math.max(nav.zoom * Math.exp(-e.deltaY * 0.001), 0.1), 20);
+  }, { passive: false });
+  document.addEventListener("keydown", (e) => {
+    if (e.key === " ") state.play.click();
+  });
+}
+
+// ---------------------------------------------------------------- start
+
+export function start(root: HTMLElement, scene: SceneHeader, data: ArrayBuffer): PageRenderer | null {
+  const opened = openRenderer(root, scene, data);
+  if (!opened) return null;
+  const { canvas, renderer } = opened;
+  const nav = new Navigation(scene);
+  const state = addPanel(root, canvas, scene, renderer, nav);
+  attachInput(canvas, scene, nav, state);
+  const tick = () => {
+    if (state.playing) {
+      // Frame k at time k / frames_per_step, as Session::advance.
+      if (scene.steps > 1) {
+        renderer.setTime(state.time);
+        if (state.timeSlider) state.timeSlider.value = String(state.time);
+      }
+      renderer.advance(nav, state.dtFactor);
+    }
+    renderer.present();
+    const w = window as unknown as { ibfvsFrames: number; ibfvsTime: number; ibfvsLocked: boolean };
+    w.ibfvsFrames = renderer.frame;
+    w.ibfvsLocked = renderer.locked;
+    w.ibfvsTime = state.time;
+    if (state.playing && scene.steps > 1) state.time = (state.time + 1 / scene.frames_per_step) % scene.steps;
+    requestAnimationFrame(tick);
+  };
+  requestAnimationFrame(tick);
+  return renderer;
+}
+
+const root = document.getElementById("ibfvs");
+const header = document.getElementById("ibfvs-scene");
+const block = document.getElementById("ibfvs-data");
+if (root && header && block) {
+  const scene = JSON.parse(header.textContent!) as SceneHeader;
+  const data = decodeBase64(block.textContent!);
+  MeshoptDecoder.ready.then(
+    () => start(root, scene, data),
+    (e: Error) => say(root, "This page needs WebAssembly to unpack its mesh: " + e.message));
+}

@@ -30,7 +30,7 @@
 #include "ibfvs/gl/context.h"
 #include "ibfvs/render/export.h"
 #include "ibfvs/render/session.h"
-#include "ibfvs/render/web_page.h"
+#include "ibfvs/page/web_page.h"
 #include "ibfvs/video/video_writer.h"
 #ifdef IBFVS_HAVE_VTK
 #include "ibfvs/vtk/vtk_io.h"

@@ -6,6 +6,8 @@ packages=(
   build-essential cmake pkg-config git
   libopenmesh-dev libglm-dev libepoxy-dev libpng-dev libcli11-dev libeigen3-dev
   libmeshoptimizer-dev libnetcdf-dev libtomlplusplus-dev libtinygltf-dev
+  # The page writer: its JSON header and its base64 block.
+  nlohmann-json3-dev libb64-dev
   libglfw3-dev libimgui-dev libstb-dev xvfb xauth
   libavcodec-dev libavformat-dev libavutil-dev
   libegl-dev libegl-mesa0 libgl1-mesa-dri libgbm1

@@ -21,7 +21,7 @@
 #include "ibfvs/progress.h"
 #include "ibfvs/render/export.h"
 #include "ibfvs/render/session.h"
-#include "ibfvs/render/web_page.h"
+#include "ibfvs/page/web_page.h"
 #include "ibfvs/video/video_writer.h"
 
 namespace ibfvs::app {

@@ -8,6 +8,7 @@ import { execFileSync } from "node:child_process";
 import fs from "node:fs";
 import path from "node:path";
 import puppeteer from "puppeteer-core";
+import Ajv from "ajv";
 
 const ibfvs = process.env.IBFVS || "build/ibfvs";
 const out = process.env.OUT || fs.mkdtempSync("/tmp/ibfvs-web-");
@@ -367,4 +368,25 @@ test("a page needs a name ending in .html, and says so in one line", () => {
   assert.throws(() => execFileSync(ibfvs, ["render", "--mesh", "data/meshes/cow.off", "--out",
                                            path.join(out, "cow.htmlx")], { stdio: "pipe" }),
                 (e) => e.status !== 0 && /unknown output type/.test(e.stderr.toString()));
+});
+
+// Every page written above (steady, styled, locked, moving, changing, the
+// earth's months, ...) in the one format: the schema that the runtime's
+// types are generated from (web/schema/page.schema.json).
+test("every page written above matches the page schema", () => {
+  const schema = JSON.parse(fs.readFileSync(new URL("../schema/page.schema.json", import.meta.url)));
+  const validate = new Ajv({ allErrors: true, strict: true }).compile(schema);
+  const pages = fs.readdirSync(out).filter((f) => f.endsWith(".html"));
+  assert.ok(pages.length >= 10, `only ${pages.length} pages`);
+  for (const name of pages) {
+    const text = fs.readFileSync(path.join(out, name), "utf8");
+    const header = text.match(/<script type="application\/json" id="ibfvs-scene">(.*?)<\/script>/s);
+    assert.ok(header, name + ": no header");
+    assert.ok(validate(JSON.parse(header[1])), name + ": " + JSON.stringify(validate.errors));
+  }
+  // And the schema holds: a header with a field it does not know fails.
+  const some = JSON.parse(fs.readFileSync(path.join(out, pages[0]), "utf8")
+    .match(/id="ibfvs-scene">(.*?)<\/script>/s)[1]);
+  assert.ok(!validate({ ...some, unknown: 1 }));
+  assert.ok(!validate({ ...some, looks: [{ ...some.looks[0], dt: "1" }] }));
 });

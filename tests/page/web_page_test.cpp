@@ -4,9 +4,13 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "helpers.h"
 #include "ibfvs/core/mesh/mesh_io.h"
@@ -14,7 +18,7 @@
 #include "ibfvs/core/scene/scene.h"
 #include "ibfvs/core/scene/scene_prep.h"
 #include "ibfvs/core/support/error.h"
-#include "ibfvs/render/web_page.h"
+#include "ibfvs/page/web_page.h"
 
 namespace ibfvs {
 namespace {
@@ -25,6 +29,46 @@ PreparedScene torus_scene() {
   s.width = 64;
   s.height = 48;
   return prepare_scene(s);
+}
+
+// The page's parts: its header parsed, and its block decoded.
+struct PageParts {
+  nlohmann::json header;
+  std::vector<std::uint8_t> block;
+};
+
+std::string between(const std::string& page, const std::string& open, const std::string& close) {
+  const std::size_t a = page.find(open);
+  if (a == std::string::npos) return {};
+  const std::size_t b = page.find(close, a + open.size());
+  return page.substr(a + open.size(), b - a - open.size());
+}
+
+PageParts parts(const std::string& page) {
+  PageParts out;
+  out.header = nlohmann::json::parse(
+      between(page, "<script type=\"application/json\" id=\"ibfvs-scene\">", "</script>"));
+  // RFC 4648 base64, white space between lines.
+  const std::string digits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::uint32_t bits = 0;
+  int held = 0;
+  for (const char c : between(page, "id=\"ibfvs-data\">", "</script>")) {
+    const std::size_t v = digits.find(c);
+    if (v == std::string::npos) continue;  // white space and padding
+    bits = (bits << 6) | static_cast<std::uint32_t>(v);
+    if ((held += 6) >= 8) {
+      held -= 8;
+      out.block.push_back(static_cast<std::uint8_t>(bits >> held));
+    }
+  }
+  return out;
+}
+
+// Every array reference in a header (an object with an offset and a length).
+void array_refs(const nlohmann::json& j, std::vector<nlohmann::json>& out) {
+  if (j.is_object() && j.contains("offset") && j.contains("length")) out.push_back(j);
+  if (j.is_structured())
+    for (const auto& item : j) array_refs(item, out);
 }
 
 std::string what_throws(const std::function<void()>& f) {
@@ -145,6 +189,47 @@ TEST(WebPage, TopologyHoldsItsCellColoursAndItsLock) {
   EXPECT_NE(page.find("\"looks\":[{\"name\":\"topology\""), std::string::npos);
   EXPECT_EQ(page.find("{\"name\":\"flow\""), std::string::npos);
   EXPECT_NE(web_page(torus_scene()).find("\"lock\":null"), std::string::npos);
+}
+
+// The header is JSON (whatever the mesh is called), and the block holds
+// every array the header names, each where it says.
+TEST(WebPage, TheHeaderIsJsonAndTheBlockHoldsItsArrays) {
+  if (!has_web_runtime()) GTEST_SKIP() << "built without the browser runtime";
+  PreparedScene scene = torus_scene();
+  scene.mesh_name = "dir/b<i>\xff.off";        // markup, and a byte that is not UTF-8
+  scene.settings.noise.seed = 4'000'000'001u;  // more digits than a float holds
+  const std::string page = web_page(scene);
+  const PageParts p = parts(page);
+  EXPECT_EQ(p.header["format"], "ibfvs-page");
+  EXPECT_EQ(p.header["name"], "b<i>\xEF\xBF\xBD");  // U+FFFD for the odd byte
+  EXPECT_EQ(page.find("<i>"), std::string::npos);   // escaped in the title and the header
+  EXPECT_NE(page.find("<title>b&lt;i&gt;"), std::string::npos);
+  EXPECT_EQ(p.header["width"], 64);
+  EXPECT_EQ(p.header["vertex_count"], scene.mesh->vertex_count());
+  EXPECT_EQ(p.header["looks"][0]["uniforms"].size() > 0, true);
+  // u_seed, an unsigned integer, exactly.
+  bool seeded = false;
+  for (const auto& u : p.header["looks"][0]["grid_uniforms"]) {
+    if (u["name"] != "u_seed") continue;
+    EXPECT_EQ(u["values"][0], 4'000'000'001u);
+    seeded = true;
+  }
+  EXPECT_TRUE(seeded);
+  std::vector<nlohmann::json> refs;
+  array_refs(p.header["arrays"], refs);
+  ASSERT_EQ(refs.size(), 6u);  // positions, normals, vectors, indices, phases, colours
+  for (const auto& r : refs) {
+    EXPECT_EQ(r["offset"].get<std::size_t>() % 4, 0u) << r;
+    EXPECT_LE(r["offset"].get<std::size_t>() + r["length"].get<std::size_t>(), p.block.size()) << r;
+  }
+  // The colour map: 256 RGBA colours, stored as they are.
+  const auto& colours = p.header["arrays"]["color_map"];
+  ASSERT_EQ(colours["length"], 1024);
+  EXPECT_EQ(p.block[colours["offset"].get<std::size_t>() + 3], 255);  // opaque
+  // The phases: the grid's columns x rows, in 16 bits.
+  const auto& phases = p.header["arrays"]["phases"];
+  EXPECT_EQ(phases["length"].get<int>(),
+            p.header["phase_size"][0].get<int>() * p.header["phase_size"][1].get<int>());
 }
 
 TEST(WebPage, RefusesWhatIsTooBigAndNamesWithoutHtml) {

@@ -63,7 +63,7 @@ static const Scene& defaults() {
 namespace {
 
 // Shorthands for the table: a number member, an enum member.
-#define IBFVS_NUMBER_KEY(NAME, HELP, CHECK)                                          \
+#define IBFVS_NUMBER_KEY(NAME, HELP, CHECK, ...)                                     \
   SceneKey {                                                                         \
 #NAME, KeyKind::Number, HELP,                                                      \
         [](Scene& s, std::string_view t) {                                             \
@@ -73,15 +73,15 @@ namespace {
         },                                                                             \
         [](const Scene& s) {                                                           \
           return one(format_number(s.NAME));                                              \
-        } \
+        }, __VA_ARGS__ \
   }
-#define IBFVS_ENUM_KEY(NAME, TYPE, HELP)                                             \
+#define IBFVS_ENUM_KEY(NAME, TYPE, HELP, ...)                                        \
   SceneKey {                                                                         \
 #NAME, KeyKind::String, std::string(HELP) + ": " + enum_name_list<TYPE>(),         \
         [](Scene& s, std::string_view t) { s.NAME = parse_enum<TYPE>(t); },            \
         [](const Scene& s) {                                                           \
           return one(std::string(enum_name(s.NAME)));                                     \
-        } \
+        }, __VA_ARGS__ \
   }
 
 void require(bool ok, const char* problem) {
@@ -171,7 +171,8 @@ std::vector<SceneKey> make_keys() {
          for (const FlowElement& e : s.elements) out.push_back(e.to_string());
          return out;
        }},
-      IBFVS_ENUM_KEY(tangent, TangentMode, "how vectors with a normal part are used (3.8)"),
+      IBFVS_ENUM_KEY(tangent, TangentMode, "how vectors with a normal part are used (3.8)",
+                     KeyEffect::kTangent),
       {"time", KeyKind::Time,
        "time step from 0 (netCDF, a series: .pvd, OpenFOAM times, numbered files), or a range "
        "A:B played through, frames_per_step each; default: 0, or a whole series",
@@ -190,7 +191,7 @@ std::vector<SceneKey> make_keys() {
        [](Scene& s, std::string_view t) {
          s.frames_per_step = static_cast<int>(parse_integer(t, 1, 100000));
        },
-       [](const Scene& s) { return one(std::to_string(s.frames_per_step)); }},
+       [](const Scene& s) { return one(std::to_string(s.frames_per_step)); }, KeyEffect::kNone},
       // ---- scalars and colour
       {"scalar", KeyKind::StringList,
        "repeatable: NAME=FILE:VAR, a per-vertex scalar sampled from a netCDF lon/lat grid",
@@ -208,38 +209,44 @@ std::vector<SceneKey> make_keys() {
        "magnitude), speed, kmin, kmax, x, y, z (a leading - negates)",
        [](Scene& s, std::string_view t) { s.color_by = t; },
        [](const Scene& s) { return s.color_by.empty() ? none() : one(s.color_by); }},
-      IBFVS_ENUM_KEY(color_map, ColorMap, "colour map for color_by"),
+      IBFVS_ENUM_KEY(color_map, ColorMap, "colour map for color_by", KeyEffect::kLive),
       {"color_range", KeyKind::Vector, "LO,HI or percentiles pA,pB; default p1,p99",
        [](Scene& s, std::string_view t) { s.color_range = ScalarRange::parse(t); },
-       [](const Scene& s) { return s.color_range ? one(s.color_range->to_string()) : none(); }},
+       [](const Scene& s) { return s.color_range ? one(s.color_range->to_string()) : none(); },
+       KeyEffect::kLive},
       {"beta_by", KeyKind::String, "modulate beta by a per-vertex scalar (names as color_by)",
        [](Scene& s, std::string_view t) { s.beta_by = t; },
        [](const Scene& s) { return s.beta_by.empty() ? none() : one(s.beta_by); }},
       {"beta_range", KeyKind::Vector,
        "LO,HI or pA,pB: beta is 0 at LO and beta at HI; default p1,p99",
        [](Scene& s, std::string_view t) { s.beta_range = ScalarRange::parse(t); },
-       [](const Scene& s) { return s.beta_range ? one(s.beta_range->to_string()) : none(); }},
+       [](const Scene& s) { return s.beta_range ? one(s.beta_range->to_string()) : none(); },
+       KeyEffect::kLive},
       {"surface_image", KeyKind::String,
        "an equirectangular PNG standing in for the surface colour",
        [](Scene& s, std::string_view t) { s.surface_image = t; },
        [](const Scene& s) { return s.surface_image.empty() ? none() : one(s.surface_image); }},
       // ---- texture
       IBFVS_NUMBER_KEY(alpha, "blend weight of fresh noise (eq. 5, 12), 0..1",
-                       require_in_range("alpha", v)),
-      IBFVS_NUMBER_KEY(beta, "texture against shading (eq. 11), 0..1", require_in_range("beta", v)),
+                       require_in_range("alpha", v), KeyEffect::kLive, KeyRange{0.0f, 1.0f, true}),
+      IBFVS_NUMBER_KEY(beta, "texture against shading (eq. 11), 0..1", require_in_range("beta", v),
+                       KeyEffect::kLive, KeyRange{0.0f, 1.0f, true}),
       IBFVS_NUMBER_KEY(scale, "noise grid spacing s in pixels (eq. 6), at least 1",
-                       require(v >= 1.0f, "the noise scale must be at least 1 pixel")),
-      IBFVS_ENUM_KEY(profile, NoiseProfile, "time profile w (eq. 8)"),
-      IBFVS_NUMBER_KEY(vg, "image-change rate v_g, noise periods per frame (eq. 8)", (void)v),
+                       require(v >= 1.0f, "the noise scale must be at least 1 pixel"),
+                       KeyEffect::kNoise, KeyRange{1.0f, 64.0f, false}),
+      IBFVS_ENUM_KEY(profile, NoiseProfile, "time profile w (eq. 8)", KeyEffect::kLive),
+      IBFVS_NUMBER_KEY(vg, "image-change rate v_g, noise periods per frame (eq. 8)", (void)v,
+                       KeyEffect::kLive, KeyRange{0.0f, 1.0f, false}),
       IBFVS_NUMBER_KEY(spike_width, "fraction of the period a spike is on",
-                       require(v > 0.0f && v <= 1.0f, "must be in (0, 1]")),
+                       require(v > 0.0f && v <= 1.0f, "must be in (0, 1]"), KeyEffect::kLive),
       {"seed", KeyKind::Integer, "seed of the noise phases",
        [](Scene& s, std::string_view t) {
          s.seed = static_cast<std::uint32_t>(parse_integer(t, 0, 4294967295LL));
        },
-       [](const Scene& s) { return one(std::to_string(s.seed)); }},
+       [](const Scene& s) { return one(std::to_string(s.seed)); }, KeyEffect::kNoise},
       IBFVS_NUMBER_KEY(step, "largest image-space displacement per frame in pixels (sets dt)",
-                       require(v > 0.0f, "must be a positive number of pixels")),
+                       require(v > 0.0f, "must be a positive number of pixels"), KeyEffect::kStep,
+                       KeyRange{0.0f, 64.0f, false}),
       IBFVS_NUMBER_KEY(dt, "time step in world units per frame; > 0 overrides step",
                        require(v >= 0.0f, "must be a non-negative number")),
       {"image_normalize", KeyKind::Flag,
@@ -247,29 +254,34 @@ std::vector<SceneKey> make_keys() {
        "on by default (--no-image-normalize: the flow's own speeds, the fastest moving step "
        "pixels)",
        [](Scene& s, std::string_view t) { s.image_normalize = flag(t); },
-       [](const Scene& s) { return one(s.image_normalize ? "true" : "false"); }},
-      IBFVS_ENUM_KEY(resample, Resample, "how F_t is sampled at t(x) each frame (eq. 13)"),
+       [](const Scene& s) { return one(s.image_normalize ? "true" : "false"); }, KeyEffect::kLive},
+      IBFVS_ENUM_KEY(resample, Resample, "how F_t is sampled at t(x) each frame (eq. 13)",
+                     KeyEffect::kLive),
       IBFVS_NUMBER_KEY(filter,
                        "display only: Gaussian filter along the curved streamline over F_t, "
                        "its length in pixels, 0..32 (0 off)",
-                       require_in_range("filter", v, false, " pixels")),
+                       require_in_range("filter", v, false, " pixels"), KeyEffect::kLive,
+                       KeyRange{0.0f, 32.0f, true}),
       IBFVS_NUMBER_KEY(sharpen,
                        "display only: each filter tap plus k times its excess over its two "
                        "neighbours 1.5 pixels across the flow, 0..4 (0 off): thinner lines",
-                       require_in_range("sharpen", v, true)),
+                       require_in_range("sharpen", v, true), KeyEffect::kLive,
+                       KeyRange{0.0f, 4.0f, true}),
       IBFVS_NUMBER_KEY(contrast,
                        "display only: RMS contrast of the shown texture, mean 0.5, 0..0.5 (0: "
                        "as synthesised; section 3.4)",
-                       require_in_range("contrast", v, true)),
-      IBFVS_ENUM_KEY(inject, InjectMode, "how noise enters the texture"),
+                       require_in_range("contrast", v, true), KeyEffect::kLive,
+                       KeyRange{0.0f, 0.5f, true}),
+      IBFVS_ENUM_KEY(inject, InjectMode, "how noise enters the texture", KeyEffect::kLive),
       {"background", KeyKind::Vector, "background colour B, R,G,B in 0..1",
        [](Scene& s, std::string_view t) { s.background = colour(t); },
-       [](const Scene& s) { return one(format_vec3(s.background)); }},
+       [](const Scene& s) { return one(format_vec3(s.background)); }, KeyEffect::kLive},
       {"surface_color", KeyKind::Vector, "diffuse colour of the shaded surface, R,G,B",
        [](Scene& s, std::string_view t) { s.surface_color = colour(t); },
-       [](const Scene& s) { return one(format_vec3(s.surface_color)); }},
-      IBFVS_ENUM_KEY(noise_space, NoiseSpace, "where the noise lives (3.6)"),
-      IBFVS_ENUM_KEY(advect_view, AdvectView, "which view projects r - v dt (eq. 13)"),
+       [](const Scene& s) { return one(format_vec3(s.surface_color)); }, KeyEffect::kLive},
+      IBFVS_ENUM_KEY(noise_space, NoiseSpace, "where the noise lives (3.6)", KeyEffect::kLive),
+      IBFVS_ENUM_KEY(advect_view, AdvectView, "which view projects r - v dt (eq. 13)",
+                     KeyEffect::kLive),
       IBFVS_ENUM_KEY(init, InitMode, "F_t at the start"),
       // ---- camera
       {"camera", KeyKind::Vector,
@@ -285,23 +297,25 @@ std::vector<SceneKey> make_keys() {
        [](const Scene& s) {
          const glm::vec3 c(s.camera.azimuth_deg, s.camera.elevation_deg, s.camera.distance);
          return one(format_vec3(c));
-       }},
+       },
+       KeyEffect::kCamera},
       {"look_at", KeyKind::Vector, "X,Y,Z: look-at point as an offset from the box centre",
        [](Scene& s, std::string_view t) { s.camera.target = parse_vec3(t); },
-       [](const Scene& s) { return one(format_vec3(s.camera.target)); }},
+       [](const Scene& s) { return one(format_vec3(s.camera.target)); }, KeyEffect::kCamera},
       {"ortho", KeyKind::Flag, "orthographic instead of perspective projection",
        [](Scene& s, std::string_view t) { s.camera.orthographic = flag(t); },
-       [](const Scene& s) { return s.camera.orthographic ? one("true") : none(); }},
+       [](const Scene& s) { return s.camera.orthographic ? one("true") : none(); },
+       KeyEffect::kCamera},
       {"fov", KeyKind::Number, "vertical field of view in degrees",
        [](Scene& s, std::string_view t) {
          const float v = number(t);
          require(v > 0.0f && v < 180.0f, "the field of view must be between 0 and 180 degrees");
          s.camera.fov_deg = v;
        },
-       [](const Scene& s) { return one(format_number(s.camera.fov_deg)); }},
-      IBFVS_NUMBER_KEY(
-          orbit, "degrees per frame the camera turns about the vertical",
-          require(std::abs(v) <= 360.0f, "must be within -360..360 degrees per frame")),
+       [](const Scene& s) { return one(format_number(s.camera.fov_deg)); }, KeyEffect::kCamera},
+      IBFVS_NUMBER_KEY(orbit, "degrees per frame the camera turns about the vertical",
+                       require(std::abs(v) <= 360.0f, "must be within -360..360 degrees per frame"),
+                       KeyEffect::kCamera),
       {"lock_at", KeyKind::Time,
        "lock the texture after this many frames (3.7); -1 never; auto: once the texture has "
        "had time to cross the mesh",
@@ -338,43 +352,44 @@ std::vector<SceneKey> make_keys() {
          s.width = width;
          s.height = height;
        },
-       [](const Scene& s) {
-         return one(std::to_string(s.width) + "x" + std::to_string(s.height));
-       }},
+       [](const Scene& s) { return one(std::to_string(s.width) + "x" + std::to_string(s.height)); },
+       KeyEffect::kSize},
       {"frames", KeyKind::Integer,
        "frames to render, 1..1000000; 0: an automatic lock's frame plus 60",
        [](Scene& s, std::string_view t) {
          s.frames = static_cast<int>(parse_integer(t, 0, 1000000));
        },
-       [](const Scene& s) { return one(std::to_string(s.frames)); }},
+       [](const Scene& s) { return one(std::to_string(s.frames)); }, KeyEffect::kNone},
       {"fps", KeyKind::Number, "frame rate of the video, (0, 1000]",
        [](Scene& s, std::string_view t) {
          const double v = parse_number(t);
          require(v > 0.0 && v <= 1000.0, "must be in (0, 1000]");
          s.fps = v;
        },
-       [](const Scene& s) { return one(format_number(s.fps)); }},
+       [](const Scene& s) { return one(format_number(s.fps)); }, KeyEffect::kNone},
       {"out", KeyKind::String,
        "output: .mp4 .mkv .mov .avi .webm .gif, .png (last frame), a %04d .png pattern, or "
        ".html (a web page that animates the scene in the browser: docs/web.md)",
        [](Scene& s, std::string_view t) { s.out = t; },
-       [](const Scene& s) { return s.out.empty() ? none() : one(s.out); }},
+       [](const Scene& s) { return s.out.empty() ? none() : one(s.out); }, KeyEffect::kNone},
       {"texture_out", KeyKind::String, "the texture F_t of the last frame, 16-bit PNG",
        [](Scene& s, std::string_view t) { s.texture_out = t; },
-       [](const Scene& s) { return s.texture_out.empty() ? none() : one(s.texture_out); }},
+       [](const Scene& s) { return s.texture_out.empty() ? none() : one(s.texture_out); },
+       KeyEffect::kNone},
       {"export", KeyKind::String,
        "FILE.obj|.gltf|.glb|.vtp: the mesh with the final texture (3.7); .vtp for ParaView; "
        "FILE.html: the scene's web page beside the other output",
        [](Scene& s, std::string_view t) { s.export_model = t; },
-       [](const Scene& s) { return s.export_model.empty() ? none() : one(s.export_model); }},
+       [](const Scene& s) { return s.export_model.empty() ? none() : one(s.export_model); },
+       KeyEffect::kNone},
       {"quiet", KeyKind::Flag, "no progress bar, no summary",
        [](Scene& s, std::string_view t) { s.quiet = flag(t); },
-       [](const Scene& s) { return s.quiet ? one("true") : none(); }},
+       [](const Scene& s) { return s.quiet ? one("true") : none(); }, KeyEffect::kNone},
       {"style", KeyKind::String,
        "defaults of one of the paper's looks, any other key overrides them: " +
            enum_name_list<Style>(),
        [](Scene& s, std::string_view t) { apply_style(s, parse_enum<Style>(t)); },
-       [](const Scene&) { return none(); }},
+       [](const Scene&) { return none(); }, KeyEffect::kNone},
   };
 }
 

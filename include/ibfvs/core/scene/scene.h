@@ -206,27 +206,8 @@ enum class KeyKind {
   Time,        ///< an integer or "A:B"
 };
 
-/// One setting of a scene, known by the same name in scene files and (with
-/// dashes) on the command line.
-struct SceneKey {
-  std::string_view name;  ///< snake_case
-  KeyKind kind;
-  std::string help;  ///< one line: form and meaning (enum keys list their names)
-  /// Sets the value from its text form. Throws InputError (the caller adds the key).
-  void (*set)(Scene&, std::string_view text);
-  /// The value's text forms (several for a repeatable key; none for an unset
-  /// optional value or a false flag). set() of each gives the same scene.
-  std::vector<std::string> (*get)(const Scene&);
-};
-
-/// Every key, in documentation order.
-const std::vector<SceneKey>& scene_keys();
-/// The key named `name`, or nullptr.
-const SceneKey* find_scene_key(std::string_view name);
-
-/// What a running animation does when a key changes (Session::set): one
-/// table for the viewer, Python and the restyling of a page, so that they
-/// follow the same rules.
+/// What a running animation does when a key changes (Session::set), for
+/// the viewer, Python and the restyling of a page alike.
 enum class KeyEffect {
   kLive,     ///< a texture or display setting the next frame takes (alpha, filter, colours, ...)
   kStep,     ///< dt follows the new step
@@ -237,15 +218,10 @@ enum class KeyEffect {
   kNone,     ///< read as the animation runs or only by a front end (frames, out, style, ...)
   kPrepare,  ///< the scene prepared again (mesh, field, scalars, ...): the texture starts afresh
 };
-/// The effect of changing key `name` (kPrepare for a name that is no key).
-KeyEffect key_effect(std::string_view name);
-/// The keys whose values differ between two scenes, in table order.
-std::vector<std::string_view> changed_keys(const Scene& before, const Scene& after);
-
-/// The span of a number key, one table for every front end: the command
-/// line's and the scene files' checks, RenderSettings::validate, the
-/// viewer's sliders, the ParaView representation's property domains (a
-/// test compares its XML) and its clamps.
+/// The span of a number key, for every front end: the command line's and
+/// the scene files' checks, RenderSettings::validate, the viewer's
+/// sliders, the page's sliders, the ParaView representation's property
+/// domains (generated from it) and its clamps.
 struct KeyRange {
   float min = 0.0f;
   float max = 0.0f;
@@ -253,6 +229,36 @@ struct KeyRange {
   /// (a typed value beyond it is valid).
   bool enforced = false;
 };
+/// One setting of a scene, known by the same name in scene files and (with
+/// dashes) on the command line: the one table of parameters (scene_keys())
+/// that the command's options, the scene files, the Python keywords, the
+/// viewer's sliders, the page's sliders and the ParaView XML's ranges and
+/// enumerations come from.
+struct SceneKey {
+  std::string_view name;  ///< snake_case
+  KeyKind kind;
+  std::string help;  ///< one line: form and meaning (enum keys list their names)
+  /// Sets the value from its text form. Throws InputError (the caller adds the key).
+  void (*set)(Scene&, std::string_view text);
+  /// The value's text forms (several for a repeatable key; none for an unset
+  /// optional value or a false flag). set() of each gives the same scene.
+  std::vector<std::string> (*get)(const Scene&);
+  /// What a running animation does when the key changes.
+  KeyEffect effect = KeyEffect::kPrepare;
+  /// A number key's span (none: any value its check takes).
+  std::optional<KeyRange> range = std::nullopt;
+};
+
+/// Every key, in documentation order.
+const std::vector<SceneKey>& scene_keys();
+/// The key named `name`, or nullptr.
+const SceneKey* find_scene_key(std::string_view name);
+
+/// The effect of changing key `name` (kPrepare for a name that is no key).
+KeyEffect key_effect(std::string_view name);
+/// The keys whose values differ between two scenes, in table order.
+std::vector<std::string_view> changed_keys(const Scene& before, const Scene& after);
+
 /// The range of number key `name`; nullopt for a key that has none.
 std::optional<KeyRange> key_range(std::string_view name);
 /// `value` clamped to the range of `name` (a key that has one).

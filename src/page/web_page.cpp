@@ -13,6 +13,7 @@ extern "C" {
 
 #include "ibfvs/core/mesh/mesh.h"
 #include "ibfvs/core/scene/camera.h"
+#include "ibfvs/core/scene/scene.h"
 #include "ibfvs/core/support/error.h"
 #include "ibfvs/core/texture/display.h"
 #include "ibfvs/core/texture/noise.h"
@@ -74,6 +75,16 @@ std::string html_escape(const std::string& s) {
     else
       out += c;
   }
+  return out;
+}
+
+// The number keys' spans, from the keys' table: the page's sliders span them.
+Json ranges() {
+  Json out = Json::object();
+  for (const SceneKey& key : scene_keys())
+    if (key.range)
+      out[std::string(key.name)] = {
+          {"min", key.range->min}, {"max", key.range->max}, {"enforced", key.range->enforced}};
   return out;
 }
 
@@ -194,7 +205,8 @@ std::string web_page(const PreparedScene& p, WebPageReport* report, const WebPag
       {"frames_per_step", p.scene.frames_per_step},
       {"index_count", 3 * mesh.triangle_count()},
       {"phase_size", {grid.columns(), grid.rows()}},
-      {"arrays", std::move(arrays)}};
+      {"arrays", std::move(arrays)},
+      {"ranges", ranges()}};
 
   const std::string runtime = kWebRuntime;
   std::string page =

@@ -20,18 +20,21 @@ function say(root: HTMLElement, text: string): void {
   console.warn("ibfvs: " + text);
 }
 
+// A slider; `log`: it moves on the logarithm of the value (spans like the
+// step's, 0.25 to 64 pixels, where the common values are a few).
 function slider(panel: HTMLElement, label: string, min: number, max: number, value: number,
-                change: (v: number) => void): HTMLInputElement {
+                change: (v: number) => void, log = false): HTMLInputElement {
   const wrap = document.createElement("label");
   wrap.textContent = label + " ";
   const input = document.createElement("input");
+  const to = log ? Math.log : (v: number) => v, from = log ? Math.exp : (v: number) => v;
   input.type = "range";
-  input.min = String(min);
-  input.max = String(max);
-  input.step = String((max - min) / 100);
-  input.value = String(value);
+  input.min = String(to(min));
+  input.max = String(to(max));
+  input.step = String((to(max) - to(min)) / 100);
+  input.value = String(to(value));
   input.dataset.name = label;
-  input.addEventListener("input", () => change(parseFloat(input.value)));
+  input.addEventListener("input", () => change(from(parseFloat(input.value))));
   wrap.appendChild(input);
   panel.appendChild(wrap);
   return input;
@@ -114,10 +117,12 @@ function addPanel(root: HTMLElement, canvas: HTMLCanvasElement, scene: SceneHead
     controls.replaceChildren();
     state.dtFactor = 1;
     const uniform = (name: string) => renderer.look.uniforms.find((u) => u.name === name);
+    // Each slider spans its key's range (the scene keys' table, in the header).
+    const range = scene.ranges;
     for (const [name, label] of [["u_alpha", "alpha"], ["u_beta", "beta"]] as const) {
       const u = uniform(name);
       if (!u) continue;
-      slider(controls, label, 0, 1, u.values[0], (v) => {
+      slider(controls, label, range[label].min, range[label].max, u.values[0], (v) => {
         u.values[0] = v;
         renderer.applySettings([u]);
       });
@@ -126,10 +131,11 @@ function addPanel(root: HTMLElement, canvas: HTMLCanvasElement, scene: SceneHead
     // else a factor on the look's dt.
     const imageStep = uniform("u_image_step");
     if (imageStep && imageStep.values[0] > 0) {
-      slider(controls, "step (px)", 0.25, 8, imageStep.values[0], (v) => {
+      const step = range.step;
+      slider(controls, "step (px)", Math.max(step.min, step.max / 256), step.max, imageStep.values[0], (v) => {
         imageStep.values[0] = v;
         renderer.applySettings([imageStep]);
-      });
+      }, true);
     } else {
       slider(controls, "speed", 0, 4, 1, (v) => (state.dtFactor = v));
     }
@@ -137,7 +143,8 @@ function addPanel(root: HTMLElement, canvas: HTMLCanvasElement, scene: SceneHead
     const noiseScale = uniform("u_noise_scale");
     if (noiseScale) {
       const base = noiseScale.values[0];
-      slider(controls, "noise scale (px)", base, 6 * base, base, (v) => renderer.setNoiseScale(v));
+      slider(controls, "noise scale (px)", base, Math.min(6 * base, range.scale.max), base,
+             (v) => renderer.setNoiseScale(v));
     }
   };
   if (scene.looks.length > 1) {

@@ -166,6 +166,12 @@ test("the style menu shows the same data in another style, as ibfvs render draws
   const names = await page.$$eval(menu + " option", (o) => o.map((e) => e.textContent));
   assert.deepEqual(names, ["as rendered", "flow", "crisp", "paper"]);
   await frames(page, 10);
+  // The default look's sliders span the keys' ranges (the scene keys' table): alpha 0..1,
+  // the step logarithmic up to 64 pixels.
+  const span = (name) => page.$eval(`input[data-name="${name}"]`, (e) => [+e.min, +e.max]);
+  assert.deepEqual(await span("alpha"), [0, 1]);
+  const [lo, hi] = await span("step (px)");
+  assert.ok(Math.abs(Math.exp(hi) - 64) < 1e-6 && Math.abs(Math.exp(lo) - 0.25) < 1e-6, `${lo} ${hi}`);
   await page.select(menu, String(names.indexOf("paper")));  // from a fresh texture: frame 0
   await pauseAt(page, 61);
   const a = alignment(await shot(page, "cow-paper"));

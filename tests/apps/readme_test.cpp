@@ -227,8 +227,7 @@ TEST_F(Readme, OptionsCommandRefusesArgumentsInOneLine) {
 // The ParaView representation starts from the same look as the command line:
 // each property's default_values in the plugin's XML equals the Scene's.
 TEST(ParaViewDefaults, EqualTheScenesDefaults) {
-  const std::string xml =
-      test::read_file(fs::path(IBFVS_SOURCE_DIR) / "paraview/IBFVS/IBFVSRepresentation.xml");
+  const std::string xml = test::read_file(IBFVS_PARAVIEW_XML);
   const auto value = [&](const std::string& property) {
     const std::regex re("name=\"" + property + "\"[^>]*default_values=\"([^\"]*)\"");
     std::smatch m;
@@ -279,8 +278,7 @@ void expect_xml_enumeration(const std::string& xml, const std::string& property)
 }
 
 TEST(ParaViewDefaults, EnumerationsAreTheNameTables) {
-  const std::string xml =
-      test::read_file(fs::path(IBFVS_SOURCE_DIR) / "paraview/IBFVS/IBFVSRepresentation.xml");
+  const std::string xml = test::read_file(IBFVS_PARAVIEW_XML);
   expect_xml_enumeration<NoiseProfile>(xml, "TimeProfile");
   expect_xml_enumeration<Resample>(xml, "Resample");
 }
@@ -289,8 +287,7 @@ TEST(ParaViewDefaults, EnumerationsAreTheNameTables) {
 // table the command line, the viewer's sliders and the mapper's clamps use),
 // and every ranged key has its property; the styles stay inside them.
 TEST(ParaViewDefaults, RangesAreTheKeysRanges) {
-  const std::string xml =
-      test::read_file(fs::path(IBFVS_SOURCE_DIR) / "paraview/IBFVS/IBFVSRepresentation.xml");
+  const std::string xml = test::read_file(IBFVS_PARAVIEW_XML);
   const std::pair<const char*, const char*> properties[] = {
       {"Alpha", "alpha"},       {"Beta", "beta"},      {"NoiseScale", "scale"},
       {"StepPixels", "step"},   {"NoiseRate", "vg"},   {"FilterLength", "filter"},

@@ -75,14 +75,19 @@ namespace {
           return one(format_number(s.NAME));                                              \
         }, __VA_ARGS__ \
   }
-#define IBFVS_ENUM_KEY(NAME, TYPE, HELP, ...)                                        \
-  SceneKey {                                                                         \
-#NAME, KeyKind::String, std::string(HELP) + ": " + enum_name_list<TYPE>(),         \
-        [](Scene& s, std::string_view t) { s.NAME = parse_enum<TYPE>(t); },            \
-        [](const Scene& s) {                                                           \
-          return one(std::string(enum_name(s.NAME)));                                     \
-        }, __VA_ARGS__ \
-  }
+#define IBFVS_ENUM_KEY(NAME, TYPE, HELP, ...)                                             \
+  with_choices<TYPE>(                                                                     \
+      SceneKey{#NAME, KeyKind::String, std::string(HELP) + ": " + enum_name_list<TYPE>(), \
+               [](Scene& s, std::string_view t) { s.NAME = parse_enum<TYPE>(t); },        \
+               [](const Scene& s) { return one(std::string(enum_name(s.NAME))); }, __VA_ARGS__})
+
+// An enumeration key with its values from the enum's name table.
+template <class E>
+SceneKey with_choices(SceneKey key) {
+  for (const EnumName<E>& e : enum_entries<E>())
+    key.choices.push_back({static_cast<int>(e.value), e.name});
+  return key;
+}
 
 void require(bool ok, const char* problem) {
   if (!ok) throw InputError(problem);

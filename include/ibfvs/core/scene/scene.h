@@ -229,6 +229,11 @@ struct KeyRange {
   /// (a typed value beyond it is valid).
   bool enforced = false;
 };
+/// One value of an enumeration key: the enum's number and its canonical name.
+struct KeyChoice {
+  int value = 0;
+  std::string_view name;
+};
 /// One setting of a scene, known by the same name in scene files and (with
 /// dashes) on the command line: the one table of parameters (scene_keys())
 /// that the command's options, the scene files, the Python keywords, the
@@ -247,6 +252,8 @@ struct SceneKey {
   KeyEffect effect = KeyEffect::kPrepare;
   /// A number key's span (none: any value its check takes).
   std::optional<KeyRange> range = std::nullopt;
+  /// An enumeration key's values, in its name table's order (else empty).
+  std::vector<KeyChoice> choices = {};
 };
 
 /// Every key, in documentation order.

@@ -21,35 +21,18 @@ std::span<const std::byte> bytes_of(std::span<const T> v) {
   return std::as_bytes(v);
 }
 
-void set_uniform(const gl::Program& p, const shaders::UniformValue& u) {
-  const int location = p.location(u.name.c_str());
-  const auto f = [&](std::size_t i) { return static_cast<float>(u.values[i]); };
-  const auto n = [&](std::size_t i) { return static_cast<int>(u.values[i]); };
-  using T = shaders::UniformValue::Type;
-  if (u.array) {
-    std::vector<float> values(u.values.begin(), u.values.end());
-    p.set(location, std::span<const float>(values));
-  } else if (u.type == T::Uint) {
-    p.set(location, static_cast<std::uint32_t>(u.values[0]));
-  } else if (u.type == T::Int) {
-    if (u.values.size() == 1)
-      p.set(location, n(0));
-    else
-      p.set(location, glm::ivec2(n(0), n(1)));
-  } else if (u.values.size() == 1) {
-    p.set(location, f(0));
-  } else if (u.values.size() == 2) {
-    p.set(location, glm::vec2(f(0), f(1)));
-  } else {
-    p.set(location, glm::vec3(f(0), f(1), f(2)));
-  }
+// The settings, checked before any pass is made from them.
+const RenderSettings& checked(const RenderSettings& settings) {
+  settings.validate();
+  gl::check_image_size(settings.width, settings.height, "size");
+  return settings;
 }
 
 }  // namespace
 
-IbfvsRenderer::IbfvsRenderer(const RenderSettings& settings) : settings_(settings) {
-  settings_.validate();
-  gl::check_image_size(settings_.width, settings_.height, "size");
+IbfvsRenderer::IbfvsRenderer(const RenderSettings& settings)
+    : settings_(checked(settings)),
+      grid_pass_(NoiseGrid(settings_.width, settings_.height, settings_.noise)) {
   color_map_ = gl::Texture2D(256, 1, gl::Format::RGBA32F, true);
   const int w = settings_.width, h = settings_.height;
   output_ = gl::Texture2D(w, h, gl::Format::RGBA8, false);
@@ -58,39 +41,9 @@ IbfvsRenderer::IbfvsRenderer(const RenderSettings& settings) : settings_(setting
   output_framebuffer_.attach_color(0, output_);
   output_framebuffer_.attach_depth(depth_);
   output_framebuffer_.finish(1);
-  stats_ = gl::Texture2D(1, 1, gl::Format::RGBA32F, false);
-  stats_framebuffer_ = gl::Framebuffer::create();
-  stats_framebuffer_.attach_color(0, stats_);
-  stats_framebuffer_.finish(1);
-  for (const int mono : {0, 1}) {
-    StatsProgram& sp = stats_program_[mono];
-    sp.program =
-        gl::Program(shaders::grid_vertex_source(), shaders::stats_fragment_source(mono == 1));
-    sp.image_size = sp.program.location("u_image_size");
-    sp.stats_size = sp.program.location("u_stats_size");
-    sp.offset = sp.program.location("u_offset");
-  }
   allocate_texture(shaders::colour_background(settings_));
-
-  const NoiseGrid grid(w, h, settings_.noise);
-  phase_size_ = glm::ivec2(grid.columns(), grid.rows());
-  phases_ = gl::Texture2D(grid.columns(), grid.rows(), gl::Format::R32F, false);
-  phases_.upload_float(grid.phases(), 1);
-  // The grid pass writes G_ij here; sampling it bilinearly is equation 7.
-  grid_ = gl::Texture2D(grid.columns(), grid.rows(), gl::Format::R32F, true);
-  grid_.set_repeat(true);
-  grid_framebuffer_ = gl::Framebuffer::create();
-  grid_framebuffer_.attach_color(0, grid_);
-  grid_framebuffer_.finish(1);
-  grid_program_ = gl::Program(shaders::grid_vertex_source(), shaders::grid_fragment_source());
-  grid_noise_time_ = grid_program_.location("u_noise_time");
-  grid_profile_ = grid_program_.location("u_profile");
-  grid_spike_width_ = grid_program_.location("u_spike_width");
-  grid_seed_ = grid_program_.location("u_seed");
+  phase_size_ = grid_pass_.size();
   empty_vao_ = gl::VertexArray::create();
-  host_program_ = gl::Program(shaders::grid_vertex_source(), shaders::host_fragment_source());
-  host_origin_ = host_program_.location("u_origin");
-  host_interior_ = host_program_.location("u_interior");
   apply_settings();
   static_cast<void>(current_variant());  // compile now: a shader error shows at construction
   reset();
@@ -182,60 +135,23 @@ shaders::ShaderFeatures IbfvsRenderer::features() const {
 IbfvsRenderer::Variant& IbfvsRenderer::current_variant() {
   const shaders::ShaderFeatures f = features();
   const bool deferred = deferred_allowed_ && shaders::deferred_pass(f);
-  Variant& v = variants_[f.key() | (deferred ? 1u << 24u : 0u)];  // made on first use
-  if (!v.program) {
-    const auto locations = [](const gl::Program& p) {
-      Uniforms u{};
-      u.view_projection = p.location("u_view_projection");
-      u.advect_view_projection = p.location("u_advect_view_projection");
-      u.view = p.location("u_view");
-      u.clip_to_depth = p.location("u_clip_to_depth");
-      u.dt = p.location("u_dt");
-      u.noise_time = p.location("u_noise_time");
-      u.field_mix = p.location("u_field_mix");
-      u.locked = p.location("u_locked");
-      u.probe = p.location("u_probe");
-      u.texture_shift = p.location("u_texture_shift");
-      u.noise_shift = p.location("u_noise_shift");
-      u.tap_depth = p.location("u_tap_depth");
-      u.new_tap_depth = p.location("u_new_tap_depth");
-      u.drawn_mix = p.location("u_drawn_mix");
-      return u;
-    };
-    if (deferred) {
-      v.program = gl::Program(shaders::ibfvs_vertex_source(f), shaders::gbuffer_fragment_source(f));
-      v.resolve =
-          gl::Program(shaders::display_vertex_source(), shaders::resolve_fragment_source(f));
-      v.ru = locations(v.resolve);
-      if (!gbuffer_framebuffer_) {
-        gbuffer_framebuffer_ = gl::Framebuffer::create();
-        for (int i = 0; i < 2; ++i) {
-          gbuffer_[i] =
-              gl::Texture2D(settings_.width, settings_.height, gl::Format::RGBA32F, false);
-          gbuffer_framebuffer_.attach_color(i, gbuffer_[i]);
-        }
-        gbuffer_framebuffer_.attach_depth(depth_);
-        gbuffer_framebuffer_.finish(2);
+  const unsigned key = f.key() | (deferred ? 1u << 24u : 0u);
+  auto it = variants_.find(key);
+  if (it == variants_.end()) {  // made on first use
+    it = variants_.emplace(key, Variant{IbfvsPrograms(f, deferred)}).first;
+    if (deferred && !gbuffer_framebuffer_) {
+      gbuffer_framebuffer_ = gl::Framebuffer::create();
+      for (int i = 0; i < 2; ++i) {
+        gbuffer_[i] = gl::Texture2D(settings_.width, settings_.height, gl::Format::RGBA32F, false);
+        gbuffer_framebuffer_.attach_color(i, gbuffer_[i]);
       }
-    } else {
-      v.program = gl::Program(shaders::ibfvs_vertex_source(f), shaders::ibfvs_fragment_source(f));
-    }
-    v.u = locations(v.program);
-    if (shaders::tap_texture(f) && !v.resolve) {
-      v.display =
-          gl::Program(shaders::display_vertex_source(), shaders::display_fragment_source(f));
-      v.display_texture_shift = v.display.location("u_texture_shift");
-      v.display_tap_depth = v.display.location("u_tap_depth");
+      gbuffer_framebuffer_.attach_depth(depth_);
+      gbuffer_framebuffer_.finish(2);
     }
   }
+  Variant& v = it->second;
   if (v.applied != settings_version_) {  // the settings changed since it was last used
-    const gl::Program& p = v.program;
-    for (const shaders::UniformValue& u :
-         shaders::settings_uniforms(settings_, f, phase_size_, image_centre_)) {
-      set_uniform(p, u);
-      if (v.resolve) set_uniform(v.resolve, u);
-      if (v.display) set_uniform(v.display, u);
-    }
+    v.programs.apply(shaders::settings_uniforms(settings_, f, phase_size_, image_centre_));
     v.applied = settings_version_;
   }
   return v;
@@ -243,9 +159,7 @@ IbfvsRenderer::Variant& IbfvsRenderer::current_variant() {
 
 void IbfvsRenderer::apply_settings() {
   ++settings_version_;
-  grid_program_.set(grid_profile_, static_cast<int>(settings_.noise.profile));
-  grid_program_.set(grid_spike_width_, settings_.noise.spike_width);
-  grid_program_.set(grid_seed_, settings_.noise.seed);
+  grid_pass_.apply(settings_.noise);
   std::vector<float> table(256 * 4);
   for (int i = 0; i < 256; ++i) {
     const glm::vec3 c = settings_.color_table.size() == 256
@@ -278,7 +192,7 @@ void IbfvsRenderer::reset() {
       texture_layout_ != texture_layout(colour_texture_))
     allocate_texture(shaders::colour_background(settings_));
   for (auto& fb : framebuffer_) clear_targets(fb);
-  stats_framebuffer_.clear_color(0, glm::vec4(0.0f));  // no statistics before the first frame
+  stats_pass_.clear();  // no statistics before the first frame
   current_ = 0;
   displayed_ = 0;
   frame_ = 0;
@@ -311,21 +225,7 @@ void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
   surface_box_ = screen_box(vp);
   if (index_count_ > 0) {
     const float noise_time = settings_.noise.rate * static_cast<float>(frame_);
-    if (!settings_.object_noise) {  // the grid pass: G_ij of this frame
-      grid_framebuffer_.bind();
-      gl::set_viewport(grid_.width(), grid_.height());
-      gl::enable_depth_test(false);
-      gl::set_face_culling(0);
-      grid_program_.use();
-      grid_program_.set(grid_noise_time_, noise_time);
-      phases_.bind(units::kPhases);
-      // Only the cells the surface can read: the whole grid is a full-screen
-      // pass of two hashes per cell (in ParaView, 5 ms of the motorbike's
-      // 90; the box saves 3 of them).
-      gl::scissor(true, grid_box());
-      gl::draw_attributeless_triangle(empty_vao_);
-      gl::scissor(false);
-    }
+    if (!settings_.object_noise) grid_pass_.run(noise_time, grid_box());  // G_ij of this frame
     fb.bind();
     gl::set_viewport(settings_.width, settings_.height);
     gl::set_running_average(0.0f);  // no blending (a host's may be on)
@@ -333,9 +233,9 @@ void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
     // A closed mesh hides its back faces behind its front ones: culling them
     // halves llvmpipe's triangle setup and changes no pixel.
     gl::set_face_culling(cull_);
-    const Variant& v = current_variant();
-    const gl::Program& p = v.program;
-    if (v.resolve) gbuffer_framebuffer_.bind();  // the first half of the deferred pass
+    const IbfvsPrograms& v = current_variant().programs;
+    const gl::Program& p = v.mesh();
+    if (v.resolve()) gbuffer_framebuffer_.bind();  // the first half of the deferred pass
     p.use();
     tap_depth_[next] = tap_depth_map(view.projection);
     // A moving surface: where the last frame drew each vertex (the pair of
@@ -345,27 +245,33 @@ void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
       point_drawn_attributes();
       if (use_previous && !locked_ && drawn_this_mesh_) drawn_mix = drawn_mix_;
     }
-    const FrameUniforms frame{locked_        ? lock_view_projection_
-                              : use_previous ? previous_view_projection_
-                                             : vp,
-                              locked_ ? 0.0f : dt, noise_time, drawn_mix};
-    set_frame_uniforms(p, v.u, view, frame);
-    if (v.resolve) {
-      set_frame_uniforms(v.resolve, v.ru, view, frame);
-      // It reads the last frame's taps, stored under that frame's map.
-      v.resolve.set(v.ru.tap_depth, tap_depth_[current_]);
-      v.resolve.set(v.ru.new_tap_depth, tap_depth_[next]);
-    }
+    IbfvsFrame frame;
+    frame.view = view.view;
+    frame.projection = view.projection;
+    frame.advect_view_projection = locked_        ? lock_view_projection_
+                                   : use_previous ? previous_view_projection_
+                                                  : vp;
+    frame.dt = locked_ ? 0.0f : dt;
+    frame.noise_time = noise_time;
+    frame.field_mix = field_mix_;
+    frame.drawn_mix = drawn_mix;
+    frame.probe = probe_;
+    frame.texture_shift = texture_shift_;
+    frame.noise_shift = noise_shift_;
+    frame.locked = locked_;
+    frame.tap_depth = tap_depth_[next];
+    frame.last_tap_depth = tap_depth_[current_];
+    v.set_frame(frame);
     texture_[current_].bind(units::kPrevious);
     if (taps_[current_]) taps_[current_].bind(units::kTaps);
-    grid_.bind(units::kGrid);
+    grid_pass_.values().bind(units::kGrid);
     color_map_.bind(units::kColorMap);
     if (surface_image_) surface_image_.bind(units::kSurfaceImage);
-    stats_.bind(units::kStats);
+    stats_pass_.result().bind(units::kStats);
     vao_.bind();
     gl::draw_triangles(index_count_, true);
-    if (v.resolve) resolve_pass(v, resolve_framebuffer_[next]);
-    if (v.display) display_pass(v);
+    if (v.resolve()) resolve_pass(v, resolve_framebuffer_[next]);
+    if (v.display()) display_pass(v);
     // The statistics change slowly: every kStatsEvery frames is enough, and
     // on llvmpipe each extra pass ends the frame's scene early.
     if (settings_.contrast > 0.0f && frame_ % kStatsEvery == 0) {
@@ -392,35 +298,12 @@ void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
   ++frame_;
 }
 
-void IbfvsRenderer::set_frame_uniforms(const gl::Program& p, const Uniforms& u,
-                                       const ViewState& view, const FrameUniforms& frame) const {
-  p.set(u.view_projection, view.projection * view.view);
-  p.set(u.advect_view_projection, frame.advect_view_projection);
-  p.set(u.view, view.view);
-  // Eye depth d = -z_eye from clip (z, w): w = -z_eye in perspective
-  // (P[2][3] = -1, P[3][3] = 0); z = P[2][2] z_eye + P[3][2] with w = 1 in
-  // orthographic projection.
-  const glm::mat4& pr = view.projection;
-  p.set(u.clip_to_depth, pr[3][3] == 0.0f ? glm::vec2(0.0f, 1.0f)
-                                          : glm::vec2(-1.0f / pr[2][2], pr[3][2] / pr[2][2]));
-  p.set(u.dt, frame.dt);
-  p.set(u.probe, probe_);
-  p.set(u.field_mix, field_mix_);
-  p.set(u.drawn_mix, frame.drawn_mix);
-  p.set(u.texture_shift, texture_shift_);
-  p.set(u.noise_shift, noise_shift_);
-  p.set(u.locked, locked_ ? 1 : 0);
-  p.set(u.noise_time, frame.noise_time);
-  // The map of the frame being drawn; -1 without the tap texture: GL ignores it.
-  p.set(u.tap_depth, tap_depth_[1 - current_]);
-}
-
-void IbfvsRenderer::resolve_pass(const Variant& v, gl::Framebuffer& fb) {
+void IbfvsRenderer::resolve_pass(const IbfvsPrograms& v, gl::Framebuffer& fb) {
   fb.bind();
   gl::set_face_culling(0);
   gl::test_depth_behind_surface(true);  // the surface's pixels, each once
   gl::scissor(true, surface_box_);
-  v.resolve.use();  // the IBFVS pass's textures stay bound, units 0-5
+  v.resolve().use();  // the IBFVS pass's textures stay bound
   gbuffer_[0].bind(units::kGBuffer0);
   gbuffer_[1].bind(units::kGBuffer1);
   gl::draw_attributeless_triangle(empty_vao_);
@@ -428,18 +311,15 @@ void IbfvsRenderer::resolve_pass(const Variant& v, gl::Framebuffer& fb) {
   gl::test_depth_behind_surface(false);
 }
 
-void IbfvsRenderer::display_pass(const Variant& v) {
+void IbfvsRenderer::display_pass(const IbfvsPrograms& v) {
   output_framebuffer_.bind();
   gl::set_face_culling(0);
   gl::test_depth_behind_surface(true);
   gl::scissor(true, surface_box_);  // the depth test rejects the rest, but per pixel
-  v.display.use();
-  v.display.set(v.display_texture_shift, texture_shift_);
-  // The taps it reads are the last frame's, stored under that frame's map.
-  v.display.set(v.display_tap_depth, tap_depth_[current_]);
+  v.display().use();                // its frame's uniforms: set with the IBFVS pass's
   seed_.bind(units::kStart);
   base_.bind(units::kBase);
-  stats_.bind(units::kStats);
+  stats_pass_.result().bind(units::kStats);
   taps_[current_].bind(units::kTaps);
   taps_[1 - current_].bind(units::kTapsNow);  // this frame's: the flow's direction
   gl::draw_attributeless_triangle(empty_vao_);
@@ -473,7 +353,7 @@ glm::ivec4 IbfvsRenderer::screen_box(const glm::mat4& view_projection) const {
 }
 
 glm::ivec4 IbfvsRenderer::grid_box() const {
-  const glm::ivec4 all(0, 0, grid_.width(), grid_.height());
+  const glm::ivec4 all(0, 0, grid_pass_.size().x, grid_pass_.size().y);
   const auto cells = [&](int from, int size, float shift, int count) {
     // noise(x) reads the grid at (x - 0.5) / s + 0.5 cells, bilinearly; x is
     // a pixel centre inside the box, moved by the noise shift and by up to
@@ -511,24 +391,8 @@ void IbfvsRenderer::run_deferred_statistics() {
 }
 
 void IbfvsRenderer::statistics_pass(int texture_index, int frame) {
-  const StatsProgram& sp = stats_program_[colour_texture_ ? 0 : 1];
-  stats_framebuffer_.bind();
-  gl::set_viewport(stats_.width(), stats_.height());
-  gl::enable_depth_test(false);
-  gl::set_face_culling(0);
-  sp.program.use();
-  sp.program.set(sp.image_size, glm::vec2(static_cast<float>(settings_.width),
-                                          static_cast<float>(settings_.height)));
-  sp.program.set(sp.stats_size, display_stats_size(settings_.width, settings_.height));
-  // Golden-ratio steps: the grid visits other pixels every frame.
-  const auto f = static_cast<float>(frame);
-  sp.program.set(sp.offset,
-                 glm::vec2(std::fmod(f * 0.6180340f, 1.0f), std::fmod(f * 0.3819660f, 1.0f)));
-  texture_[texture_index].bind(units::kTexture);
-  output_.bind(units::kShown);
-  gl::set_running_average(kStatsWeight);
-  gl::draw_attributeless_triangle(empty_vao_);
-  gl::set_running_average(0.0f);
+  stats_pass_.run(texture_[texture_index], output_, !colour_texture_,
+                  glm::ivec2(settings_.width, settings_.height), frame, kStatsWeight);
 }
 
 void IbfvsRenderer::lock() {
@@ -674,15 +538,7 @@ std::vector<std::uint8_t> IbfvsRenderer::read_coverage() const {
 void IbfvsRenderer::draw_to_host(glm::ivec2 origin, bool interior) const {
   const gl::SavedState saved;
   gl::prepare_host_draw();
-  host_program_.use();
-  host_program_.set(host_origin_, origin);
-  host_program_.set(host_interior_, interior ? 1 : 0);
-  output_.bind(units::kOutput);
-  depth_.bind(units::kDepth);
-  // Only where the surface can be: the pass writes gl_FragDepth, so no depth
-  // test spares the rest (on the motorbike, in ParaView, a tenth of a frame).
-  gl::scissor(true, surface_box_ + glm::ivec4(origin, 0, 0));
-  gl::draw_attributeless_triangle(empty_vao_);
+  host_pass_.draw(output_, depth_, origin, interior, surface_box_);
 }
 
 void IbfvsRenderer::write_texture_raw(const ImageF& texture) {

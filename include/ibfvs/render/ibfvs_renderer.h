@@ -1,7 +1,9 @@
 #pragma once
 // The IBFVS texture synthesis on OpenGL 4.5 (paper sections 3.2-3.3,
 // equations 10-13). A frame runs these passes, each compiled with only the
-// features in use (shaders.h; their samplers' units: texture_units.h):
+// features in use (shaders.h; their samplers' units: texture_units.h), each
+// an object that owns its program, target and uniforms (passes.h); the
+// renderer owns the images passed between them and runs them in order:
 //
 //   grid      G_ij = w(v_g k + phi_ij) once per grid point        (eq. 8)
 //   IBFVS     the mesh drawn once; per pixel:                       (steps 2-7)
@@ -54,6 +56,7 @@
 #include "ibfvs/core/texture/noise.h"
 #include "ibfvs/core/texture/reference.h"
 #include "ibfvs/gl/objects.h"
+#include "ibfvs/render/passes.h"
 #include "ibfvs/render/shaders.h"
 
 namespace ibfvs {
@@ -230,20 +233,8 @@ class IbfvsRenderer {
   // One compiled program per combination of features in use (see
   // shaders::ShaderFeatures), made on first use; settings_version_ tells
   // which ones still need the current settings as uniforms.
-  struct Uniforms {
-    // Those set each frame; the settings' own go by name (shaders::settings_uniforms).
-    int view_projection, advect_view_projection, view, clip_to_depth, dt, noise_time, field_mix,
-        locked, probe, texture_shift, noise_shift, tap_depth, new_tap_depth, drawn_mix;
-  };
   struct Variant {
-    // The IBFVS pass; where it is deferred (shaders::deferred_pass) its first
-    // half, the second in `resolve` with its own uniforms.
-    gl::Program program;
-    Uniforms u{};
-    gl::Program resolve;
-    Uniforms ru{};
-    gl::Program display;  // the display pass, with the tap texture
-    int display_texture_shift = -1, display_tap_depth = -1;
+    IbfvsPrograms programs;
     std::uint64_t applied = 0;  // settings_version_ last set
   };
   void statistics_pass(int texture_index, int frame);  // for the contrast stage of the next frame
@@ -252,17 +243,9 @@ class IbfvsRenderer {
   bool statistics_due_ = false;
   void build_framebuffers();
   void clear_targets(gl::Framebuffer& fb);
-  void display_pass(const Variant& v);
-  void resolve_pass(const Variant& v, gl::Framebuffer& fb);  // the deferred pass's second half
-  // The IBFVS pass's per-frame uniforms (both halves' where it is deferred).
-  struct FrameUniforms {
-    glm::mat4 advect_view_projection{1.0f};
-    float dt = 0.0f;
-    float noise_time = 0.0f;
-    float drawn_mix = 0.0f;
-  };
-  void set_frame_uniforms(const gl::Program& p, const Uniforms& u, const ViewState& view,
-                          const FrameUniforms& frame) const;
+  void display_pass(const IbfvsPrograms& v);
+  void resolve_pass(const IbfvsPrograms& v,
+                    gl::Framebuffer& fb);  // the deferred pass's second half
   // The pixels the mesh can cover in this view: its bounding box projected
   // (x, y, width, height), or the whole image where a corner is behind the eye.
   [[nodiscard]] glm::ivec4 screen_box(const glm::mat4& view_projection) const;
@@ -296,6 +279,10 @@ class IbfvsRenderer {
   TextureLayout texture_layout_;
 
   RenderSettings settings_;
+  // The passes that stand on their own (passes.h), made from the settings.
+  GridPass grid_pass_;
+  StatsPass stats_pass_;
+  HostPass host_pass_;
   std::unordered_map<unsigned, Variant> variants_;  // by ShaderFeatures::key()
   std::uint64_t settings_version_ = 0;
   glm::ivec2 phase_size_{0};
@@ -313,26 +300,13 @@ class IbfvsRenderer {
   gl::Framebuffer output_framebuffer_;  // output_ and depth_: the display pass draws F in it
   gl::Texture2D flow_;                  // displacement of the last frame, pixels (when recorded)
   bool record_flow_ = false;
-  gl::Texture2D stats_;  // the statistics pass: 1 x 1 (sum l, sum l^2, count)
-  gl::Framebuffer stats_framebuffer_;
-  struct StatsProgram {
-    gl::Program program;
-    int image_size = -1, stats_size = -1, offset = -1;
-  } stats_program_[2];    // [mono]
-  gl::Texture2D phases_;  // phi_ij
-  gl::Texture2D grid_;    // this frame's grid values G_ij (the grid pass)
-  gl::Framebuffer grid_framebuffer_;
-  gl::Program grid_program_;
-  gl::VertexArray empty_vao_;  // for the attributeless grid pass
-  int grid_noise_time_ = -1, grid_profile_ = -1, grid_spike_width_ = -1, grid_seed_ = -1;
+  gl::VertexArray empty_vao_;  // for the attributeless resolve and display passes
   // The deferred IBFVS pass's first half leaves the surface here, per pixel
   // (made with the first deferred variant): t(x), its depth and this pixel's;
   // fwidth of that depth, the headlight's diffuse term and the scalars.
   gl::Texture2D gbuffer_[2];
   gl::Framebuffer gbuffer_framebuffer_;
   gl::Texture2D depth_;  // a texture: draw_to_host reads it
-  gl::Program host_program_;
-  int host_origin_ = -1, host_interior_ = -1;
   // [i] draws into texture_[i], output_ (or base_, taps_[i], seed_) (, flow_)
   gl::Framebuffer framebuffer_[2];
   // [i]: texture_[i], output_, taps_[i] (, flow_): the deferred pass's second half

@@ -1,7 +1,7 @@
 #pragma once
 // What a program of the IBFVS pass is compiled with (its features) and set
 // to (the uniforms that follow from the settings), from one place: the
-// OpenGL renderer applies them, and the web page (web_page.h) carries the
+// OpenGL renderer applies them, and the web page (page/web_page.h) carries the
 // same list to the browser's runtime, which sets them by name.
 
 #include <string>

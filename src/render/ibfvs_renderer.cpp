@@ -4,14 +4,15 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <map>
 #include <string>
 #include <vector>
 
 #include "ibfvs/core/support/error.h"
 #include "ibfvs/core/texture/display.h"
+#include "ibfvs/render/frame_plan.h"
 #include "ibfvs/render/pass_settings.h"
 #include "ibfvs/render/shaders.h"
-#include "ibfvs/render/texture_units.h"
 
 namespace ibfvs {
 namespace {
@@ -217,7 +218,6 @@ void IbfvsRenderer::present(int window_width, int window_height, int left) const
 
 void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
   const glm::mat4 vp = view.projection * view.view;
-  const bool use_previous = settings_.advect_view == AdvectView::Previous && has_previous_;
   const int next = 1 - current_;
   gl::Framebuffer& fb = framebuffer_[next];
   gl::prepare_own_draw();  // a host's scissor box, masks or stencil test must not apply here
@@ -225,60 +225,29 @@ void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
   surface_box_ = screen_box(vp);
   if (index_count_ > 0) {
     const float noise_time = settings_.noise.rate * static_cast<float>(frame_);
-    if (!settings_.object_noise) grid_pass_.run(noise_time, grid_box());  // G_ij of this frame
-    fb.bind();
-    gl::set_viewport(settings_.width, settings_.height);
-    gl::set_running_average(0.0f);  // no blending (a host's may be on)
-    gl::enable_depth_test(true);
-    // A closed mesh hides its back faces behind its front ones: culling them
-    // halves llvmpipe's triangle setup and changes no pixel.
-    gl::set_face_culling(cull_);
     const IbfvsPrograms& v = current_variant().programs;
-    const gl::Program& p = v.mesh();
-    if (v.resolve()) gbuffer_framebuffer_.bind();  // the first half of the deferred pass
-    p.use();
-    tap_depth_[next] = tap_depth_map(view.projection);
-    // A moving surface: where the last frame drew each vertex (the pair of
-    // steps it drew and its mix; the current ones where no motion enters).
-    float drawn_mix = field_mix_;
-    if (moving_) {
-      point_drawn_attributes();
-      if (use_previous && !locked_ && drawn_this_mesh_) drawn_mix = drawn_mix_;
-    }
-    IbfvsFrame frame;
-    frame.view = view.view;
-    frame.projection = view.projection;
-    frame.advect_view_projection = locked_        ? lock_view_projection_
-                                   : use_previous ? previous_view_projection_
-                                                  : vp;
-    frame.dt = locked_ ? 0.0f : dt;
-    frame.noise_time = noise_time;
-    frame.field_mix = field_mix_;
-    frame.drawn_mix = drawn_mix;
-    frame.probe = probe_;
-    frame.texture_shift = texture_shift_;
-    frame.noise_shift = noise_shift_;
-    frame.locked = locked_;
-    frame.tap_depth = tap_depth_[next];
-    frame.last_tap_depth = tap_depth_[current_];
-    v.set_frame(frame);
-    texture_[current_].bind(units::kPrevious);
-    if (taps_[current_]) taps_[current_].bind(units::kTaps);
-    grid_pass_.values().bind(units::kGrid);
-    color_map_.bind(units::kColorMap);
-    if (surface_image_) surface_image_.bind(units::kSurfaceImage);
-    stats_pass_.result().bind(units::kStats);
-    vao_.bind();
-    gl::draw_triangles(index_count_, true);
-    if (v.resolve()) resolve_pass(v, resolve_framebuffer_[next]);
-    if (v.display()) display_pass(v);
-    // The statistics change slowly: every kStatsEvery frames is enough, and
-    // on llvmpipe each extra pass ends the frame's scene early.
-    if (settings_.contrast > 0.0f && frame_ % kStatsEvery == 0) {
-      if (defer_statistics_)
-        statistics_due_ = true;
-      else
-        statistics_pass(next, frame_);
+    // The frame's passes, in the plan's order (frame_plan.h).
+    for (const PlannedPass& pass : frame_plan()) {
+      if (pass.name == "grid") {  // G_ij of this frame
+        if (settings_.object_noise) continue;
+        bind_reads(pass, next, current_);
+        grid_pass_.run(noise_time, grid_box());
+      } else if (pass.name == "ibfvs") {
+        ibfvs_pass(v, view, dt, noise_time);
+      } else if (pass.name == "resolve") {
+        if (v.resolve()) resolve_pass(v, resolve_framebuffer_[next]);
+      } else if (pass.name == "display") {
+        if (v.display()) display_pass(v);
+      } else if (pass.name == "stats") {
+        // The statistics change slowly: every kStatsEvery frames is enough,
+        // and on llvmpipe each extra pass ends the frame's scene early.
+        if (settings_.contrast > 0.0f && frame_ % kStatsEvery == 0) {
+          if (defer_statistics_)
+            statistics_due_ = true;
+          else
+            statistics_pass(next, frame_);
+        }
+      }  // host: draw_to_host, after the frame
     }
   }
   displayed_ = next;
@@ -298,14 +267,88 @@ void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
   ++frame_;
 }
 
+void IbfvsRenderer::ibfvs_pass(const IbfvsPrograms& v, const ViewState& view, float dt,
+                               float noise_time) {
+  const glm::mat4 vp = view.projection * view.view;
+  const bool use_previous = settings_.advect_view == AdvectView::Previous && has_previous_;
+  const int next = 1 - current_;
+  framebuffer_[next].bind();
+  gl::set_viewport(settings_.width, settings_.height);
+  gl::set_running_average(0.0f);  // no blending (a host's may be on)
+  gl::enable_depth_test(true);
+  // A closed mesh hides its back faces behind its front ones: culling them
+  // halves llvmpipe's triangle setup and changes no pixel.
+  gl::set_face_culling(cull_);
+  if (v.resolve()) gbuffer_framebuffer_.bind();  // the first half of the deferred pass
+  v.mesh().use();
+  tap_depth_[next] = tap_depth_map(view.projection);
+  // A moving surface: where the last frame drew each vertex (the pair of
+  // steps it drew and its mix; the current ones where no motion enters).
+  float drawn_mix = field_mix_;
+  if (moving_) {
+    point_drawn_attributes();
+    if (use_previous && !locked_ && drawn_this_mesh_) drawn_mix = drawn_mix_;
+  }
+  IbfvsFrame frame;
+  frame.view = view.view;
+  frame.projection = view.projection;
+  frame.advect_view_projection = locked_        ? lock_view_projection_
+                                 : use_previous ? previous_view_projection_
+                                                : vp;
+  frame.dt = locked_ ? 0.0f : dt;
+  frame.noise_time = noise_time;
+  frame.field_mix = field_mix_;
+  frame.drawn_mix = drawn_mix;
+  frame.probe = probe_;
+  frame.texture_shift = texture_shift_;
+  frame.noise_shift = noise_shift_;
+  frame.locked = locked_;
+  frame.tap_depth = tap_depth_[next];
+  frame.last_tap_depth = tap_depth_[current_];
+  v.set_frame(frame);
+  bind_reads(planned_pass("ibfvs"), next, current_);
+  vao_.bind();
+  gl::draw_triangles(index_count_, true);
+}
+
+const gl::Texture2D* IbfvsRenderer::image(std::string_view name, int now, int last) const {
+  static const std::map<std::string_view, const gl::Texture2D* (*)(const IbfvsRenderer&, int, int)>
+      images = {
+          {"phases", [](const IbfvsRenderer& r, int, int) { return &r.grid_pass_.phases(); }},
+          {"grid", [](const IbfvsRenderer& r, int, int) { return &r.grid_pass_.values(); }},
+          {"texture.last", [](const IbfvsRenderer& r, int, int l) { return &r.texture_[l]; }},
+          {"texture.now", [](const IbfvsRenderer& r, int n, int) { return &r.texture_[n]; }},
+          {"taps.last", [](const IbfvsRenderer& r, int, int l) { return &r.taps_[l]; }},
+          {"taps.now", [](const IbfvsRenderer& r, int n, int) { return &r.taps_[n]; }},
+          {"color_map", [](const IbfvsRenderer& r, int, int) { return &r.color_map_; }},
+          {"surface_image", [](const IbfvsRenderer& r, int, int) { return &r.surface_image_; }},
+          {"stats", [](const IbfvsRenderer& r, int, int) { return &r.stats_pass_.result(); }},
+          {"gbuffer0", [](const IbfvsRenderer& r, int, int) { return &r.gbuffer_[0]; }},
+          {"gbuffer1", [](const IbfvsRenderer& r, int, int) { return &r.gbuffer_[1]; }},
+          {"seed", [](const IbfvsRenderer& r, int, int) { return &r.seed_; }},
+          {"base", [](const IbfvsRenderer& r, int, int) { return &r.base_; }},
+          {"output", [](const IbfvsRenderer& r, int, int) { return &r.output_; }},
+          {"depth", [](const IbfvsRenderer& r, int, int) { return &r.depth_; }},
+      };
+  const auto it = images.find(name);
+  if (it == images.end())
+    throw GraphicsError("renderer: the frame plan names an image it does not have: " +
+                        std::string(name));
+  return it->second(*this, now, last);
+}
+
+void IbfvsRenderer::bind_reads(const PlannedPass& pass, int now, int last) const {
+  for (const PlannedRead& read : pass.reads)
+    if (const gl::Texture2D* t = image(read.image, now, last); *t) t->bind(read.unit);
+}
+
 void IbfvsRenderer::resolve_pass(const IbfvsPrograms& v, gl::Framebuffer& fb) {
   fb.bind();
   gl::set_face_culling(0);
   gl::test_depth_behind_surface(true);  // the surface's pixels, each once
   gl::scissor(true, surface_box_);
-  v.resolve().use();  // the IBFVS pass's textures stay bound
-  gbuffer_[0].bind(units::kGBuffer0);
-  gbuffer_[1].bind(units::kGBuffer1);
+  v.resolve().use();
+  bind_reads(planned_pass("resolve"), 1 - current_, current_);
   gl::draw_attributeless_triangle(empty_vao_);
   gl::scissor(false);
   gl::test_depth_behind_surface(false);
@@ -317,11 +360,7 @@ void IbfvsRenderer::display_pass(const IbfvsPrograms& v) {
   gl::test_depth_behind_surface(true);
   gl::scissor(true, surface_box_);  // the depth test rejects the rest, but per pixel
   v.display().use();                // its frame's uniforms: set with the IBFVS pass's
-  seed_.bind(units::kStart);
-  base_.bind(units::kBase);
-  stats_pass_.result().bind(units::kStats);
-  taps_[current_].bind(units::kTaps);
-  taps_[1 - current_].bind(units::kTapsNow);  // this frame's: the flow's direction
+  bind_reads(planned_pass("display"), 1 - current_, current_);
   gl::draw_attributeless_triangle(empty_vao_);
   gl::scissor(false);
   gl::test_depth_behind_surface(false);
@@ -391,8 +430,9 @@ void IbfvsRenderer::run_deferred_statistics() {
 }
 
 void IbfvsRenderer::statistics_pass(int texture_index, int frame) {
-  stats_pass_.run(texture_[texture_index], output_, !colour_texture_,
-                  glm::ivec2(settings_.width, settings_.height), frame, kStatsWeight);
+  bind_reads(planned_pass("stats"), texture_index, 1 - texture_index);
+  stats_pass_.run(!colour_texture_, glm::ivec2(settings_.width, settings_.height), frame,
+                  kStatsWeight);
 }
 
 void IbfvsRenderer::lock() {
@@ -538,7 +578,8 @@ std::vector<std::uint8_t> IbfvsRenderer::read_coverage() const {
 void IbfvsRenderer::draw_to_host(glm::ivec2 origin, bool interior) const {
   const gl::SavedState saved;
   gl::prepare_host_draw();
-  host_pass_.draw(output_, depth_, origin, interior, surface_box_);
+  bind_reads(planned_pass("host"), current_, 1 - current_);
+  host_pass_.draw(origin, interior, surface_box_);
 }
 
 void IbfvsRenderer::write_texture_raw(const ImageF& texture) {

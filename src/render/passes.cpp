@@ -7,7 +7,6 @@
 
 #include "ibfvs/core/texture/display.h"
 #include "ibfvs/render/shaders.h"
-#include "ibfvs/render/texture_units.h"
 
 namespace ibfvs {
 namespace {
@@ -148,7 +147,6 @@ void GridPass::run(float noise_time, glm::ivec4 box) const {
   gl::set_face_culling(0);
   program_.use();
   program_.set(noise_time_, noise_time);
-  phases_.bind(units::kPhases);
   // Only the cells the surface can read: the whole grid is a full-screen
   // pass of two hashes per cell (in ParaView, 5 ms of the motorbike's 90;
   // the box saves 3 of them).
@@ -177,8 +175,7 @@ void StatsPass::clear() {
   framebuffer_.clear_color(0, glm::vec4(0.0f));
 }
 
-void StatsPass::run(const gl::Texture2D& texture, const gl::Texture2D& shown, bool grey,
-                    glm::ivec2 size, int frame, float weight) const {
+void StatsPass::run(bool grey, glm::ivec2 size, int frame, float weight) const {
   const Program& p = programs_[grey ? 1 : 0];
   framebuffer_.bind();
   gl::set_viewport(stats_.width(), stats_.height());
@@ -191,8 +188,6 @@ void StatsPass::run(const gl::Texture2D& texture, const gl::Texture2D& shown, bo
   const auto f = static_cast<float>(frame);
   p.program.set(p.offset,
                 glm::vec2(std::fmod(f * 0.6180340f, 1.0f), std::fmod(f * 0.3819660f, 1.0f)));
-  texture.bind(units::kTexture);
-  shown.bind(units::kShown);
   gl::set_running_average(weight);
   gl::draw_attributeless_triangle(empty_);
   gl::set_running_average(0.0f);
@@ -205,13 +200,10 @@ HostPass::HostPass()
   interior_ = program_.location("u_interior");
 }
 
-void HostPass::draw(const gl::Texture2D& output, const gl::Texture2D& depth, glm::ivec2 origin,
-                    bool interior, glm::ivec4 box) const {
+void HostPass::draw(glm::ivec2 origin, bool interior, glm::ivec4 box) const {
   program_.use();
   program_.set(origin_, origin);
   program_.set(interior_, interior ? 1 : 0);
-  output.bind(units::kOutput);
-  depth.bind(units::kDepth);
   gl::scissor(true, box + glm::ivec4(origin, 0, 0));
   gl::draw_attributeless_triangle(empty_);
 }

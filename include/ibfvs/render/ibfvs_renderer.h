@@ -56,6 +56,7 @@
 #include "ibfvs/core/texture/noise.h"
 #include "ibfvs/core/texture/reference.h"
 #include "ibfvs/gl/objects.h"
+#include "ibfvs/render/frame_plan.h"
 #include "ibfvs/render/passes.h"
 #include "ibfvs/render/shaders.h"
 
@@ -243,6 +244,12 @@ class IbfvsRenderer {
   bool statistics_due_ = false;
   void build_framebuffers();
   void clear_targets(gl::Framebuffer& fb);
+  // The IBFVS pass (or its deferred first half) into F_t and F.
+  void ibfvs_pass(const IbfvsPrograms& v, const ViewState& view, float dt, float noise_time);
+  // The image of the frame plan named `name` (frame_plan.h) in a frame that
+  // draws F_t into texture_[now] from texture_[last]; binds a pass's images.
+  [[nodiscard]] const gl::Texture2D* image(std::string_view name, int now, int last) const;
+  void bind_reads(const PlannedPass& pass, int now, int last) const;
   void display_pass(const IbfvsPrograms& v);
   void resolve_pass(const IbfvsPrograms& v,
                     gl::Framebuffer& fb);  // the deferred pass's second half

@@ -9,7 +9,8 @@
 //   StatsPass  the contrast statistics of the shown texture     (section 3.4)
 //   HostPass   F and its depth into a host's framebuffer (ParaView)
 //
-// Their samplers' units are the one table's (texture_units.h).
+// The caller binds each pass's images by the frame's plan (frame_plan.h)
+// before running it.
 
 #include <vector>
 
@@ -36,6 +37,7 @@ class GridPass {
   /// columns, rows: the cells the surface can read).
   void run(float noise_time, glm::ivec4 box) const;
   [[nodiscard]] const gl::Texture2D& values() const { return grid_; }
+  [[nodiscard]] const gl::Texture2D& phases() const { return phases_; }
   [[nodiscard]] glm::ivec2 size() const { return {grid_.width(), grid_.height()}; }
 
  private:
@@ -105,11 +107,10 @@ class StatsPass {
   StatsPass();
   /// No statistics (before the first frame).
   void clear();
-  /// One pass over F_t (`texture`) and F (`shown`, whose alpha holds D
-  /// before the contrast stage) of an image of `size`; `grey`: F_t holds
+  /// One pass over F_t and F (whose alpha holds D before the contrast
+  /// stage), bound by the plan, of an image of `size`; `grey`: F_t holds
   /// grey values. `weight`: of this pass in the running average.
-  void run(const gl::Texture2D& texture, const gl::Texture2D& shown, bool grey, glm::ivec2 size,
-           int frame, float weight) const;
+  void run(bool grey, glm::ivec2 size, int frame, float weight) const;
   [[nodiscard]] const gl::Texture2D& result() const { return stats_; }
 
  private:
@@ -122,7 +123,8 @@ class StatsPass {
   gl::VertexArray empty_;
 };
 
-/// The host pass: F where the surface is, with the surface's depth, into
+/// The host pass: F where the surface is, with the surface's depth (both
+/// bound by the plan), into
 /// the framebuffer bound now (a host's), over its viewport from `origin`.
 class HostPass {
  public:
@@ -131,8 +133,7 @@ class HostPass {
   /// surface too. `box`: the pixels the surface can cover (the pass writes
   /// gl_FragDepth, so no depth test spares the rest). The caller saves and
   /// prepares the host's state.
-  void draw(const gl::Texture2D& output, const gl::Texture2D& depth, glm::ivec2 origin,
-            bool interior, glm::ivec4 box) const;
+  void draw(glm::ivec2 origin, bool interior, glm::ivec4 box) const;
 
  private:
   gl::Program program_;

@@ -17,6 +17,7 @@ extern "C" {
 #include "ibfvs/core/support/error.h"
 #include "ibfvs/core/texture/display.h"
 #include "ibfvs/core/texture/noise.h"
+#include "ibfvs/render/frame_plan.h"
 #include "ibfvs/render/ibfvs_renderer.h"
 #include "ibfvs/render/pass_settings.h"
 #include "ibfvs/render/shaders.h"
@@ -74,6 +75,21 @@ std::string html_escape(const std::string& s) {
       out += "&amp;";
     else
       out += c;
+  }
+  return out;
+}
+
+// The frame's plan (render/frame_plan.h) as far as the page runs it: not
+// the deferred pass's halves (the page runs the pass in one piece) nor the
+// host's.
+Json plan() {
+  Json out = Json::array();
+  for (const PlannedPass& pass : frame_plan()) {
+    if (pass.when == "deferred" || pass.when == "host") continue;
+    Json reads = Json::array();
+    for (const PlannedRead& r : pass.reads)
+      reads.push_back({{"sampler", r.sampler}, {"image", r.image}});
+    out.push_back({{"name", pass.name}, {"when", pass.when}, {"reads", std::move(reads)}});
   }
   return out;
 }
@@ -206,6 +222,7 @@ std::string web_page(const PreparedScene& p, WebPageReport* report, const WebPag
       {"index_count", 3 * mesh.triangle_count()},
       {"phase_size", {grid.columns(), grid.rows()}},
       {"arrays", std::move(arrays)},
+      {"plan", plan()},
       {"ranges", ranges()}};
 
   const std::string runtime = kWebRuntime;

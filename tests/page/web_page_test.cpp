@@ -215,6 +215,12 @@ TEST(WebPage, TheHeaderIsJsonAndTheBlockHoldsItsArrays) {
     seeded = true;
   }
   EXPECT_TRUE(seeded);
+  // The frame's plan as far as the page runs it: in one piece, no host.
+  std::vector<std::string> passes;
+  for (const auto& pass : p.header["plan"]) passes.push_back(pass["name"]);
+  EXPECT_EQ(passes, (std::vector<std::string>{"grid", "ibfvs", "display", "stats"}));
+  EXPECT_EQ(p.header["plan"][1]["reads"][0]["sampler"], "u_previous");
+  EXPECT_EQ(p.header["plan"][1]["reads"][0]["image"], "texture.last");
   std::vector<nlohmann::json> refs;
   array_refs(p.header["arrays"], refs);
   ASSERT_EQ(refs.size(), 6u);  // positions, normals, vectors, indices, phases, colours

@@ -7,7 +7,7 @@ import { MeshoptDecoder } from "meshoptimizer/decoder";
 // The header's types are generated from the one schema, web/schema/page.schema.json
 // (npm run types), which the browser test also validates every page against.
 import type { ArrayRef, Lock } from "../generated/page_schema";
-export type { ArrayRef, Look, SceneHeader, StepMesh, Uniform } from "../generated/page_schema";
+export type { ArrayRef, Look, PlannedPass, SceneHeader, StepMesh, Uniform } from "../generated/page_schema";
 
 /// A camera of the page: its matrices (column-major 4x4) and look-at point.
 export type Camera = Pick<Lock, "view" | "projection" | "target">;

@@ -10,7 +10,7 @@
 // input, recording, the loop) is page.ts, the scene format format.ts, the
 // WebGL objects webgl.ts.
 import { mat4, vec3 } from "gl-matrix";
-import { type Camera, type Look, type SceneHeader, type Uniform, halfToFloat, view }
+import { type Camera, type Look, type PlannedPass, type SceneHeader, type Uniform, halfToFloat, view }
   from "./format";
 import { Surfaces } from "./surfaces";
 import { bindSampler, compile, framebuffer, locate, setUniform, texture } from "./webgl";
@@ -250,19 +250,71 @@ export class PageRenderer {
     const gl = this.gl, s = this.scene;
     const vp = mat4.multiply(mat4.create(), projection, view);
     const next = 1 - this.current;
-    const noiseTime = this.look.noise_rate * this.frame;
     gl.disable(gl.BLEND);
-    // The grid pass: G_ij of this frame.
+    // The frame's passes in the plan's order (render/frame_plan.h, in the header).
+    for (const pass of s.plan) {
+      switch (pass.name) {
+        case "grid": this.gridPass(pass, next); break;
+        case "ibfvs": this.ibfvsPass(pass, next, view, projection, vp, dt); break;
+        case "display": if (this.display) this.displayPass(pass, next); break;
+        case "stats": if (this.frame % s.stats.every === 0) this.statsPass(pass, next); break;
+        default: throw new Error(`the page's plan has a pass this runtime does not run: ${pass.name}`);
+      }
+    }
+    gl.disable(gl.DEPTH_TEST);
+    if (!this.locked) {  // a locked F_t stays where it is; F is shared
+      this.current = next;
+      this.previousViewProjection = vp;
+      this.surfaces.drawnFrame(this.fieldMix);
+    }
+    ++this.frame;
+  }
+
+  /// The image of the plan named `name` in a frame that draws F_t into
+  /// textures[now] from textures[last] (IbfvsRenderer::image).
+  private image(name: string, now: number, last: number): WebGLTexture | null {
+    switch (name) {
+      case "phases": return this.phases;
+      case "grid": return this.gridTexture;
+      case "texture.last": return this.textures[last];
+      case "texture.now": return this.textures[now];
+      case "taps.last": return this.taps[last] ?? null;
+      case "taps.now": return this.taps[now] ?? null;
+      case "color_map": return this.colorMap;
+      case "surface_image": return this.surfaceImage;
+      case "stats": return this.statsTexture;
+      case "seed": return this.seed;
+      case "base": return this.base;
+      case "output": return this.output;
+      default: throw new Error(`the page's plan names an image this runtime does not have: ${name}`);
+    }
+  }
+
+  /// Binds what a pass's samplers read, by the plan.
+  private bindReads(pass: PlannedPass, program: WebGLProgram, now: number): void {
+    for (const read of pass.reads) {
+      const t = this.image(read.image, now, 1 - now);
+      if (t) bindSampler(this.gl, program, read.sampler, t);
+    }
+  }
+
+  /// The grid pass: G_ij of this frame.
+  private gridPass(pass: PlannedPass, next: number): void {
+    const gl = this.gl;
     gl.bindFramebuffer(gl.FRAMEBUFFER, this.gridFb!);
     gl.viewport(0, 0, this.phaseSize[0], this.phaseSize[1]);
     gl.disable(gl.DEPTH_TEST);
     gl.disable(gl.CULL_FACE);
     gl.useProgram(this.grid);
-    gl.uniform1f(locate(gl, this.grid, "u_noise_time"), noiseTime);
-    bindSampler(gl, this.grid, "u_phases", this.phases!);
+    gl.uniform1f(locate(gl, this.grid, "u_noise_time"), this.look.noise_rate * this.frame);
+    this.bindReads(pass, this.grid, next);
     gl.bindVertexArray(this.empty);
     gl.drawArrays(gl.TRIANGLES, 0, 3);
-    // The IBFVS pass into F_t (next) and F.
+  }
+
+  /// The IBFVS pass into F_t (next) and F.
+  private ibfvsPass(pass: PlannedPass, next: number, view: mat4, projection: mat4, vp: mat4, dt: number): void {
+    const gl = this.gl, s = this.scene;
     this.clear(this.fbs[next]);
     gl.viewport(0, 0, s.width, s.height);
     gl.enable(gl.DEPTH_TEST);
@@ -293,63 +345,50 @@ export class PageRenderer {
     gl.uniform2f(at("u_texture_shift"), 0, 0);
     gl.uniform2f(at("u_noise_shift"), 0, 0);
     gl.uniform1i(at("u_locked"), this.locked ? 1 : 0);
-    gl.uniform1f(at("u_noise_time"), noiseTime);
+    gl.uniform1f(at("u_noise_time"), this.look.noise_rate * this.frame);
     this.tapDepth[next] = tapDepthMap(pr);
     gl.uniform2f(at("u_tap_depth"), ...this.tapDepth[next]);
-    bindSampler(gl, p, "u_previous", this.textures[this.current]);
-    if (this.taps.length) bindSampler(gl, p, "u_taps", this.taps[this.current]);
-    bindSampler(gl, p, "u_grid", this.gridTexture!);
-    bindSampler(gl, p, "u_color_map", this.colorMap);
-    if (this.surfaceImage) bindSampler(gl, p, "u_surface_image", this.surfaceImage);
-    bindSampler(gl, p, "u_stats", this.statsTexture);
+    this.bindReads(pass, p, next);
     gl.bindFramebuffer(gl.FRAMEBUFFER, this.fbs[next]);
     gl.drawElements(gl.TRIANGLES, mesh.count, gl.UNSIGNED_INT, 0);
     gl.disable(gl.CULL_FACE);
-    if (this.display) {
-      // The display pass: once per pixel of the surface (a triangle on the far
-      // plane, depth test GREATER), into F.
-      gl.bindFramebuffer(gl.FRAMEBUFFER, this.outputFb);
-      gl.depthFunc(gl.GREATER);
-      gl.depthMask(false);
-      gl.useProgram(this.display);
-      gl.uniform2f(locate(gl, this.display, "u_texture_shift"), 0, 0);
-      gl.uniform2f(locate(gl, this.display, "u_tap_depth"), ...this.tapDepth[this.current]); // the last frame's taps
-      const d = this.display;
-      bindSampler(gl, d, "u_start", this.seed!);
-      bindSampler(gl, d, "u_base", this.base!);
-      bindSampler(gl, d, "u_stats", this.statsTexture);
-      bindSampler(gl, d, "u_taps", this.taps[this.current]);
-      bindSampler(gl, d, "u_taps_now", this.taps[next]); // this frame's: the flow's direction
-      gl.bindVertexArray(this.empty);
-      gl.drawArrays(gl.TRIANGLES, 0, 3);
-      gl.depthMask(true);
-      gl.depthFunc(gl.LESS);
-    }
+  }
+
+  /// The display pass: once per pixel of the surface (a triangle on the far
+  /// plane, depth test GREATER), into F.
+  private displayPass(pass: PlannedPass, next: number): void {
+    const gl = this.gl, d = this.display!;
+    gl.bindFramebuffer(gl.FRAMEBUFFER, this.outputFb);
+    gl.depthFunc(gl.GREATER);
+    gl.depthMask(false);
+    gl.useProgram(d);
+    gl.uniform2f(locate(gl, d, "u_texture_shift"), 0, 0);
+    gl.uniform2f(locate(gl, d, "u_tap_depth"), ...this.tapDepth[this.current]); // the last frame's taps
+    this.bindReads(pass, d, next);
+    gl.bindVertexArray(this.empty);
+    gl.drawArrays(gl.TRIANGLES, 0, 3);
+    gl.depthMask(true);
+    gl.depthFunc(gl.LESS);
+  }
+
+  /// The statistics of the contrast stage, blended into a running average.
+  private statsPass(pass: PlannedPass, next: number): void {
+    const gl = this.gl, s = this.scene;
     gl.disable(gl.DEPTH_TEST);
-    // The statistics of the contrast stage, every few frames, blended into a running average.
-    if (this.frame % s.stats.every === 0) {
-      gl.bindFramebuffer(gl.FRAMEBUFFER, this.statsFb);
-      gl.viewport(0, 0, 1, 1);
-      gl.useProgram(this.stats);
-      gl.uniform2f(locate(gl, this.stats, "u_image_size"), s.width, s.height);
-      gl.uniform1i(locate(gl, this.stats, "u_stats_size"), s.stats.size);
-      const f = this.frame;
-      gl.uniform2f(locate(gl, this.stats, "u_offset"), (f * 0.618034) % 1, (f * 0.381966) % 1);
-      bindSampler(gl, this.stats, "u_texture", this.textures[next]);
-      bindSampler(gl, this.stats, "u_shown", this.output);
-      gl.enable(gl.BLEND);
-      gl.blendColor(0, 0, 0, s.stats.weight);
-      gl.blendFunc(gl.CONSTANT_ALPHA, gl.ONE_MINUS_CONSTANT_ALPHA);
-      gl.bindVertexArray(this.empty);
-      gl.drawArrays(gl.TRIANGLES, 0, 3);
-      gl.disable(gl.BLEND);
-    }
-    if (!this.locked) {  // a locked F_t stays where it is; F is shared
-      this.current = next;
-      this.previousViewProjection = vp;
-      this.surfaces.drawnFrame(this.fieldMix);
-    }
-    ++this.frame;
+    gl.bindFramebuffer(gl.FRAMEBUFFER, this.statsFb);
+    gl.viewport(0, 0, 1, 1);
+    gl.useProgram(this.stats);
+    gl.uniform2f(locate(gl, this.stats, "u_image_size"), s.width, s.height);
+    gl.uniform1i(locate(gl, this.stats, "u_stats_size"), s.stats.size);
+    const f = this.frame;
+    gl.uniform2f(locate(gl, this.stats, "u_offset"), (f * 0.618034) % 1, (f * 0.381966) % 1);
+    this.bindReads(pass, this.stats, next);
+    gl.enable(gl.BLEND);
+    gl.blendColor(0, 0, 0, s.stats.weight);
+    gl.blendFunc(gl.CONSTANT_ALPHA, gl.ONE_MINUS_CONSTANT_ALPHA);
+    gl.bindVertexArray(this.empty);
+    gl.drawArrays(gl.TRIANGLES, 0, 3);
+    gl.disable(gl.BLEND);
   }
 
   /// F onto the canvas (same size).

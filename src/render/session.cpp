@@ -175,16 +175,7 @@ bool Session::set(const Scene& next, const Camera* seen_by) {
   const Scene& now = scene_.scene;
   std::set<KeyEffect> effects;
   for (const std::string_view key : changed_keys(now, next)) {
-    KeyEffect effect = key_effect(key);
-    // A percentile range needs the scalars again; a tangent mode, the
-    // steps of an unsteady field.
-    const auto by_percentile = [](const std::optional<ScalarRange>& r) {
-      return !r || r->percentile;
-    };
-    if ((key == "color_range" && by_percentile(next.color_range)) ||
-        (key == "beta_range" && by_percentile(next.beta_range)) ||
-        (effect == KeyEffect::kTangent && scene_.step_count > 1))
-      effect = KeyEffect::kPrepare;
+    const KeyEffect effect = change_effect(key, next, scene_.step_count > 1);
     if (effect == KeyEffect::kPrepare) return false;
     effects.insert(effect);
   }

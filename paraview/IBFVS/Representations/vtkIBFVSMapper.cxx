@@ -60,6 +60,25 @@ class vtkIBFVSMapper::Internals {
   bool regrid = false;            // a new noise scale: a new renderer, the texture goes on
   ibfvs::FramePacer pacer;        // texture frames of each render (Frames Per Step)
 
+  // What a property's change does, by its scene key's rule in the library's
+  // table (change_effect, the rule Session::set follows): a live setting or
+  // the step applies to the running texture; a new noise scale makes a new
+  // grid and the texture goes on; a new seed, or any other key, starts it
+  // afresh.
+  void Changed(std::string_view key) {
+    switch (ibfvs::change_effect(key, scene, false)) {
+      case ibfvs::KeyEffect::kLive:
+      case ibfvs::KeyEffect::kStep:
+        settings_changed = true;
+        break;
+      case ibfvs::KeyEffect::kNoise:
+        (key == "scale" ? regrid : restart) = true;
+        break;
+      default:
+        restart = true;
+    }
+  }
+
   // ---- the surface
   vtkMTimeType input_time = 0;
   vtkDataObject* input = nullptr;
@@ -171,23 +190,18 @@ E in_enum(int value) {
 }
 }  // namespace
 
-#define IBFVS_SETTING(Name, Type, member, conversion, restarts)                     \
-  void vtkIBFVSMapper::Set##Name(Type value) {                                      \
-    auto v = conversion;                                                            \
-    if (this->Internal->scene.member == v) return;                                  \
-    this->Internal->scene.member = v;                                               \
-    (restarts ? this->Internal->restart : this->Internal->settings_changed) = true; \
-    this->Modified();                                                               \
+// A property of a scene key: its value in range, and the key's rule.
+#define IBFVS_SETTING(Name, Type, member, conversion) \
+  void vtkIBFVSMapper::Set##Name(Type value) {        \
+    auto v = conversion;                              \
+    if (this->Internal->scene.member == v) return;    \
+    this->Internal->scene.member = v;                 \
+    this->Internal->Changed(#member);                 \
+    this->Modified();                                 \
   }
-IBFVS_SETTING(Alpha, double, alpha, in_range("alpha", value), false)
-IBFVS_SETTING(Beta, double, beta, in_range("beta", value), false)
-void vtkIBFVSMapper::SetNoiseScale(double pixels) {
-  const float v = in_range("scale", pixels);
-  if (this->Internal->scene.scale == v) return;
-  this->Internal->scene.scale = v;
-  this->Internal->regrid = true;
-  this->Modified();
-}
+IBFVS_SETTING(Alpha, double, alpha, in_range("alpha", value))
+IBFVS_SETTING(Beta, double, beta, in_range("beta", value))
+IBFVS_SETTING(NoiseScale, double, scale, in_range("scale", value))
 
 void vtkIBFVSMapper::SetFramesPerStep(int frames) {
   const int v = std::clamp(frames, 1, ibfvs::kMaxFramesPerStep);
@@ -201,15 +215,15 @@ void vtkIBFVSMapper::Restart() {
   this->Modified();
 }
 
-IBFVS_SETTING(StepPixels, double, step, in_range("step", value), false)
-IBFVS_SETTING(TimeProfile, int, profile, in_enum<ibfvs::NoiseProfile>(value), false)
-IBFVS_SETTING(NoiseRate, double, vg, in_range("vg", value), false)
-IBFVS_SETTING(ImageNormalize, int, image_normalize, value != 0, false)
-IBFVS_SETTING(FilterLength, double, filter, in_range("filter", value), false)
-IBFVS_SETTING(Contrast, double, contrast, in_range("contrast", value), false)
-IBFVS_SETTING(Sharpen, double, sharpen, in_range("sharpen", value), false)
-IBFVS_SETTING(Resample, int, resample, in_enum<ibfvs::Resample>(value), false)
-IBFVS_SETTING(Seed, int, seed, static_cast<std::uint32_t>(std::max(value, 0)), true)
+IBFVS_SETTING(StepPixels, double, step, in_range("step", value))
+IBFVS_SETTING(TimeProfile, int, profile, in_enum<ibfvs::NoiseProfile>(value))
+IBFVS_SETTING(NoiseRate, double, vg, in_range("vg", value))
+IBFVS_SETTING(ImageNormalize, int, image_normalize, value != 0)
+IBFVS_SETTING(FilterLength, double, filter, in_range("filter", value))
+IBFVS_SETTING(Contrast, double, contrast, in_range("contrast", value))
+IBFVS_SETTING(Sharpen, double, sharpen, in_range("sharpen", value))
+IBFVS_SETTING(Resample, int, resample, in_enum<ibfvs::Resample>(value))
+IBFVS_SETTING(Seed, int, seed, static_cast<std::uint32_t>(std::max(value, 0)))
 #undef IBFVS_SETTING
 
 int vtkIBFVSMapper::GetFrame() {

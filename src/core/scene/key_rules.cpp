@@ -15,6 +15,18 @@ KeyEffect key_effect(std::string_view name) {
   return key ? key->effect : KeyEffect::kPrepare;
 }
 
+KeyEffect change_effect(std::string_view name, const Scene& next, bool unsteady) {
+  const auto by_percentile = [](const std::optional<ScalarRange>& r) {
+    return !r || r->percentile;
+  };
+  const KeyEffect effect = key_effect(name);
+  if ((name == "color_range" && by_percentile(next.color_range)) ||
+      (name == "beta_range" && by_percentile(next.beta_range)) ||
+      (effect == KeyEffect::kTangent && unsteady))
+    return KeyEffect::kPrepare;
+  return effect;
+}
+
 std::vector<std::string_view> changed_keys(const Scene& before, const Scene& after) {
   std::vector<std::string_view> out;
   for (const SceneKey& key : scene_keys())

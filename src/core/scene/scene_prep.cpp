@@ -256,15 +256,9 @@ std::optional<PreparedScene> restyled(const PreparedScene& prepared, Style style
   // The keys a restyle carries (key_effect): live ones, the noise grid and
   // the step (dt is computed again below).
   for (const std::string_view key : changed_keys(prepared.scene, s)) {
-    // A percentile range (unset: p1,p99) needs the scalars again.
-    const auto by_percentile = [](const std::optional<ScalarRange>& r) {
-      return !r || r->percentile;
-    };
-    const bool percentile = (key == "color_range" && by_percentile(s.color_range)) ||
-                            (key == "beta_range" && by_percentile(s.beta_range));
-    const KeyEffect effect = key_effect(key);
-    if ((effect == KeyEffect::kLive && !percentile) || effect == KeyEffect::kNoise ||
-        effect == KeyEffect::kStep || effect == KeyEffect::kNone)
+    const KeyEffect effect = change_effect(key, s, prepared.step_count > 1);
+    if (effect == KeyEffect::kLive || effect == KeyEffect::kNoise || effect == KeyEffect::kStep ||
+        effect == KeyEffect::kNone)
       continue;
     return std::nullopt;
   }

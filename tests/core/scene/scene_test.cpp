@@ -138,6 +138,21 @@ TEST(SceneKeys, EveryKeyHasItsEffectAndTheLiveOnesReachTheRenderer) {
   EXPECT_EQ(changed_keys(a, b), (std::vector<std::string_view>{"mesh", "filter"}));
 }
 
+// A change's effect: a range of values is live, a percentile range (or
+// none, p1,p99) takes the scalars again; a tangent mode keeps a steady
+// field's texture but an unsteady field's steps are evaluated again.
+TEST(SceneKeys, APercentileRangeOrAnUnsteadyTangentPreparesAgain) {
+  Scene s;
+  apply_setting(s, "color_range", "0,2");
+  EXPECT_EQ(change_effect("color_range", s, false), KeyEffect::kLive);
+  apply_setting(s, "color_range", "p5,p95");
+  EXPECT_EQ(change_effect("color_range", s, false), KeyEffect::kPrepare);
+  EXPECT_EQ(change_effect("beta_range", Scene{}, false), KeyEffect::kPrepare);  // unset: p1,p99
+  EXPECT_EQ(change_effect("tangent", s, false), KeyEffect::kTangent);
+  EXPECT_EQ(change_effect("tangent", s, true), KeyEffect::kPrepare);
+  EXPECT_EQ(change_effect("alpha", s, true), KeyEffect::kLive);
+}
+
 TEST(SceneKeys, TomlRoundTrip) {
   const Scene busy = busy_scene();
   const std::string text = scene_toml(busy);

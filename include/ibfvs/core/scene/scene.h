@@ -263,6 +263,11 @@ const SceneKey* find_scene_key(std::string_view name);
 
 /// The effect of changing key `name` (kPrepare for a name that is no key).
 KeyEffect key_effect(std::string_view name);
+/// The effect of a change of key `name` to its value in `next`: key_effect,
+/// but a percentile range (or an unset one, p1,p99) needs the scalars again,
+/// and a tangent mode an unsteady field's steps (`unsteady`): kPrepare. One
+/// rule for Session::set and the page's restyling.
+KeyEffect change_effect(std::string_view name, const Scene& next, bool unsteady);
 /// The keys whose values differ between two scenes, in table order.
 std::vector<std::string_view> changed_keys(const Scene& before, const Scene& after);
 

@@ -28,9 +28,9 @@
 #include "ibfvs/core/scene/scene_prep.h"
 #include "ibfvs/core/support/error.h"
 #include "ibfvs/gl/context.h"
+#include "ibfvs/page/web_page.h"
 #include "ibfvs/render/export.h"
 #include "ibfvs/render/session.h"
-#include "ibfvs/page/web_page.h"
 #include "ibfvs/video/video_writer.h"
 #ifdef IBFVS_HAVE_VTK
 #include "ibfvs/vtk/vtk_io.h"

@@ -18,10 +18,10 @@
 #include "ibfvs/core/support/file_names.h"
 #include "ibfvs/gl/context.h"
 #include "ibfvs/interrupt.h"
+#include "ibfvs/page/web_page.h"
 #include "ibfvs/progress.h"
 #include "ibfvs/render/export.h"
 #include "ibfvs/render/session.h"
-#include "ibfvs/page/web_page.h"
 #include "ibfvs/video/video_writer.h"
 
 namespace ibfvs::app {

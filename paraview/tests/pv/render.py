@@ -57,8 +57,8 @@ view.CameraPosition = cfg.get("camera", [3.5, 2.1, 2.8])
 view.CameraFocalPoint = cfg.get("focal", [0, 0, 0])
 view.CameraViewUp = [0, 0, 1]
 view.CameraViewAngle = cfg.get("view_angle", 30)
-# The first render, where ParaView 5.11 under MPI sometimes hangs for good
-# (docs/paraview.md): the test harness waits for this line, not the whole run.
+# The first render: a run that does not reach it soon is taken for hung and
+# stopped at once by the test harness, which waits for this line.
 Render(view)
 print("ibfvs-test: first render", flush=True)
 

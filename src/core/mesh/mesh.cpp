@@ -3,7 +3,12 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <iterator>
 #include <limits>
+#include <map>
+#include <string>
+#include <vector>
 
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
@@ -49,6 +54,55 @@ float corner_angle(float c) {
   return c >= 0.0f ? r : 3.14159265f - r;
 }
 }  // namespace
+
+namespace {
+
+// `into`'s array followed by `more`'s, where both have one per vertex (or
+// `into` had no vertices); else none.
+template <class T>
+void append_array(std::vector<T>& into, const std::vector<T>& more, std::size_t into_vertices,
+                  std::size_t more_vertices) {
+  const bool mine = into.size() == into_vertices && (into_vertices > 0 || !more.empty());
+  if (mine && more.size() == more_vertices)
+    into.insert(into.end(), more.begin(), more.end());
+  else
+    into.clear();
+}
+
+template <class T>
+void append_named(std::map<std::string, std::vector<T>>& into,
+                  const std::map<std::string, std::vector<T>>& more, std::size_t into_vertices,
+                  std::size_t more_vertices) {
+  if (into_vertices == 0) {
+    into = more;
+    return;
+  }
+  for (auto it = into.begin(); it != into.end();) {
+    const auto other = more.find(it->first);
+    if (other == more.end()) {
+      it = into.erase(it);
+      continue;
+    }
+    append_array(it->second, other->second, into_vertices, more_vertices);
+    it = it->second.size() == into_vertices + more_vertices ? std::next(it) : into.erase(it);
+  }
+}
+
+}  // namespace
+
+void append_mesh(TriMesh& into, const TriMesh& more) {
+  const std::size_t n = into.vertex_count(), m = more.vertex_count();
+  append_array(into.normals, more.normals, n, m);
+  append_array(into.vectors, more.vectors, n, m);
+  append_named(into.scalars, more.scalars, n, m);
+  append_named(into.vector_arrays, more.vector_arrays, n, m);
+  if (n == 0) into.other_arrays = more.other_arrays;
+  into.positions.insert(into.positions.end(), more.positions.begin(), more.positions.end());
+  const auto offset = static_cast<std::uint32_t>(n);
+  into.triangles.reserve(into.triangles.size() + more.triangles.size());
+  for (const Triangle& t : more.triangles)
+    into.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+}
 
 void compute_vertex_normals(TriMesh& mesh) {
   std::vector<glm::vec3> acc(mesh.positions.size(), glm::vec3(0.0f));

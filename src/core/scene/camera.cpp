@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include <glm/gtc/matrix_transform.hpp>
+#include <glm/matrix.hpp>
 #include <glm/trigonometric.hpp>
 
 #include "ibfvs/core/support/error.h"
@@ -20,6 +21,7 @@ Camera::Camera(const Bounds& bounds, const CameraParams& params, float aspect)
 }
 
 float Camera::distance_world() const {
+  if (params_.host) return glm::length(eye() - (bounds_.centre() + params_.target));
   const float diag = std::max(bounds_.diagonal(), 1e-6f);
   if (params_.distance > 0.0f) return params_.distance * diag;
   // Fit the sphere about the box centre that holds every vertex in the
@@ -32,6 +34,13 @@ float Camera::distance_world() const {
 }
 
 float Camera::world_per_pixel(int height) const {
+  if (const std::optional<HostView>& host = params_.host) {
+    // Half the image's height at the focal point's depth: 1 / P[1][1] of
+    // the projection, times that depth in perspective (P[3][3] is 0).
+    const glm::mat4& p = host->projection;
+    const float half = (p[3][3] == 0.0f ? distance_world() : 1.0f) / p[1][1];
+    return 2.0f * std::abs(half) / static_cast<float>(std::max(height, 1));
+  }
   return 2.0f * distance_world() * std::tan(glm::radians(params_.fov_deg) * 0.5f) /
          static_cast<float>(std::max(height, 1));
 }
@@ -54,6 +63,7 @@ glm::mat3 up_frame(const glm::vec3& up) {
 }  // namespace
 
 glm::vec3 Camera::eye() const {
+  if (params_.host) return glm::vec3(glm::inverse(view())[3]);
   const float az = glm::radians(params_.azimuth_deg);
   const float el = glm::radians(params_.elevation_deg);
   const glm::vec3 dir(std::sin(az) * std::cos(el), std::sin(el), std::cos(az) * std::cos(el));
@@ -61,6 +71,16 @@ glm::vec3 Camera::eye() const {
 }
 
 glm::mat4 Camera::view() const {
+  if (const std::optional<HostView>& host = params_.host) {
+    if (params_.azimuth_deg == 0.0f) return host->view;
+    // An orbit: the world turned about the vertical through the focal point.
+    const glm::vec3 pivot = bounds_.centre() + params_.target;
+    const float len = glm::length(params_.up);
+    const glm::vec3 up = len > 0.0f ? params_.up / len : glm::vec3(0, 1, 0);
+    return host->view * glm::translate(glm::mat4(1.0f), pivot) *
+           glm::rotate(glm::mat4(1.0f), -glm::radians(params_.azimuth_deg), up) *
+           glm::translate(glm::mat4(1.0f), -pivot);
+  }
   const glm::vec3 eye_pos = eye();
   const glm::vec3 look_at = bounds_.centre() + params_.target;
   const glm::vec3 forward = glm::normalize(look_at - eye_pos);
@@ -77,6 +97,7 @@ glm::mat4 Camera::view() const {
 }
 
 glm::mat4 Camera::projection() const {
+  if (params_.host) return params_.host->projection;
   const float diag = std::max(bounds_.diagonal(), 1e-6f);
   const float radius = bounds_.radius > 0.0f ? bounds_.radius : 0.5f * diag;
   const float dist = distance_world();

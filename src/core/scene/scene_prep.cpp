@@ -450,7 +450,8 @@ PreparedScene prepare(const Scene& s, std::optional<LoadedMesh> given) {
                                  s.camera.orthographic,
                                  s.camera.fov_deg,
                                  glm::vec3(0.0f),
-                                 up};
+                                 up,
+                                 std::nullopt};
 
   // ---- scalars sampled from netCDF grids
   for (const GridScalar& g : s.scalars) {

@@ -68,6 +68,36 @@ TEST(Mesh, NormalsAreTheAngleWeightedOnes) {
   EXPECT_GT(weights, 100 * 2e-4);
 }
 
+// Pieces joined (ParaView's ranks' pieces for a page): triangles renumbered,
+// every array one per vertex, an array one piece lacks dropped.
+TEST(Mesh, AppendedPiecesKeepTheArraysBothHave) {
+  TriMesh a = make_square(1.0f, 2), b = make_sphere(1.0f, 4, 8);
+  a.vectors.assign(a.vertex_count(), glm::vec3(1, 0, 0));
+  b.vectors.assign(b.vertex_count(), glm::vec3(0, 1, 0));
+  a.scalars["t"].assign(a.vertex_count(), 0.25f);
+  b.scalars["t"].assign(b.vertex_count(), 0.75f);
+  a.scalars["only a"].assign(a.vertex_count(), 1.0f);
+  b.vector_arrays["only b"].assign(b.vertex_count(), glm::vec3(1.0f));
+  b.normals.clear();  // b lacks normals
+  TriMesh joined;
+  append_mesh(joined, a);
+  EXPECT_EQ(joined.normals, a.normals);  // the first piece's arrays, all of them
+  EXPECT_EQ(joined.scalars.count("only a"), 1u);
+  append_mesh(joined, b);
+  const std::size_t n = a.vertex_count() + b.vertex_count();
+  ASSERT_EQ(joined.vertex_count(), n);
+  ASSERT_EQ(joined.triangle_count(), a.triangle_count() + b.triangle_count());
+  EXPECT_EQ(joined.triangles[a.triangle_count()][1], b.triangles[0][1] + a.vertex_count());
+  EXPECT_NO_THROW(validate_mesh(joined, "joined"));
+  EXPECT_TRUE(joined.normals.empty());
+  ASSERT_EQ(joined.vectors.size(), n);
+  EXPECT_EQ(joined.vectors.back(), glm::vec3(0, 1, 0));
+  ASSERT_EQ(joined.scalars.size(), 1u);
+  EXPECT_FLOAT_EQ(joined.scalars["t"][0], 0.25f);
+  EXPECT_FLOAT_EQ(joined.scalars["t"][n - 1], 0.75f);
+  EXPECT_TRUE(joined.vector_arrays.empty());
+}
+
 TEST(Mesh, TopologyHashTellsTrianglesApart) {
   const TriMesh m = make_torus(1.0f, 0.4f, 24, 12);
   const std::uint64_t h = topology_hash(m);

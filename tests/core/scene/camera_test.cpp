@@ -100,6 +100,42 @@ TEST(Camera, ImageNormalizedStepMovesTheGivenPixels) {
   EXPECT_LE(glm::length(d), kImageStepLimit * probe * 1.0001f);
 }
 
+// A host's camera (ParaView's view) drawn with its own matrices: the same
+// eye, scale at the focal point and orbit as the orbit camera whose matrices
+// it was given, in perspective and in parallel projection.
+TEST(Camera, AHostsMatricesActAsTheOrbitCameraTheyCameFrom) {
+  const TriMesh m = make_torus(1.0f, 0.3f, 48, 16);
+  const Bounds b = mesh_bounds(m);
+  for (const bool orthographic : {false, true}) {
+    CameraParams params;
+    params.azimuth_deg = 30.0f;
+    params.elevation_deg = 20.0f;
+    params.orthographic = orthographic;
+    params.target = glm::vec3(0.1f, -0.2f, 0.05f);
+    const Camera orbit(b, params, 1.5f);
+    CameraParams host;
+    host.host = HostView{orbit.view(), orbit.projection()};
+    host.target = params.target;
+    const Camera hosted(b, host, 1.0f);  // the aspect is the host's, in its projection
+    EXPECT_EQ(hosted.view(), orbit.view());
+    EXPECT_EQ(hosted.projection(), orbit.projection());
+    EXPECT_LT(glm::length(hosted.eye() - orbit.eye()), 1e-4f);
+    EXPECT_NEAR(hosted.distance_world(), orbit.distance_world(), 1e-4f);
+    EXPECT_NEAR(hosted.world_per_pixel(300), orbit.world_per_pixel(300),
+                1e-4f * orbit.world_per_pixel(300))
+        << (orthographic ? "parallel" : "perspective");
+    // A quarter turn of the orbit: the eye goes round the focal point alike.
+    Camera turned = orbit, host_turned = hosted;
+    turned.orbit(90.0f);
+    host_turned.orbit(90.0f);
+    EXPECT_LT(glm::length(host_turned.eye() - turned.eye()), 1e-3f);
+    const glm::vec3 probe(0.3f, 0.2f, -0.1f);
+    const glm::vec2 a = project_to_pixels(turned.view_projection(), probe, 300, 200);
+    const glm::vec2 c = project_to_pixels(host_turned.view_projection(), probe, 300, 200);
+    EXPECT_LT(glm::length(a - c), 0.05f);
+  }
+}
+
 TEST(Camera, RejectsImpossibleValues) {
   const Bounds b = mesh_bounds(make_square(1.0f, 1));
   CameraParams p;

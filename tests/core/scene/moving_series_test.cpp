@@ -161,5 +161,49 @@ TEST(PrepareChange, TheSameTrianglesTakeThePreparedOrder) {
   EXPECT_EQ(r.field.size(), r.mesh->vertex_count());
 }
 
+// A host's states (ParaView's data over its times) are the series its
+// files make: the same points at each step, the same own mesh where the
+// triangles change, the same field, colours and dt.
+TEST(PrepareStates, AHostsStatesAreTheSeriesOfItsFiles) {
+  const test::TempDir dir;
+  write_turning_series(dir, 4, 2);
+  Scene s;
+  s.color_by = "x";
+  s.color_range = ScalarRange{false, -1.0f, 1.0f};
+  Scene files = s;
+  files.mesh = (dir / "turn_*.ply").string();
+  const PreparedScene from_files = prepare_scene(files);
+  std::vector<TriMesh> states;
+  for (int k = 0; k < 4; ++k)
+    states.push_back(read_mesh(dir / ("turn_" + std::to_string(k) + ".ply")));
+  s.field = FieldSpec::parse("file");
+  const PreparedScene hosted = prepare_states(s, states, "the host");
+  ASSERT_EQ(hosted.step_count, 4u);
+  EXPECT_EQ(hosted.mesh->triangles, from_files.mesh->triangles);
+  EXPECT_FLOAT_EQ(hosted.dt, from_files.dt);
+  for (std::size_t k = 0; k < 4; ++k) {
+    const StepData a = hosted.step_data(k), b = from_files.step_data(k);
+    EXPECT_EQ(a.positions, b.positions) << "step " << k;
+    EXPECT_EQ(a.normals.size(), b.normals.size()) << "step " << k;
+    EXPECT_EQ(a.field, b.field) << "step " << k;
+    EXPECT_EQ(a.color_scalar, b.color_scalar) << "step " << k;
+    ASSERT_EQ(a.mesh == nullptr, b.mesh == nullptr) << "step " << k;
+    if (a.mesh) EXPECT_EQ(a.mesh->triangles, b.mesh->triangles) << "step " << k;
+  }
+  EXPECT_EQ(hosted.step_data(1).positions.size(), hosted.mesh->vertex_count());  // it moves
+  EXPECT_NE(hosted.step_data(2).mesh, nullptr);  // its own triangles
+  // A bad state is named by its step, in one line.
+  states[3].positions[4].y = std::numeric_limits<float>::infinity();
+  try {
+    (void)prepare_states(s, states, "the host");
+    FAIL() << "an infinite point was taken";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("the host: step 3"), std::string::npos) << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+  }
+  EXPECT_THROW((void)prepare_states(s, {}, "the host"), InputError);
+}
+
 }  // namespace
 }  // namespace ibfvs

@@ -64,6 +64,12 @@ std::vector<float> triangle_to_vertex(const TriMesh& mesh, const std::vector<flo
 std::vector<glm::vec3> triangle_to_vertex(const TriMesh& mesh,
                                           const std::vector<glm::vec3>& values);
 
+/// Appends `more` to `into`: its vertices after into's, its triangles
+/// renumbered to them. A per-vertex array (normals, vectors, a named scalar
+/// or vector) stays where both have it, or `into` had no vertices; one that
+/// either lacks is dropped, so every array stays one per vertex.
+void append_mesh(TriMesh& into, const TriMesh& more);
+
 /// Drops triangles with a repeated vertex index or zero area; returns how many.
 std::size_t remove_degenerate_triangles(TriMesh& mesh);
 

@@ -2,6 +2,8 @@
 // The view transform T of the paper (modelling, viewing and projection):
 // an orbit camera around the centre of the mesh's bounding box.
 
+#include <optional>
+
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
@@ -9,6 +11,13 @@
 #include "ibfvs/core/mesh/mesh.h"
 
 namespace ibfvs {
+
+/// A host application's own camera (ParaView's view): the matrices it draws
+/// with, world to eye and eye to clip, in OpenGL's conventions.
+struct HostView {
+  glm::mat4 view{1.0f};
+  glm::mat4 projection{1.0f};
+};
 
 /// Camera settings. The default looks at the centre of the bounding box from
 /// +Z with +Y up and fits the whole mesh in the image.
@@ -21,6 +30,11 @@ struct CameraParams {
   glm::vec3 target{0.0f};          ///< look-at point minus the box centre (panning), world units
   glm::vec3 up{0.0f, 1.0f, 0.0f};  ///< the vertical: azimuth turns about it, elevation rises
                                    ///< along it (+Y by default; +Z for a terrain in z = h(x, y))
+  /// A host's camera: its matrices in place of the orbit camera's (azimuth,
+  /// elevation, distance, framing and depth range; the aspect is the
+  /// host's). `target` then is its focal point minus the box centre, and an
+  /// orbit turns its view about the vertical through that point.
+  std::optional<HostView> host;
 };
 
 /// Position and projection for one frame.

@@ -95,6 +95,18 @@ PreparedScene prepare_scene(const Scene& scene, TriMesh mesh, const std::string&
 /// scene's); camera, dt and settings stay. Throws InputError naming `name`.
 PreparedScene prepare_change(const PreparedScene& prepared, TriMesh mesh, const std::string& name);
 
+/// A host's time steps as one unsteady scene (ParaView's data over its
+/// times): `states` in time order, each the surface as the host has it (the
+/// meaning prepare_scene's mesh has). The first is prepared as
+/// prepare_scene(scene, mesh, name) prepares it; each later one is a step on
+/// it as prepare_change takes it: its points where they moved, a mesh of its
+/// own where its triangles differ, its vectors and scalars. Colour and beta
+/// ranges are the first state's; dt and the fastest vertex count every step
+/// played. One state: prepare_scene's scene. Throws InputError naming
+/// `name` and the step.
+PreparedScene prepare_states(const Scene& scene, std::vector<TriMesh> states,
+                             const std::string& name);
+
 /// The prepared scene for another image size: the same mesh (shared, not read
 /// again), field and scalars, with dt from the step in pixels (unless the
 /// scene gives dt) and the object-noise cell for that size. Throws

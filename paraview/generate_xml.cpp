@@ -5,6 +5,7 @@
 //                  enumeration's number; 1 or 0 for a flag)
 //   @KEY.range@    min="MIN" max="MAX" of a number key's span
 //   @KEY.entries@  an enumeration key's <Entry value="N" text="Name"/> lines, by number
+//   @page.triangles@  the most triangles a web page takes (WebPageLimits)
 // Usage: ibfvs_paraview_xml TEMPLATE OUT. A placeholder for a key that does
 // not exist or has no such part fails the build, naming it.
 
@@ -19,6 +20,7 @@
 
 #include "ibfvs/core/scene/scene.h"
 #include "ibfvs/core/support/text.h"
+#include "ibfvs/page/web_page.h"
 
 namespace {
 
@@ -82,6 +84,10 @@ int main(int argc, char** argv) {
     done = at + static_cast<std::size_t>(m.length(0));
     const std::size_t line = xml.rfind('\n', at) + 1;
     const std::string indent = xml.substr(line, xml.find_first_not_of(' ', line) - line);
+    if (m[0].str() == "@page.triangles@") {
+      out += std::to_string(ibfvs::WebPageLimits{}.triangles);
+      continue;
+    }
     const SceneKey* key = ibfvs::find_scene_key(m[1].str());
     try {
       if (!key) throw std::runtime_error("is no scene key");

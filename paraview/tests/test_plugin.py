@@ -480,6 +480,9 @@ def test_the_pvpython_examples_in_the_docs_run(tmp_path, doc):
         done = on_display(["pvpython", str(script)], cwd=tmp_path)
         assert done.returncode == 0, why(done)
         assert "IBFVS: " not in done.stdout + done.stderr  # no warning: the texture was drawn
+        assert "ERR|" not in done.stdout + done.stderr, why(done)
+        for page in re.findall(r'ExportView\("([^"]+)"', block):  # its pages were written
+            assert (tmp_path / page).stat().st_size > 100000, page
     shots = list(tmp_path.glob("*.png"))
     assert shots
     for shot in shots:

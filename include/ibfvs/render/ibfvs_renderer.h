@@ -52,6 +52,7 @@
 #include "ibfvs/core/image/colormap.h"
 #include "ibfvs/core/image/image.h"
 #include "ibfvs/core/mesh/mesh.h"
+#include "ibfvs/core/scene/camera.h"
 #include "ibfvs/core/scene/render_settings.h"
 #include "ibfvs/core/texture/noise.h"
 #include "ibfvs/core/texture/reference.h"
@@ -62,11 +63,8 @@
 
 namespace ibfvs {
 
-/// One camera state.
-struct ViewState {
-  glm::mat4 view{1.0f};
-  glm::mat4 projection{1.0f};
-};
+/// One camera state: world to eye, eye to clip (a host's camera's too).
+using ViewState = HostView;
 
 /// The IBFVS engine. Needs a current OpenGL 4.5 context for its whole life.
 class IbfvsRenderer {

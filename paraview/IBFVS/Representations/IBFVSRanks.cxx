@@ -6,11 +6,15 @@
 #include <cmath>
 #include <cstdint>
 #include <span>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include <glm/geometric.hpp>
 
 #include "ibfvs/core/image/composite.h"
+#include "ibfvs/core/mesh/mesh.h"
+#include "ibfvs/core/mesh/mesh_bytes.h"
 #include "ibfvs/gl/objects.h"
 #include "ibfvs/render/session.h"
 
@@ -107,6 +111,36 @@ void composite_frame(vtkMultiProcessController* controller, ibfvs::Session* sess
       session->renderer().run_deferred_statistics();
     }
   }
+}
+
+ibfvs::TriMesh gather_pieces(vtkMultiProcessController* controller, const ibfvs::TriMesh* mine) {
+  const int ranks = controller ? controller->GetNumberOfProcesses() : 1;
+  if (ranks <= 1) return mine ? *mine : ibfvs::TriMesh{};
+  ibfvs::ByteWriter writer;
+  ibfvs::put_mesh(writer, mine ? *mine : ibfvs::TriMesh{});
+  const std::string bytes = writer.take();
+  const long length = static_cast<long>(bytes.size());
+  std::vector<long> lengths(static_cast<std::size_t>(ranks), 0);
+  controller->Gather(&length, lengths.data(), 1, 0);
+  const bool root = controller->GetLocalProcessId() == 0;
+  std::vector<vtkIdType> counts(lengths.begin(), lengths.end()), offsets(counts.size(), 0);
+  vtkIdType total = 0;
+  for (std::size_t r = 0; r < counts.size(); ++r) {
+    offsets[r] = total;
+    total += counts[r];
+  }
+  std::string all(root ? static_cast<std::size_t>(total) : 0, '\0');
+  controller->GatherV(bytes.data(), all.data(), length, counts.data(), offsets.data(), 0);
+  ibfvs::TriMesh whole;
+  if (!root) return whole;
+  for (std::size_t r = 0; r < counts.size(); ++r) {
+    ibfvs::ByteReader reader(std::string_view(all).substr(static_cast<std::size_t>(offsets[r]),
+                                                          static_cast<std::size_t>(counts[r])),
+                             "process " + std::to_string(r) + "'s piece");
+    const ibfvs::TriMesh piece = ibfvs::get_mesh(reader);
+    if (piece.vertex_count() > 0) ibfvs::append_mesh(whole, piece);
+  }
+  return whole;
 }
 
 }  // namespace ibfvs::paraview

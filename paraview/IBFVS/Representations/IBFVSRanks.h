@@ -15,7 +15,8 @@ class vtkMultiProcessController;
 
 namespace ibfvs {
 class Session;
-}
+struct TriMesh;
+}  // namespace ibfvs
 
 namespace ibfvs::paraview {
 
@@ -45,6 +46,11 @@ Agreement agree(const Agreement& mine, vtkMultiProcessController* controller);
 /// piece, which takes part with empty images of width x height. Collective.
 void composite_frame(vtkMultiProcessController* controller, ibfvs::Session* session, int width,
                      int height, bool statistics);
+
+/// Every process's piece (null: an empty one) as one mesh on process 0, in
+/// the processes' order (ibfvs::append_mesh); the others get an empty mesh.
+/// A page of the whole surface under MPI. Collective.
+ibfvs::TriMesh gather_pieces(vtkMultiProcessController* controller, const ibfvs::TriMesh* mine);
 
 }  // namespace ibfvs::paraview
 

@@ -7,6 +7,7 @@
 #include <glm/mat4x4.hpp>
 
 #include "vtkActor.h"
+#include "vtkCamera.h"
 #include "vtkMath.h"
 #include "vtkMatrix3x3.h"
 #include "vtkMatrix4x4.h"
@@ -27,6 +28,20 @@ glm::mat4 from_vtk_transposed(vtkMatrix4x4* m) {
 }
 
 }  // namespace
+
+glm::mat4 to_glm(vtkMatrix4x4* m) {
+  glm::mat4 out;
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) out[c][r] = static_cast<float>(m->GetElement(r, c));
+  return out;
+}
+
+ibfvs::HostView view_at_size(vtkRenderer* ren, int width, int height) {
+  vtkCamera* camera = ren->GetActiveCamera();
+  const double aspect = static_cast<double>(std::max(width, 1)) / std::max(height, 1);
+  return {to_glm(camera->GetModelViewTransformMatrix()),
+          to_glm(camera->GetProjectionTransformMatrix(aspect, -1, 1))};
+}
 
 ibfvs::ViewState view_of(vtkRenderer* ren, vtkActor* actor) {
   vtkMatrix4x4 *wcvc = nullptr, *vcdc = nullptr, *wcdc = nullptr;

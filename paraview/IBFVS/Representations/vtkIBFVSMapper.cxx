@@ -1,9 +1,10 @@
 // Sections: settings from the properties; after FXAA; one frame (the order
-// of its steps). The surface and its colours, the processes' agreement and
+// of its steps); a page's layer. The surface and its colours, the processes' agreement and
 // compositing, and ParaView's camera are units of their own (IBFVSSurface,
 // IBFVSRanks, IBFVSView).
 #include "vtkIBFVSMapper.h"
 
+#include "IBFVSPage.h"
 #include "IBFVSRanks.h"
 #include "IBFVSSurface.h"
 #include "IBFVSView.h"
@@ -24,6 +25,8 @@
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
 
 #include "ibfvs/core/scene/scene.h"
 #include "ibfvs/core/scene/scene_prep.h"
@@ -91,6 +94,10 @@ class vtkIBFVSMapper::Internals {
   bool retake = true;                    // take the surface again (the vectors were set)
   bool data_changed = true;              // a new surface or array: the session takes it on
   bool points_moved = false;             // and its points moved (the same triangles)
+
+  // ---- the whole surface on process 0, for a page (SetGatherForPage)
+  bool gather_for_page = false;
+  std::shared_ptr<ibfvs::TriMesh> page_mesh;  // null: this process's own piece
 
   // ---- colour by ParaView's lookup table
   std::string colour_key;
@@ -208,6 +215,11 @@ void vtkIBFVSMapper::SetFramesPerStep(int frames) {
   if (this->Internal->pacer.frames_per_step() == v) return;
   this->Internal->pacer.set_frames_per_step(v);
   this->Modified();
+}
+
+void vtkIBFVSMapper::SetGatherForPage(int on) {
+  this->Internal->gather_for_page = on != 0;
+  if (!on) this->Internal->page_mesh.reset();
 }
 
 void vtkIBFVSMapper::Restart() {
@@ -362,10 +374,10 @@ void vtkIBFVSMapper::UpdateSession(const ibfvs::paraview::Agreement& all, int wi
 // The settings, ParaView's colours and dt for this frame's session (which
 // must exist); the view to draw it in. `deferred`: the statistics wait for
 // the composite (several processes).
-ibfvs::ViewState vtkIBFVSMapper::ApplySettings(vtkRenderer* ren, vtkActor* actor,
-                                               const char* colour_array,
-                                               const ibfvs::paraview::Agreement& all, int width,
-                                               int height, bool deferred) {
+ibfvs::HostView vtkIBFVSMapper::ApplySettings(vtkRenderer* ren, vtkActor* actor,
+                                              const char* colour_array,
+                                              const ibfvs::paraview::Agreement& all, int width,
+                                              int height, bool deferred) {
   Internals& in = *this->Internal;
   ibfvs::Session* session = in.session.get();
   const float diagonal = all.diagonal();
@@ -485,6 +497,29 @@ void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor) {
   in.warned.clear();
   in.last_problem.clear();
 
+  // ---- a page of the view under MPI: every piece on process 0, with what
+  // the page takes of it (the points, triangles, vectors, normals and the
+  // array coloured by). Decided alike on every process (a property).
+  in.page_mesh.reset();
+  if (in.gather_for_page && ranks > 1) {
+    ibfvs::TriMesh piece;
+    if (in.mesh) {
+      piece.positions = in.mesh->positions;
+      piece.triangles = in.mesh->triangles;
+      piece.vectors = in.mesh->vectors;
+      piece.normals = in.mesh->normals;
+      if (colour_array && *colour_array) {
+        if (const auto a = in.mesh->scalars.find(colour_array); a != in.mesh->scalars.end())
+          piece.scalars.insert(*a);
+        if (const auto a = in.mesh->vector_arrays.find(colour_array);
+            a != in.mesh->vector_arrays.end())
+          piece.vector_arrays.insert(*a);
+      }
+    }
+    in.page_mesh = std::make_shared<ibfvs::TriMesh>(
+        ibfvs::paraview::gather_pieces(controller, in.mesh ? &piece : nullptr));
+  }
+
   // ---- the session: made, or taking on a new size, noise grid or data
   // (the texture goes on from where it is; only a restart starts afresh).
   // The texture frames of this render: one, and at a change of the data the
@@ -523,4 +558,73 @@ void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor) {
     // ParaView's state cache reads the context again.
     window->GetState()->Reset();
   }
+}
+
+// ------------------------------------------------------------ a page's layer
+
+// The surface of the last render as a page takes it (vtkIBFVSPageExporter):
+// the vectors, normals and ParaView's colours (positions in its table, as
+// drawn) of the whole surface, moved by the actor's transform into world
+// space. Only where the last render drew the texture.
+bool vtkIBFVSMapper::TakePageLayer(vtkActor* actor, ibfvs::paraview::PageLayer& layer,
+                                   std::string& problem) {
+  Internals& in = *this->Internal;
+  if (!in.last_problem.empty() || !in.problem.empty()) {
+    problem = !in.last_problem.empty() ? in.last_problem : in.problem;
+    return false;
+  }
+  // The whole surface gathered from every process, or this one's.
+  const ibfvs::TriMesh* whole = in.page_mesh ? in.page_mesh.get() : in.mesh.get();
+  if (!whole || whole->triangles.empty() || (!in.session && !in.page_mesh)) {
+    problem = "it has drawn no texture (render the view first)";
+    return false;
+  }
+  const ibfvs::TriMesh& drawn = *whole;
+  ibfvs::TriMesh& m = layer.mesh;
+  m = ibfvs::TriMesh{};
+  m.positions = drawn.positions;
+  m.triangles = drawn.triangles;
+  m.vectors = drawn.vectors;
+  m.normals = drawn.normals;
+  layer.speed = 0.0f;
+  for (const glm::vec3& v : m.vectors)
+    if (const float l = glm::length(v); std::isfinite(l)) layer.speed = std::max(layer.speed, l);
+  layer.scene = in.scene;
+  layer.scene.frames_per_step = in.pacer.frames_per_step();
+  double colour[3];
+  actor->GetProperty()->GetDiffuseColor(colour);
+  layer.scene.surface_color = glm::vec3(colour[0], colour[1], colour[2]);
+  // ParaView's colours as the render mapped them (the same function).
+  layer.table.clear();
+  const char* colour_array = this->GetScalarVisibility() ? this->GetArrayName() : nullptr;
+  vtkScalarsToColors* lut = this->GetLookupTable();
+  std::vector<float> t;
+  if (ibfvs::paraview::map_colours(drawn, colour_array, lut, t, layer.table)) {
+    m.scalars[ibfvs::paraview::kTableColour] = std::move(t);
+    if (const std::optional<glm::vec3> nan = ibfvs::paraview::nan_colour(lut))
+      layer.scene.surface_color = *nan;
+  }
+  layer.name = colour_array && *colour_array ? "coloured by " + std::string(colour_array)
+                                             : "vectors " + in.vectors;
+  // The actor's transform (Translation, Orientation, Scale) into the points,
+  // the vectors and the normals.
+  if (!actor->GetIsIdentity()) {
+    const glm::mat4 a = ibfvs::paraview::to_glm(actor->GetMatrix());
+    const glm::mat3 linear(a);
+    const glm::mat3 normal = glm::transpose(glm::inverse(linear));
+    for (glm::vec3& r : m.positions) r = glm::vec3(a * glm::vec4(r, 1.0f));
+    float fastest = 0.0f;
+    for (glm::vec3& v : m.vectors) {
+      v = linear * v;
+      const float l = glm::length(v);
+      if (std::isfinite(l)) fastest = std::max(fastest, l);
+    }
+    layer.speed = fastest;
+    for (glm::vec3& n : m.normals) {
+      const glm::vec3 turned = normal * n;
+      const float l = glm::length(turned);
+      n = l > 0.0f ? turned / l : glm::vec3(0.0f, 0.0f, 1.0f);
+    }
+  }
+  return true;
 }

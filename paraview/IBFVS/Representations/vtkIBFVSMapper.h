@@ -16,11 +16,14 @@
 #include "IBFVSRepresentationsModule.h"  // export macro
 #include "vtkCompositePolyDataMapper2.h"
 
+#include <string>  // for TakePageLayer
+
 namespace ibfvs {
-struct ViewState;
+struct HostView;
 namespace paraview {
 struct Agreement;
-}
+struct PageLayer;
+}  // namespace paraview
 }  // namespace ibfvs
 
 class IBFVSREPRESENTATIONS_EXPORT vtkIBFVSMapper : public vtkCompositePolyDataMapper2 {
@@ -55,6 +58,10 @@ class IBFVSREPRESENTATIONS_EXPORT vtkIBFVSMapper : public vtkCompositePolyDataMa
   void SetFramesPerStep(int frames);
   /// Starts the texture afresh from noise at the next render.
   void Restart();
+  /// Under MPI, each render while on also gathers every process's piece on
+  /// process 0, where a page of the view takes the whole surface
+  /// (vtkSMIBFVSPageExporterProxy turns it on while it renders the times).
+  void SetGatherForPage(int on);
 
   /// Frames drawn with the texture since it last started afresh.
   int GetFrame();
@@ -71,11 +78,17 @@ class IBFVSREPRESENTATIONS_EXPORT vtkIBFVSMapper : public vtkCompositePolyDataMa
 
   void TakeSurface(vtkDataObject* input, vtkMTimeType input_time, bool cells_apart);
   void UpdateSession(const ibfvs::paraview::Agreement& all, int width, int height);
-  ibfvs::ViewState ApplySettings(vtkRenderer* ren, vtkActor* actor, const char* colour_array,
-                                 const ibfvs::paraview::Agreement& all, int width, int height,
-                                 bool deferred);
+  ibfvs::HostView ApplySettings(vtkRenderer* ren, vtkActor* actor, const char* colour_array,
+                                const ibfvs::paraview::Agreement& all, int width, int height,
+                                bool deferred);
   void ObserveRenderer(vtkRenderer* ren);
   void RedrawAfterFXAA();
+
+  friend class vtkIBFVSPageExporter;
+  /// The surface this mapper drew at its last render, for a page (in world
+  /// space, coloured as drawn): false with `problem` saying why when it drew
+  /// none, or the plain surface.
+  bool TakePageLayer(vtkActor* actor, ibfvs::paraview::PageLayer& layer, std::string& problem);
 
   class Internals;
   Internals* Internal;

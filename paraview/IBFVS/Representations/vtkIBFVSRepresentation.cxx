@@ -73,3 +73,8 @@ void vtkIBFVSRepresentation::RestartTexture() {
   this->IBFVSMapper->Restart();
   this->IBFVSLODMapper->Restart();
 }
+
+void vtkIBFVSRepresentation::SetGatherForPage(int on) {
+  this->IBFVSMapper->SetGatherForPage(on);
+  this->IBFVSLODMapper->SetGatherForPage(on);
+}

@@ -44,6 +44,9 @@ class IBFVSREPRESENTATIONS_EXPORT vtkIBFVSRepresentation
   void SetFramesPerStep(int frames);
   /// Starts the texture afresh (the panel's Restart Texture button).
   void RestartTexture();
+  /// Under MPI, renders gather the whole surface on process 0 for a page
+  /// (vtkSMIBFVSPageExporterProxy, while it renders).
+  void SetGatherForPage(int on);
 
   int ProcessViewRequest(vtkInformationRequestKey* request_type, vtkInformation* inInfo,
                          vtkInformation* outInfo) override;

@@ -16,6 +16,12 @@ struct SubProxyAccess : vtkSMProxy {
 };
 }  // namespace
 
+vtkSMIBFVSRepresentationProxy* vtkSMIBFVSRepresentationProxy::Of(vtkSMProxy* representation) {
+  return representation ? vtkSMIBFVSRepresentationProxy::SafeDownCast(
+                              SubProxyAccess::Get(representation, "IBFVSRepresentation"))
+                        : nullptr;
+}
+
 vtkSMIBFVSRepresentationProxy::vtkSMIBFVSRepresentationProxy() = default;
 
 vtkSMIBFVSRepresentationProxy::~vtkSMIBFVSRepresentationProxy() {

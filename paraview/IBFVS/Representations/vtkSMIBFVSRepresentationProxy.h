@@ -19,6 +19,10 @@ class IBFVSREPRESENTATIONS_EXPORT vtkSMIBFVSRepresentationProxy : public vtkSMRe
 
   void UpdateVTKObjects() override;
 
+  /// The IBFVS representation of a view's representation (the subproxy of
+  /// ParaView's GeometryRepresentation and its kin); null where it has none.
+  static vtkSMIBFVSRepresentationProxy* Of(vtkSMProxy* representation);
+
  protected:
   vtkSMIBFVSRepresentationProxy();
   ~vtkSMIBFVSRepresentationProxy() override;

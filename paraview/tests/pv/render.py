@@ -23,6 +23,9 @@
 #              {"mode": "sequence", "frames": K}: Save Animation in Sequence
 #              mode, K frames over the series (OUT.0000.png, ...)
 #   interpolate  the data through ParaView's TemporalInterpolator
+#   export     {"file": NAME, "properties": {...}}: after the frames,
+#              ExportView(NAME) with those exporter properties (File > Export
+#              Scene); a failure is printed as "ibfvs-test: export failed: ..."
 import json
 import sys
 
@@ -151,6 +154,13 @@ if animation:
                 if r in (0, renders - 2, renders - 1):
                     SaveScreenshot("%s-step%d-r%d.png" % (cfg["out"], k, r), view,
                                    ImageResolution=[w, h])
+export = cfg.get("export")
+if export:
+    try:
+        ExportView(export["file"], view=view, **export.get("properties", {}))
+        print("ibfvs-test: exported", export["file"], flush=True)
+    except Exception as e:  # ParaView's own refusal (no exporter for the name)
+        print("ibfvs-test: export failed:", " ".join(str(a) for a in e.args), flush=True)
 with open(cfg["out"] + ".json", "w") as f:
     json.dump({"available": available}, f)
 print("rendered", cfg["frames"], "frames")

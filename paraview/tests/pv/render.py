@@ -23,6 +23,8 @@
 #              {"mode": "sequence", "frames": K}: Save Animation in Sequence
 #              mode, K frames over the series (OUT.0000.png, ...)
 #   interpolate  the data through ParaView's TemporalInterpolator
+#   server     HOST:PORT of a pvserver to connect to (the plugin loaded on
+#              both sides); remote_render: the server renders (threshold 0)
 #   export     {"file": NAME, "properties": {...}}: after the frames,
 #              ExportView(NAME) with those exporter properties (File > Export
 #              Scene); a failure is printed as "ibfvs-test: export failed: ..."
@@ -33,6 +35,13 @@ import paraview.simple
 from paraview.simple import *  # noqa: F401,F403 (ParaView's own idiom)
 
 cfg = json.loads(sys.argv[1])
+if cfg.get("server"):
+    # A client of a pvserver: the plugin on both sides (Tools > Manage
+    # Plugins, server and client), the data read there.
+    host, port = cfg["server"].rsplit(":", 1)
+    Connect(host, int(port))
+    if cfg.get("plugin"):
+        LoadPlugin(cfg["plugin"], remote=True, ns=globals())
 if cfg.get("plugin"):
     LoadPlugin(cfg["plugin"], remote=False, ns=globals())
 
@@ -55,6 +64,8 @@ view.UseColorPaletteForBackground = 0
 view.Background = [0.2, 0.3, 0.4]
 if "fxaa" in cfg:  # ParaView's default: on
     view.UseFXAA = cfg["fxaa"]
+if cfg.get("remote_render"):  # the server renders, however small the data
+    view.RemoteRenderThreshold = 0
 display = Show(source, view)
 view.CameraPosition = cfg.get("camera", [3.5, 2.1, 2.8])
 view.CameraFocalPoint = cfg.get("focal", [0, 0, 0])
@@ -162,5 +173,7 @@ if export:
     except Exception as e:  # ParaView's own refusal (no exporter for the name)
         print("ibfvs-test: export failed:", " ".join(str(a) for a in e.args), flush=True)
 with open(cfg["out"] + ".json", "w") as f:
-    json.dump({"available": available}, f)
+    json.dump({"available": available,
+               "remote": bool(view.GetClientSideObject().GetUseDistributedRenderingForRender())},
+              f)
 print("rendered", cfg["frames"], "frames")

@@ -39,6 +39,10 @@ playing the series alone. Prints Markdown tables; pictures go to OUT.
                        consecutive frames, within a step and across a change
   --interpolate        the data through ParaView's TemporalInterpolator (every
                        sequence frame then shows data of its own time)
+  --page               also File > Export Scene's web page of the IBFVS view
+                       (OUT/ibfvs.html, every time step): the seconds it takes,
+                       its size, and A and W of its picture in headless chromium
+                       (web/test/shoot.mjs) as it reaches each step
 """
 import math
 import os
@@ -60,6 +64,7 @@ parser.add_argument("--export-variant", action="append", default=[])
 parser.add_argument("--no-play", action="store_true")
 parser.add_argument("--sequence", type=int, default=0)
 parser.add_argument("--interpolate", action="store_true")
+parser.add_argument("--page", action="store_true")
 args = parser.parse_args()
 os.makedirs(args.out, exist_ok=True)
 (w, h), up, (azimuth, elevation) = pvmeasure.series_view(args)
@@ -147,6 +152,28 @@ for k, variant in enumerate([""] + args.export_variant):
                             if f.startswith(stem + ".") and f.endswith(".png"))
     pv.Delete(export_view)
 exported = exports["IBFVS, Save Animation"]
+
+# ---- File > Export Scene: the page of the IBFVS view, every time step
+page, page_seconds = None, 0.0
+if args.page:
+    page_view, _ = new_view()
+    shown(page_view, "IBFVS")
+    pv.Render(page_view)
+    page = os.path.join(args.out, "ibfvs.html")
+    start = time.perf_counter()
+    pv.ExportView(page, view=page_view)
+    page_seconds = time.perf_counter() - start
+    pv.Delete(page_view)
+
+
+def page_shot(k):
+    """The page's canvas as it reaches step k (web/test/shoot.mjs)."""
+    import subprocess
+    path = os.path.join(args.out, "page-%02d.png" % k)
+    subprocess.run(["node", os.path.join(pvmeasure.ROOT, "web", "test", "shoot.mjs"), page,
+                    path, "0", str(k)], check=True, capture_output=True)
+    return path
+
 
 # ---- Save Animation in Sequence mode: more frames than steps
 sequence = []
@@ -238,6 +265,8 @@ for k, t in enumerate(times):
     for label, frames in exports.items():
         if k < len(frames):
             pictures[label] = frames[k]
+    if page:
+        pictures["page (chromium, as it reaches the step)"] = page_shot(k)
     if not args.no_play:
         for r in range(args.renders):
             pv.Render(play_view)
@@ -326,6 +355,9 @@ if sequence:
                   summary([r.get("W", math.nan) for i, _, _, r in sequence_rows if i >= 2]))
               if region else "",
               summary(sequence_within), summary(sequence_across)))
+if page:
+    print("\nThe page: %s, %.1f MB, exported in %.1f s (%d time steps)" % (
+        page, os.path.getsize(page) / 1e6, page_seconds, len(times)))
 print("\nA step change, ms (the render that first shows a step, the reader's work included): "
       "Surface %s; IBFVS %s%s" % (summary(surface_ms), summary(ibfvs_ms),
                                   "; Surface LIC, each step %s" % summary(lic_ms) if lic_ms else ""))

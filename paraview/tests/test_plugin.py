@@ -501,12 +501,15 @@ def test_bad_vectors_under_mpi_warn_and_no_rank_fails(data, tmp_path):
 
 
 def test_the_benchmark_that_docs_paraview_md_shows_runs(tmp_path):
-    # Its own command line with a small sphere: one line per representation.
+    # Its own command line with a small sphere: one line per representation,
+    # and the memory after the data and after each.
     done = on_display(["pvbatch", str(ROOT / "scripts" / "bench_paraview.py"), PLUGIN,
                        "40", "20", "160", "120", "2"], cwd=tmp_path)
     assert done.returncode == 0, why(done)
-    lines = [l for l in done.stdout.splitlines() if l.split()[:1] in (["Surface"], ["IBFVS"])]
-    assert len(lines) == 2 and all("ms per frame" in l for l in lines), done.stdout
+    lines = [l for l in done.stdout.splitlines() if "ms per frame" in l]
+    assert [l.split("first frame")[0].strip() for l in lines] == [
+        "Surface", "Surface LIC", "IBFVS"], done.stdout
+    assert len([l for l in done.stdout.splitlines() if " resident rank 0 " in l]) == 4
 
 
 # ------------------------------------------------------------------ time

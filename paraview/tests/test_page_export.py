@@ -162,6 +162,19 @@ def test_a_moving_surface_plays_in_the_page(tmp_path):
         assert k <= state["time"] < k + 0.2 and a["A"] > 0.93, (state, a)
 
 
+def test_a_still_surface_beside_a_series_is_one_step(swirl, tmp_path):
+    """A steady surface in a session where another source has six times (the
+    time keeper's times are theirs): the page holds the surface once, not six
+    copies."""
+    pvd, _ = swirl_series(tmp_path, steps=6)
+    page = tmp_path / "still.html"
+    done, _ = run({"data": str(swirl / "swirl.vtp"), "vectors": ["POINTS", "v"], "frames": 2,
+                   "size": list(SIZE), "also_open": str(pvd), "export": {"file": str(page)}},
+                  tmp_path)
+    assert "ibfvs-test: exported" in done.stdout, done.stdout + done.stderr
+    assert header_of(page)["steps"] == 1
+
+
 def test_bad_input_is_one_error_line_and_no_file(swirl, tmp_path):
     """No IBFVS representation visible, a scene over the page's limit, a name
     that is not NAME.html: ParaView's error, one line, and no file."""

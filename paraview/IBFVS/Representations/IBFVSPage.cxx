@@ -76,6 +76,14 @@ ibfvs::PreparedScene page_scene(std::vector<std::vector<PageLayer>> steps, const
                               " (hidden, or empty there)");
     states.push_back(std::move(merged));
   }
+  // Times at which nothing shown changed (another source's times, in the
+  // time keeper's union) are one step: the page holds the surface once.
+  const auto same = [&](const ibfvs::TriMesh& m) {
+    const ibfvs::TriMesh& first = states.front();
+    return m.positions == first.positions && m.triangles == first.triangles &&
+           m.vectors == first.vectors && m.scalars == first.scalars;
+  };
+  if (std::all_of(states.begin() + 1, states.end(), same)) states.resize(1);
   // dt as the mapper's: the fastest vector of all times moves Step pixels
   // at the focal point (normalised in image space: any dt > 0).
   scene.dt = 0.0f;

@@ -41,7 +41,8 @@ struct PageView {
 
 /// The page's scene: each time's layers (in `steps`, in time order) as one
 /// surface, the times as an unsteady scene (points that move, triangles of
-/// their own), seen through ParaView's camera. dt as the mapper's: the
+/// their own; one step where nothing shown changes), seen through
+/// ParaView's camera. dt as the mapper's: the
 /// fastest vector of all times moves Step pixels at the focal point. Throws
 /// ibfvs::InputError: no layer, or layers that differ in a setting (a page
 /// has one look).

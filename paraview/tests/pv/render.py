@@ -23,6 +23,7 @@
 #              {"mode": "sequence", "frames": K}: Save Animation in Sequence
 #              mode, K frames over the series (OUT.0000.png, ...)
 #   interpolate  the data through ParaView's TemporalInterpolator
+#   also_open  another file opened (not shown): its times join the time keeper's
 #   server     HOST:PORT of a pvserver to connect to (the plugin loaded on
 #              both sides); remote_render: the server renders (threshold 0)
 #   export     {"file": NAME, "properties": {...}}: after the frames,
@@ -46,6 +47,8 @@ if cfg.get("plugin"):
     LoadPlugin(cfg["plugin"], remote=False, ns=globals())
 
 source = OpenDataFile(cfg["data"])
+if cfg.get("also_open"):  # another source, not shown: its times are the time keeper's too
+    OpenDataFile(cfg["also_open"])
 if cfg.get("pieces"):
     source = ProcessIdScalars(Input=source)
 calculator = None

@@ -13,9 +13,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from test_plugin import (IBFVS, MPIEXEC, ROOT, alignment, grown, hue_difference,  # noqa: F401
-                         image, local_contrast, mask_of, pytestmark, run, sphere, swirl_series,
-                         true_direction, turning_series, write_pieces, write_vtp, xvfb)
+from test_plugin import (IBFVS, MPIEXEC, PLUGIN, ROOT, alignment, grown,  # noqa: F401
+                         hue_difference, image, local_contrast, mask_of, on_display, pytestmark,
+                         run, sphere, swirl_series, true_direction, turning_series, why,
+                         write_pieces, write_vtp, xvfb)
 
 NODE = shutil.which("node")
 SHOOT = ROOT / "web" / "test" / "shoot.mjs"
@@ -160,6 +161,22 @@ def test_a_moving_surface_plays_in_the_page(tmp_path):
         # step's points: 60 degrees back, A 0.86 half way.)
         print("a turning body at time", state["time"], "A and W", a)
         assert k <= state["time"] < k + 0.2 and a["A"] > 0.93, (state, a)
+
+
+def test_file_export_scene_offers_the_page(tmp_path):
+    """The GUI's File > Export Scene lists the formats ParaView's export
+    helper gives for the view: the page is among them, with its name."""
+    script = tmp_path / "formats.py"
+    script.write_text(
+        "from paraview.simple import *\n"
+        "from paraview import servermanager\n"
+        "LoadPlugin(%r, remote=False, ns=globals())\n"
+        "view = GetActiveViewOrCreate('RenderView')\n"
+        "print(servermanager.vtkSMViewExportHelper().GetSupportedFileTypes(view.SMProxy))\n"
+        % PLUGIN)
+    done = on_display(["pvpython", str(script)], cwd=tmp_path)
+    assert done.returncode == 0, why(done)
+    assert "ibfvs web page (*.html)" in done.stdout.split(";;"), done.stdout
 
 
 def test_a_still_surface_beside_a_series_is_one_step(swirl, tmp_path):

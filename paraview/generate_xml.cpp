@@ -6,6 +6,9 @@
 //   @KEY.range@    min="MIN" max="MAX" of a number key's span
 //   @KEY.entries@  an enumeration key's <Entry value="N" text="Name"/> lines, by number
 //   @page.triangles@  the most triangles a web page takes (WebPageLimits)
+// and repeats a block for each of several names, first:
+//   <!-- @each NAME NAME ... --> BLOCK <!-- @end -->  BLOCK once for each
+//                  NAME, with @name@ in it replaced by the name
 // Usage: ibfvs_paraview_xml TEMPLATE OUT. A placeholder for a key that does
 // not exist or has no such part fails the build, naming it.
 
@@ -61,6 +64,22 @@ std::string fill(const SceneKey& key, const std::string& part, const std::string
 
 }  // namespace
 
+// The template with its @each blocks written out.
+std::string expand_each(const std::string& xml) {
+  const std::regex block(R"(([ \t]*)<!-- @each ([A-Za-z ]+) -->\n([\s\S]*?)[ \t]*<!-- @end -->\n)");
+  std::string out;
+  std::size_t done = 0;
+  for (std::sregex_iterator it(xml.begin(), xml.end(), block), end; it != end; ++it) {
+    const std::smatch& m = *it;
+    out += xml.substr(done, static_cast<std::size_t>(m.position(0)) - done);
+    done = static_cast<std::size_t>(m.position(0) + m.length(0));
+    std::istringstream names(m[2].str());
+    for (std::string name; names >> name;)
+      out += std::regex_replace(m[3].str(), std::regex("@name@"), name);
+  }
+  return out + xml.substr(done);
+}
+
 int main(int argc, char** argv) {
   if (argc != 3) {
     std::cerr << "usage: ibfvs_paraview_xml TEMPLATE OUT\n";
@@ -73,7 +92,7 @@ int main(int argc, char** argv) {
     std::cerr << argv[1] << ": cannot read\n";
     return 1;
   }
-  const std::string xml = text.str();
+  const std::string xml = expand_each(text.str());
   const std::regex placeholder(R"(@([a-z_]+)\.([a-z]+)@)");
   std::string out;
   std::size_t done = 0;

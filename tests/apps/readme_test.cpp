@@ -8,6 +8,7 @@
 #include <fstream>
 #include <map>
 #include <regex>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -248,6 +249,41 @@ TEST(ParaViewDefaults, EqualTheScenesDefaults) {
   EXPECT_EQ(value("Resample"), static_cast<double>(s.resample));  // the enum's numbers
   EXPECT_EQ(value("Seed"), static_cast<double>(s.seed));
   EXPECT_EQ(value("FramesPerStep"), static_cast<double>(kDefaultFramesPerStep));
+}
+
+// Every representation that offers IBFVS (ParaView's Surface representation
+// for polygonal data, unstructured grids, structured grids, image data) shows
+// the same IBFVS group: every property of the IBFVS representation that a
+// panel shows, none missing (Frames Per Step and Restart Texture once were,
+// on all but polygonal data).
+TEST(ParaViewDefaults, EveryRepresentationExposesEveryPanelProperty) {
+  const std::string xml = test::read_file(IBFVS_PARAVIEW_XML);
+  const std::size_t begin = xml.find("<IBFVSRepresentationProxy");
+  const std::size_t end = xml.find("</IBFVSRepresentationProxy>");
+  ASSERT_NE(end, std::string::npos);
+  const std::string proxy = xml.substr(begin, end - begin);
+  std::set<std::string> shown;
+  const std::regex property(R"re(<(\w*Property) name="(\w+)"([^>]*)>)re");
+  for (std::sregex_iterator it(proxy.begin(), proxy.end(), property), stop; it != stop; ++it)
+    if ((*it)[3].str().find("panel_visibility=\"never\"") == std::string::npos &&
+        (*it)[3].str().find("function=") == std::string::npos)  // not a domain's input
+      shown.insert((*it)[2].str());
+  EXPECT_TRUE(shown.count("FramesPerStep") && shown.count("RestartTexture"));
+  EXPECT_FALSE(shown.count("GatherForPage"));
+  const std::regex extension(R"re(<Extension name="(\w+)">([\s\S]*?)</Extension>)re");
+  std::set<std::string> representations;
+  for (std::sregex_iterator it(xml.begin(), xml.end(), extension), stop; it != stop; ++it) {
+    const std::string body = (*it)[2].str();
+    std::set<std::string> exposed;
+    const std::regex name(R"re(<Property name="(\w+)")re");
+    for (std::sregex_iterator p(body.begin(), body.end(), name); p != stop; ++p)
+      exposed.insert((*p)[1].str());
+    EXPECT_EQ(exposed, shown) << (*it)[1].str();
+    representations.insert((*it)[1].str());
+  }
+  EXPECT_EQ(representations,
+            (std::set<std::string>{"GeometryRepresentation", "StructuredGridRepresentation",
+                                   "UniformGridRepresentation", "UnstructuredGridRepresentation"}));
 }
 
 // Its enumerations are the library's name tables (EnumNames): every value,

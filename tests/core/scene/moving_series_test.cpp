@@ -188,7 +188,9 @@ TEST(PrepareStates, AHostsStatesAreTheSeriesOfItsFiles) {
     EXPECT_EQ(a.field, b.field) << "step " << k;
     EXPECT_EQ(a.color_scalar, b.color_scalar) << "step " << k;
     ASSERT_EQ(a.mesh == nullptr, b.mesh == nullptr) << "step " << k;
-    if (a.mesh) EXPECT_EQ(a.mesh->triangles, b.mesh->triangles) << "step " << k;
+    if (a.mesh) {
+      EXPECT_EQ(a.mesh->triangles, b.mesh->triangles) << "step " << k;
+    }
   }
   EXPECT_EQ(hosted.step_data(1).positions.size(), hosted.mesh->vertex_count());  // it moves
   EXPECT_NE(hosted.step_data(2).mesh, nullptr);  // its own triangles

@@ -586,9 +586,6 @@ bool vtkIBFVSMapper::TakePageLayer(vtkActor* actor, ibfvs::paraview::PageLayer& 
   m.triangles = drawn.triangles;
   m.vectors = drawn.vectors;
   m.normals = drawn.normals;
-  layer.speed = 0.0f;
-  for (const glm::vec3& v : m.vectors)
-    if (const float l = glm::length(v); std::isfinite(l)) layer.speed = std::max(layer.speed, l);
   layer.scene = in.scene;
   layer.scene.frames_per_step = in.pacer.frames_per_step();
   double colour[3];
@@ -613,18 +610,16 @@ bool vtkIBFVSMapper::TakePageLayer(vtkActor* actor, ibfvs::paraview::PageLayer& 
     const glm::mat3 linear(a);
     const glm::mat3 normal = glm::transpose(glm::inverse(linear));
     for (glm::vec3& r : m.positions) r = glm::vec3(a * glm::vec4(r, 1.0f));
-    float fastest = 0.0f;
-    for (glm::vec3& v : m.vectors) {
-      v = linear * v;
-      const float l = glm::length(v);
-      if (std::isfinite(l)) fastest = std::max(fastest, l);
-    }
-    layer.speed = fastest;
+    for (glm::vec3& v : m.vectors) v = linear * v;
     for (glm::vec3& n : m.normals) {
       const glm::vec3 turned = normal * n;
       const float l = glm::length(turned);
       n = l > 0.0f ? turned / l : glm::vec3(0.0f, 0.0f, 1.0f);
     }
   }
+  // The fastest vector, in world space (the page's dt).
+  layer.speed = 0.0f;
+  for (const glm::vec3& v : m.vectors)
+    if (const float l = glm::length(v); std::isfinite(l)) layer.speed = std::max(layer.speed, l);
   return true;
 }

@@ -20,7 +20,9 @@ packages=(
   libcgal-dev
   # Reliability (scripts/ci-checks.sh): clang with libFuzzer and its
   # sanitizer runtimes for the fuzzers, clang-format for the style check.
-  clang libclang-rt-14-dev clang-format
+  # libomp-dev: clang's OpenMP, which the fuzz preset's find_package(OpenMP)
+  # needs (the core's loops are OpenMP).
+  clang libclang-rt-14-dev clang-format libomp-dev
   ffmpeg
   # The VTK and OpenFOAM readers: the VTK inside Debian's ParaView (about
   # 1 GiB with ParaView itself), never libvtk9-dev (docs/data.md).

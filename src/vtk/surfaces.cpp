@@ -68,6 +68,7 @@
 #include <vtk_nlohmannjson.h>
 #include VTK_NLOHMANN_JSON(json.hpp)
 
+#include "ibfvs/core/mesh/polygon.h"
 #include "ibfvs/core/support/error.h"
 #include "ibfvs/core/support/file_names.h"
 #include "ibfvs/core/support/isolation.h"
@@ -239,18 +240,20 @@ std::array<Triangle, 2> split_quad(const vtkIdType* q, const std::vector<glm::ve
 }
 
 // Each polygon's point ids, read straight from the cell array's offsets and
-// connectivity (its 32- or 64-bit storage), as `visit(cell, count, ids)`.
+// connectivity (its 32- or 64-bit storage), as `visit(cell, count, ids)`
+// (ids null for fewer than three).
 template <typename Visit>
 void each_polygon(vtkCellArray* polys, Visit&& visit) {
   if (!polys || polys->GetNumberOfCells() == 0) return;
   const auto walk = [&](const auto* offsets, const auto* connectivity) {
-    std::array<vtkIdType, 4> ids{};
+    std::vector<vtkIdType> ids;
     for (vtkIdType c = 0; c < polys->GetNumberOfCells(); ++c) {
       const vtkIdType begin = offsets[c], count = offsets[c + 1] - begin;
-      if (count < 3 || count > 4) {
+      if (count < 3) {
         visit(c, count, nullptr);
         continue;
       }
+      ids.resize(static_cast<std::size_t>(count));
       for (vtkIdType k = 0; k < count; ++k)
         ids[static_cast<std::size_t>(k)] = static_cast<vtkIdType>(connectivity[begin + k]);
       visit(c, count, ids.data());
@@ -282,6 +285,7 @@ Surface own_triangles(vtkPolyData* poly) {
     }
   }
   std::vector<vtkIdType> cell_of;  // each triangle's cell (vertices and lines come first)
+  std::vector<std::uint32_t> polygon;
   const vtkIdType first = poly->GetNumberOfVerts() + poly->GetNumberOfLines();
   s.triangles.reserve(static_cast<std::size_t>(poly->GetNumberOfPolys()) * 2);
   cell_of.reserve(s.triangles.capacity());
@@ -292,6 +296,27 @@ Surface own_triangles(vtkPolyData* poly) {
       cell_of.push_back(first + c);
     } else if (count == 4) {
       for (const Triangle& t : split_quad(ids, s.positions)) {
+        s.triangles.push_back(t);
+        cell_of.push_back(first + c);
+      }
+    } else if (count > 4) {
+      // Triangles from the polygon's points in their order (core/mesh/
+      // polygon.h): the same at every step of a moving mesh.
+      polygon.clear();
+      bool within = true;
+      for (vtkIdType k = 0; k < count; ++k) {
+        within = within && ids[k] >= 0 && ids[k] < n;
+        polygon.push_back(static_cast<std::uint32_t>(ids[k]));
+      }
+      if (!within) {  // a point that is not there: the mesh's check names it
+        for (vtkIdType k = 1; k + 1 < count; ++k) {
+          s.triangles.push_back({polygon[0], polygon[static_cast<std::size_t>(k)],
+                                 polygon[static_cast<std::size_t>(k + 1)]});
+          cell_of.push_back(first + c);
+        }
+        return;
+      }
+      for (const Triangle& t : triangulate_polygon(polygon, s.positions)) {
         s.triangles.push_back(t);
         cell_of.push_back(first + c);
       }
@@ -320,12 +345,12 @@ Surface block_surface(vtkDataSet* ds) {
     surface->Update();
     poly = surface->GetOutput();
   }
-  // Triangles and quadrilaterals (most files, OpenFOAM's faces) are taken as
-  // they are, each quadrilateral split by split_quad (the filter would copy
-  // a mesh of triangles: a second on six million); other polygons and
-  // strips go through VTK's triangle filter; lines and vertices are dropped.
-  if (poly->GetNumberOfStrips() == 0 && poly->GetPolys()->GetMaxCellSize() <= 4)
-    return own_triangles(poly);
+  // Polygons are taken as they are, each quadrilateral split by split_quad
+  // and each larger polygon by triangulate_polygon (the filter would copy a
+  // mesh of triangles: a second on six million; and its triangles of a
+  // polygon change as the polygon moves); strips go through VTK's triangle
+  // filter; lines and vertices are dropped.
+  if (poly->GetNumberOfStrips() == 0) return own_triangles(poly);
   vtkNew<vtkTriangleFilter> triangles;
   triangles->SetInputData(poly);
   triangles->PassVertsOff();

@@ -270,8 +270,9 @@ int run_render(const Scene& o, const std::string& scene_file) {
     if (!o.quiet && report.moving_vertices > 0)
       std::printf(
           "ibfvs: the surface moves: %zu of its vertices, %zu sets of their points for "
-          "%zu steps, %zu bytes\n",
-          report.moving_vertices, report.motion_sets, prepared.step_count, report.motion);
+          "%zu steps, %zu bytes; their screws between steps %zu bytes\n",
+          report.moving_vertices, report.motion_sets, prepared.step_count, report.motion,
+          report.screws);
     return 0;
   }
 

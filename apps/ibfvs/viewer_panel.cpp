@@ -93,6 +93,9 @@ void ViewerPanel::draw(ViewerSession& viewer, bool& show, bool& show_help, doubl
     ImGui::SameLine();
     if (ImGui::SmallButton(">")) viewer.time = std::floor(viewer.time) + 1.0;
     ImGui::SameLine();
+    bool loop = viewer.desc().loop;
+    if (ImGui::Checkbox("loop", &loop)) viewer.set("loop", loop ? "true" : "false");
+    ImGui::SameLine();
     ImGui::Text("step %d of %zu",
                 static_cast<int>(viewer.time) % static_cast<int>(viewer.scene().step_count),
                 viewer.scene().step_count);

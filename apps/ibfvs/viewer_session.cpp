@@ -37,6 +37,7 @@ void ViewerSession::frame() {
   if (scene().step_count > 1) {
     time += 1.0 / desc_.frames_per_step;
     session_->seek(time);
+    time = session_->time();  // on from the first step, or held at the last (loop)
   }
   session_->render(camera_.camera());
   if (video_) {

@@ -10,6 +10,7 @@
 #include <glm/gtc/packing.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include "ibfvs/core/geometry/rigid_motion.h"
 #include "ibfvs/core/image/colormap.h"
 #include "ibfvs/core/mesh/mesh.h"
 #include "ibfvs/core/support/error.h"
@@ -134,15 +135,38 @@ Json motion(const TriMesh& mesh, const std::vector<StepData>& data, const Packer
     last_n = std::move(m);
     set_of[k] = sets++;
   }
+  // Each step's screws towards the next (the last's towards the first, for
+  // a page that loops), the moving vertices' as Session's StepPlayer fits
+  // them (core/geometry/rigid_motion.h): omega and lever, float32 each; a
+  // pair into or out of a mesh of its own, or that stands still, none.
+  std::vector<float> screws;
+  screws.reserve(steps * movers.size() * 6);
+  for (std::size_t k = 0; k < steps; ++k) {
+    const StepData &a = data[k], &b = data[(k + 1) % steps];
+    const auto points = [&](const StepData& d) -> const std::vector<glm::vec3>& {
+      return d.positions.empty() ? mesh.positions : d.positions;
+    };
+    SurfaceMotion fit;
+    if (!a.mesh && !b.mesh && points(a) != points(b))
+      fit = fit_surface_motion(mesh.triangles, points(a), points(b));
+    for (const std::uint32_t i : movers) {
+      const glm::vec3 w = fit.empty() ? glm::vec3(0.0f) : fit.omega[i];
+      const glm::vec3 l = fit.empty() ? glm::vec3(0.0f) : fit.lever[i];
+      screws.insert(screws.end(), {w.x, w.y, w.z, l.x, l.y, l.z});
+    }
+  }
   const std::size_t before = block.bytes().size();
   Json out = {{"moving", block.add(movers)},
               {"positions", block.add_vertices(set_q, 4)},
               {"normals", block.add_vertices(set_n, 4)},
               {"sets", set_of}};
+  const std::size_t points = block.bytes().size();
+  out["screws"] = block.add_vertices(screws, 6);
   if (report) {
     report->moving_vertices = movers.size();
     report->motion_sets = static_cast<std::size_t>(sets);
-    report->motion = block.bytes().size() - before;
+    report->motion = points - before;
+    report->screws = block.bytes().size() - points;
   }
   return out;
 }

@@ -65,6 +65,7 @@ Json look(const PreparedScene& q, std::string_view name, std::string_view descri
           {"texture_channels", shaders::texture_channels(f)},
           {"tap_texture", shaders::tap_texture(f)},
           {"advect_previous", s.advect_view == AdvectView::Previous},
+          {"carry_surface", carries_surface(s.advect_view, s.field_frame)},
           {"phase_size", {phase_size.x, phase_size.y}},
           {"shaders",
            {{"vertex", shaders::ibfvs_vertex_source(f, Dialect::Es300)},

@@ -219,6 +219,7 @@ std::string web_page(const PreparedScene& p, WebPageReport* report, const WebPag
       {"steps", steps},
       {"step_mesh", d.step_mesh},
       {"frames_per_step", p.scene.frames_per_step},
+      {"loop", p.scene.loop},
       {"index_count", 3 * mesh.triangle_count()},
       {"phase_size", {grid.columns(), grid.rows()}},
       {"arrays", std::move(arrays)},

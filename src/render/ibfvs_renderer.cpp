@@ -259,6 +259,7 @@ void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
     // This frame's surface is the one the next frame's texture comes from.
     drawn_ = gl::Buffer();
     drawn_next_ = gl::Buffer();
+    drawn_motion_ = gl::Buffer();
     drawn_elsewhere_ = false;
     drawn_mix_ = field_mix_;
     drawn_this_mesh_ = true;
@@ -287,7 +288,7 @@ void IbfvsRenderer::ibfvs_pass(const IbfvsPrograms& v, const ViewState& view, fl
   float drawn_mix = field_mix_;
   if (moving_) {
     point_drawn_attributes();
-    if (use_previous && !locked_ && drawn_this_mesh_) drawn_mix = drawn_mix_;
+    if (carries_surface() && has_previous_ && !locked_ && drawn_this_mesh_) drawn_mix = drawn_mix_;
   }
   IbfvsFrame frame;
   frame.view = view.view;

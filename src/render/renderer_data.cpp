@@ -34,6 +34,12 @@ std::vector<float> interleave(std::span<const glm::vec3> positions,
   return out;
 }
 
+// A pair of steps without screws: every vertex along its chord.
+gl::Buffer still_motion(std::size_t vertices) {
+  const std::vector<float> zeros(vertices * 6, 0.0f);
+  return gl::Buffer(bytes_of(std::span<const float>(zeros)));
+}
+
 }  // namespace
 
 void IbfvsRenderer::set_mesh(const TriMesh& mesh, std::span<const glm::vec3> field) {
@@ -56,8 +62,10 @@ void IbfvsRenderer::upload_mesh(const TriMesh& mesh, std::span<const glm::vec3> 
   const std::vector<float> interleaved = interleave(mesh.positions, mesh.normals);
   vertices_ = gl::Buffer(bytes_of(std::span<const float>(interleaved)));
   vertices_next_ = gl::Buffer();
+  motion_ = gl::Buffer();
   drawn_ = gl::Buffer();
   drawn_next_ = gl::Buffer();
+  drawn_motion_ = gl::Buffer();
   moving_ = drawn_elsewhere_ = drawn_this_mesh_ = false;
   field_ = gl::Buffer(bytes_of(field), true);
   field_next_ = gl::Buffer(bytes_of(field), true);
@@ -83,35 +91,54 @@ void IbfvsRenderer::upload_mesh(const TriMesh& mesh, std::span<const glm::vec3> 
 void IbfvsRenderer::set_surface_steps(std::span<const glm::vec3> positions,
                                       std::span<const glm::vec3> normals,
                                       std::span<const glm::vec3> next_positions,
-                                      std::span<const glm::vec3> next_normals) {
+                                      std::span<const glm::vec3> next_normals,
+                                      const SurfaceMotion& motion) {
   for (const std::size_t n :
        {positions.size(), normals.size(), next_positions.size(), next_normals.size()})
     if (n != vertex_count_)
       throw InputError("renderer: each surface step needs one position and normal per vertex");
+  if (!motion.empty() &&
+      (motion.omega.size() != vertex_count_ || motion.lever.size() != vertex_count_))
+    throw InputError("renderer: the surface's motion needs one screw per vertex");
   // The pair the last frame drew stays for the next frame's advection, unless
-  // it is kept already (two changes without a frame between them).
+  // it is kept already (two changes without a frame between them). The one
+  // static buffer did not move: no screws.
   if (has_previous_ && drawn_this_mesh_ && !drawn_elsewhere_) {
     drawn_ = std::move(vertices_);
     drawn_next_ = moving_ ? std::move(vertices_next_) : gl::Buffer();
+    drawn_motion_ = moving_ ? std::move(motion_) : still_motion(vertex_count_);
     drawn_elsewhere_ = true;
   }
   const std::vector<float> a = interleave(positions, normals);
   const std::vector<float> b = interleave(next_positions, next_normals);
   vertices_ = gl::Buffer(bytes_of(std::span<const float>(a)));
   vertices_next_ = gl::Buffer(bytes_of(std::span<const float>(b)));
+  motion_ =
+      motion.empty()
+          ? still_motion(vertex_count_)
+          : gl::Buffer(bytes_of(std::span<const float>(interleave(motion.omega, motion.lever))));
   moving_ = true;
   constexpr std::size_t stride = 6 * sizeof(float);
   vao_.attribute(0, vertices_, 0, 3, 0, stride);
   vao_.attribute(1, vertices_, 1, 3, 3 * sizeof(float), stride);
   vao_.attribute(5, vertices_next_, 5, 3, 0, stride);
   vao_.attribute(6, vertices_next_, 6, 3, 3 * sizeof(float), stride);
-  // The box of both steps: the pixels the surface can cover between them.
+  vao_.attribute(9, motion_, 9, 3, 0, stride);
+  vao_.attribute(10, motion_, 10, 3, 3 * sizeof(float), stride);
+  // The box of both steps and of the way between them (a turn leaves the
+  // box of its ends): the pixels the surface can cover between them.
   glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
-  for (const auto& step : {positions, next_positions})
+  const auto take = [&](std::span<const glm::vec3> step) {
     for (const glm::vec3& p : step) {
       lo = glm::min(lo, p);
       hi = glm::max(hi, p);
     }
+  };
+  take(positions);
+  take(next_positions);
+  if (!motion.empty())
+    for (const float m : {0.25f, 0.5f, 0.75f})
+      take(surface_at(positions, next_positions, motion, m));
   if (!positions.empty()) {
     bounds_.min = lo;
     bounds_.max = hi;
@@ -121,16 +148,18 @@ void IbfvsRenderer::set_surface_steps(std::span<const glm::vec3> positions,
 
 void IbfvsRenderer::point_drawn_attributes() {
   constexpr std::size_t stride = 6 * sizeof(float);
-  // Locked, before the first frame, after another mesh, or advecting in the
-  // current view: no motion of the surface enters (the vertex is taken
-  // where it is drawn).
-  const bool compensate = settings_.advect_view == AdvectView::Previous && has_previous_ &&
-                          drawn_this_mesh_ && !locked_;
+  // Locked, before the first frame, after another mesh, advecting in the
+  // current view or with a field that holds the surface's motion already:
+  // no motion of the surface enters (the vertex is taken where it is drawn).
+  const bool compensate = carries_surface() && has_previous_ && drawn_this_mesh_ && !locked_;
   const bool elsewhere = compensate && drawn_elsewhere_;
   const gl::Buffer& a = elsewhere ? drawn_ : vertices_;
   const gl::Buffer& b = elsewhere ? (drawn_next_ ? drawn_next_ : drawn_) : vertices_next_;
+  const gl::Buffer& screws = elsewhere ? drawn_motion_ : motion_;
   vao_.attribute(7, a, 7, 3, 0, stride);
   vao_.attribute(8, b, 8, 3, 0, stride);
+  vao_.attribute(11, screws, 11, 3, 0, stride);
+  vao_.attribute(12, screws, 12, 3, 3 * sizeof(float), stride);
 }
 
 void IbfvsRenderer::set_field(std::span<const glm::vec3> field) {

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "ibfvs/core/fields/vector_field.h"
+#include "ibfvs/core/geometry/rigid_motion.h"
 #include "ibfvs/core/support/error.h"
 #include "ibfvs/gl/objects.h"
 
@@ -37,29 +38,39 @@ class Session::StepPlayer {
   StepPlayer(const PreparedScene& scene, IbfvsRenderer& renderer) : scene_(scene) {
     if (scene.step_count < 2) return;
     current_ = scene.step_data(0);
-    next_ = scene.step_data(1 % scene.step_count);
+    next_ = scene.step_data(1);
+    next_step_ = 1;
     on_renderer_ = scene.mesh.get();
     apply(renderer);
   }
 
-  // Time t in steps (looping); evaluates a step only when t leaves the current one.
+  // Time t in steps (session_time: looping, or held at the last step);
+  // evaluates a step only when t leaves the current one.
   void seek(double t, IbfvsRenderer& renderer) {
     const std::size_t n = scene_.step_count;
     if (n < 2) return;
-    t = std::fmod(std::max(t, 0.0), static_cast<double>(n));
-    const auto s = static_cast<std::size_t>(t) % n;
-    if (s != step_) {
+    t = session_time(t, n, scene_.scene.loop);
+    const auto s = std::min(static_cast<std::size_t>(t), n - 1);
+    const std::size_t after = following(s);
+    if (s != step_ || after != next_step_) {
       // Playing on, the next step is already at hand; a jump evaluates both.
-      current_ = s == (step_ + 1) % n ? std::move(next_) : scene_.step_data(s);
-      next_ = scene_.step_data((s + 1) % n);
+      if (s != step_) current_ = s == next_step_ ? std::move(next_) : scene_.step_data(s);
+      next_ = scene_.step_data(after);
       step_ = s;
+      next_step_ = after;
       apply(renderer);
     }
-    renderer.set_field_mix(static_cast<float>(t - std::floor(t)));
+    renderer.set_field_mix(static_cast<float>(t - static_cast<double>(s)));
   }
 
  private:
   const TriMesh& mesh_of(const StepData& d) const { return d.mesh ? *d.mesh : *scene_.mesh; }
+  // The step after s: the first again where the series loops, else s itself
+  // at the end (the last step holds).
+  std::size_t following(std::size_t s) const {
+    const std::size_t n = scene_.step_count;
+    return s + 1 < n ? s + 1 : scene_.scene.loop ? 0 : s;
+  }
 
   void apply(IbfvsRenderer& renderer) {
     const TriMesh& mesh = mesh_of(current_);
@@ -73,20 +84,33 @@ class Session::StepPlayer {
     // into a step with other triangles the current one holds to the end.
     const bool pair = &mesh_of(next_) == &mesh;
     const StepData& to = pair ? next_ : current_;
-    // A surface that moves at either step (or moved before) takes both steps' points.
-    if (renderer.moving() || !current_.positions.empty() || !to.positions.empty())
-      renderer.set_surface_steps(positions_of(current_, mesh), normals_of(current_, mesh),
-                                 positions_of(to, mesh), normals_of(to, mesh));
+    // A surface that moves at either step (or moved before) takes both
+    // steps' points, and between them moves along each vertex's fitted
+    // screw (core/geometry/rigid_motion.h): a rigid part stays rigid.
+    if (renderer.moving() || !current_.positions.empty() || !to.positions.empty()) {
+      const std::vector<glm::vec3>& from = positions_of(current_, mesh);
+      const std::vector<glm::vec3>& next = positions_of(to, mesh);
+      const SurfaceMotion motion =
+          from != next ? fit_surface_motion(mesh.triangles, from, next) : SurfaceMotion{};
+      renderer.set_surface_steps(from, normals_of(current_, mesh), next, normals_of(to, mesh),
+                                 motion);
+    }
     renderer.set_field_steps(current_.field, to.field);
     set_scene_scalars(scene_, renderer, current_.color_scalar, current_.beta_scalar);
   }
 
   const PreparedScene& scene_;
-  std::size_t step_ = 0;
+  std::size_t step_ = 0, next_step_ = 1;
   StepData current_, next_;
   const TriMesh* on_renderer_ = nullptr;
   std::shared_ptr<const TriMesh> held_;
 };
+
+double session_time(double t, std::size_t steps, bool loop) {
+  if (steps < 2 || !(t > 0.0)) return 0.0;
+  const auto n = static_cast<double>(steps);
+  return loop ? std::fmod(t, n) : std::min(t, n - 1.0);
+}
 
 namespace {
 
@@ -146,8 +170,8 @@ void Session::resize(int width, int height) {
 }
 
 void Session::seek(double t) {
-  time_ = t;
-  player_->seek(t, *renderer_);
+  time_ = session_time(t, scene_.step_count, scene_.scene.loop);
+  player_->seek(time_, *renderer_);
 }
 
 void Session::render(const Camera& camera) {

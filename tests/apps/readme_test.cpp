@@ -317,6 +317,7 @@ TEST(ParaViewDefaults, EnumerationsAreTheNameTables) {
   const std::string xml = test::read_file(IBFVS_PARAVIEW_XML);
   expect_xml_enumeration<NoiseProfile>(xml, "TimeProfile");
   expect_xml_enumeration<Resample>(xml, "Resample");
+  expect_xml_enumeration<FieldFrame>(xml, "FieldFrame");
 }
 
 // Its number properties span their scene keys' ranges (key_range: the one

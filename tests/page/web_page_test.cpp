@@ -140,6 +140,10 @@ TEST(WebPage, AMovingSurfaceStoresTheMovingPointsOfEachStepOnce) {
   EXPECT_EQ(report.motion_sets, 2u);  // steps 0-1 and 2-3
   EXPECT_GT(report.motion, 0u);
   EXPECT_LT(report.motion, 66u * 12u * 2u);  // less than its raw bytes (codec)
+  // A screw a moving vertex and step, towards the next (a rigid lift: the
+  // right half turns about the y axis at step 1 -> 2 and back at 3 -> 0).
+  EXPECT_GT(report.screws, 0u);
+  EXPECT_LT(report.screws, 66u * 24u * 4u);
   EXPECT_NE(page.find("\"sets\":[0,0,1,1]"), std::string::npos);
   EXPECT_NE(page.find("#define IBFVS_MOVING"), std::string::npos);
   EXPECT_NE(page.find("\"steps\":4"), std::string::npos);  // of the field

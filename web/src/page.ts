@@ -45,6 +45,8 @@ interface PageState {
   playing: boolean;
   dtFactor: number; // the speed slider's factor on the look's dt
   time: number; // in time steps
+  loop: boolean; // on from the last step to the first, else the last step holds
+  hold: boolean; // each step shown as it is until the next, as ParaView shows steps
   timeSlider: HTMLInputElement | null;
   play: HTMLButtonElement;
 }
@@ -92,7 +94,8 @@ function addPanel(root: HTMLElement, canvas: HTMLCanvasElement, scene: SceneHead
   panel.className = "ibfvs-panel";
   root.appendChild(panel);
   const play = document.createElement("button");
-  const state: PageState = { playing: true, dtFactor: 1, time: 0, timeSlider: null, play };
+  const state: PageState = { playing: true, dtFactor: 1, time: 0, loop: scene.loop, hold: false,
+                             timeSlider: null, play };
   play.textContent = "Pause";
   play.addEventListener("click", () => {
     state.playing = !state.playing;
@@ -168,13 +171,22 @@ function addPanel(root: HTMLElement, canvas: HTMLCanvasElement, scene: SceneHead
   }
   lookControls();
   panel.appendChild(controls);
-  // Time steps: a slider over the steps, moving while playing.
+  // Time steps: a slider over the steps, moving while playing; whether the
+  // series loops, and whether each step holds (no blend towards the next).
   if (scene.steps > 1) {
-    state.timeSlider = slider(panel, "time step", 0, scene.steps, 0, (v) => {
+    state.timeSlider = slider(panel, "time step", 0, scene.loop ? scene.steps : scene.steps - 1, 0, (v) => {
       state.time = v;
-      renderer.setTime(state.time);
+      renderer.setTime(shownTime(state));
     });
     state.timeSlider.step = "0.01";
+    checkbox(panel, "loop", state.loop, (on) => {
+      state.loop = on;
+      state.timeSlider!.max = String(on ? scene.steps : scene.steps - 1);
+    });
+    checkbox(panel, "hold each step", state.hold, (on) => {
+      state.hold = on;
+      renderer.setTime(shownTime(state));
+    });
   }
   const save = document.createElement("button");
   save.textContent = "Save PNG";
@@ -187,6 +199,32 @@ function addPanel(root: HTMLElement, canvas: HTMLCanvasElement, scene: SceneHead
   panel.appendChild(save);
   addRecorder(panel, canvas, scene.name);
   return state;
+}
+
+// A labelled checkbox in the panel.
+function checkbox(panel: HTMLElement, label: string, on: boolean, change: (on: boolean) => void): HTMLInputElement {
+  const row = document.createElement("label");
+  const box = document.createElement("input");
+  box.type = "checkbox";
+  box.checked = on;
+  box.dataset.name = label;
+  box.addEventListener("change", () => change(box.checked));
+  row.appendChild(box);
+  row.appendChild(document.createTextNode(" " + label));
+  panel.appendChild(row);
+  return box;
+}
+
+// The time the renderer shows: the playing time, or its step where steps hold.
+function shownTime(state: PageState): number {
+  return state.hold ? Math.floor(state.time) : state.time;
+}
+
+// The time a frame later (Session::seek's session_time): on from the first
+// step where the series loops, else held at the last.
+function nextTime(state: PageState, scene: SceneHeader): number {
+  const t = state.time + 1 / scene.frames_per_step;
+  return state.loop ? t % scene.steps : Math.min(t, scene.steps - 1);
 }
 
 // ---------------------------------------------------------------- recording
@@ -283,7 +321,7 @@ export function start(root: HTMLElement, scene: SceneHeader, data: ArrayBuffer):
     if (state.playing) {
       // Frame k at time k / frames_per_step, as Session::advance.
       if (scene.steps > 1) {
-        renderer.setTime(state.time);
+        renderer.setTime(shownTime(state));
         if (state.timeSlider) state.timeSlider.value = String(state.time);
       }
       renderer.advance(nav, state.dtFactor);
@@ -293,7 +331,7 @@ export function start(root: HTMLElement, scene: SceneHeader, data: ArrayBuffer):
     w.ibfvsFrames = renderer.frame;
     w.ibfvsLocked = renderer.locked;
     w.ibfvsTime = state.time;
-    if (state.playing && scene.steps > 1) state.time = (state.time + 1 / scene.frames_per_step) % scene.steps;
+    if (state.playing && scene.steps > 1) state.time = nextTime(state, scene);
     requestAnimationFrame(tick);
   };
   requestAnimationFrame(tick);

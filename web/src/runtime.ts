@@ -336,7 +336,7 @@ export class PageRenderer {
     // This step's mesh; a moving surface's from where the last frame drew it
     // (where it was this mesh and motion enters: not locked, not the first
     // frame, advecting in the last view).
-    const compensate = this.look.advect_previous && this.previousViewProjection !== null && !this.locked;
+    const compensate = this.look.carry_surface && this.previousViewProjection !== null && !this.locked;
     const mesh = this.surfaces.bind(compensate, this.fieldMix, at("u_drawn_mix"));
     if (mesh.cull !== 0) {
       gl.enable(gl.CULL_FACE);

@@ -24,9 +24,11 @@ export class Surfaces {
   private scalarSteps = 1;
   // A surface that moves (the scene's motion): every vertex's point and
   // normal at step 0, interleaved, and the moving vertices' in each stored set.
+  // screws: each step's towards the next, per moving vertex (omega, lever).
   private motion: { base: Float32Array; moving: Uint32Array; points: Float32Array;
-                    normals: Float32Array; sets: number[] } | null = null;
-  private surface: WebGLBuffer[] = []; // this step's and the next's points and normals
+                    normals: Float32Array; screws: Float32Array; sets: number[] } | null = null;
+  // This step's and the next's points and normals, and the screws between them.
+  private surface: WebGLBuffer[] = [];
   private drawn: WebGLBuffer[] | null = null; // the pair the last frame drew, where setStep replaced it since
   private drawnMix = 0;
 
@@ -66,7 +68,8 @@ export class Surfaces {
           unit[3 * i + c] = Math.max(n[4 * i + c] / 127, -1);
         }
       this.motion = { base: interleaved(positions, normals), moving: view(data, a.motion.moving, u32, 4),
-                      points: at, normals: unit, sets: a.motion.sets };
+                      points: at, normals: unit, screws: view(data, a.motion.screws, f32, 4),
+                      sets: a.motion.sets };
     } else {
       this.attribute(0, positions, 3, gl.FLOAT, false);
       this.attribute(1, normals, 4, gl.BYTE, true);
@@ -157,6 +160,29 @@ export class Surfaces {
     return out;
   }
 
+  /// Every vertex's screw from step k to the next (omega, lever interleaved:
+  /// IbfvsRenderer's motion buffer); zeros, the chord, where `none`.
+  private screwsAt(k: number, none: boolean): Float32Array {
+    const m = this.motion!, out = new Float32Array(this.scene.vertex_count * 6), count = m.moving.length;
+    if (none) return out;
+    for (let j = 0; j < count; ++j) {
+      const i = m.moving[j], from = 6 * (k * count + j);
+      for (let c = 0; c < 6; ++c) out[6 * i + c] = m.screws[from + c];
+    }
+    return out;
+  }
+
+  /// Attributes `omega` and `lever` at a buffer of interleaved screws; the
+  /// vertex array bound.
+  private pointScrews(omega: number, lever: number, buffer: WebGLBuffer): void {
+    const gl = this.gl;
+    gl.bindBuffer(gl.ARRAY_BUFFER, buffer);
+    gl.enableVertexAttribArray(omega);
+    gl.vertexAttribPointer(omega, 3, gl.FLOAT, false, 24, 0);
+    gl.enableVertexAttribArray(lever);
+    gl.vertexAttribPointer(lever, 3, gl.FLOAT, false, 24, 12);
+  }
+
   /// Step `step` and the next, as Session's StepPlayer puts them on the
   /// renderer: on the first step's mesh the field (and points) of this step
   /// and the next, or this one twice where the next has a mesh of its own;
@@ -183,8 +209,10 @@ export class Surfaces {
       if (drawnSince && !this.drawn && this.drawnMesh === 0) this.drawn = this.surface;
       else this.surface.forEach((b) => gl.deleteBuffer(b));
       this.surface = [step, next].map((k) => this.buffer(this.surfaceAt(k)));
+      this.surface.push(this.buffer(this.screwsAt(step, next === step)));
       this.pointSurface(0, 1, this.surface[0]);
       this.pointSurface(5, 6, this.surface[1]);
+      this.pointScrews(9, 10, this.surface[2]);
     }
     gl.bindVertexArray(null);
   }
@@ -199,6 +227,7 @@ export class Surfaces {
       const pair = compensate && this.drawn && this.drawnMesh === 0 ? this.drawn : this.surface;
       this.pointSurface(7, -1, pair[0]);
       this.pointSurface(8, -1, pair[1]);
+      this.pointScrews(11, 12, pair[2]);
       gl.uniform1f(drawnMix, compensate && this.drawnMesh === 0 ? this.drawnMix : fieldMix);
     }
     return mesh;

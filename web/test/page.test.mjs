@@ -338,20 +338,28 @@ test("a series whose triangles change plays in the page as in ibfvs render", asy
   await assertMatchesRender("changing", ["--mesh", series, "--frames-per-step", "4", "--color-by", "z"]);
 });
 
-test("the earth plays its months, with a time slider", async () => {
+test("the earth plays its months, with a time slider; the series ends at its last, or loops", async () => {
   const file = path.join(out, "earth.html");
   execFileSync(ibfvs, ["render", "scenes/figure6-earth-wind.toml", "--size", "128x128",
                        "--time", "0:2", "--frames-per-step", "4", "--out", file, "-q"]);
   const { page, messages } = await open(file);
   const slider = await page.waitForSelector('input[data-name="time step"]');
-  assert.equal(await slider.evaluate((e) => e.max), "3");
-  // The slider and the time read in one turn of the page's loop: the time
-  // goes back to 0 after the last step, between two separate reads too.
+  assert.equal(await slider.evaluate((e) => e.max), "2");
+  // The slider and the time read in one turn of the page's loop; the
+  // series ends at its last step and holds it (no blend back to the first).
   await page.waitForFunction(() => {
     const time = window.ibfvsTime || 0;
     const shown = parseFloat(document.querySelector('input[data-name="time step"]').value);
-    return time >= 1.5 && Math.abs(shown - time) < 0.01;
+    return time === 2 && Math.abs(shown - time) < 0.01;
   }, { timeout: 120000 });
+  const frames = await page.evaluate(() => window.ibfvsFrames);
+  await page.waitForFunction((k) => window.ibfvsFrames >= k + 8, { timeout: 60000 }, frames);
+  assert.equal(await page.evaluate(() => window.ibfvsTime), 2);
+  // The loop toggle: the time goes back to the first step after the last.
+  await page.click('input[data-name="loop"]');
+  assert.equal(await slider.evaluate((e) => e.max), "3");
+  await page.waitForFunction(() => window.ibfvsTime > 2.2, { timeout: 60000 });
+  await page.waitForFunction(() => window.ibfvsTime < 1, { timeout: 60000 });
   assert.deepEqual(messages, []);
   await page.close();
 });

@@ -34,6 +34,8 @@ struct WebPageReport {
   /// their points and normals stored (a step like the one before it shares
   /// its set), and the bytes those take in the scene.
   std::size_t moving_vertices = 0, motion_sets = 0, motion = 0;
+  /// Their screws from each step to the next (the motion between steps), in bytes.
+  std::size_t screws = 0;
   /// Steps whose triangles are their own (a changing mesh): each a mesh of its own.
   std::size_t other_meshes = 0;
 };

@@ -49,6 +49,7 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
+#include "ibfvs/core/geometry/rigid_motion.h"
 #include "ibfvs/core/image/colormap.h"
 #include "ibfvs/core/image/image.h"
 #include "ibfvs/core/mesh/mesh.h"
@@ -94,9 +95,12 @@ class IbfvsRenderer {
   /// frames as it includes the camera's (with AdvectView::Previous): each
   /// pixel's texture comes from where the last frame drew its surface point,
   /// moved back along the flow. Keeps the texture. One vector per vertex each.
+  /// `motion`: each vertex's screw from the one step to the other
+  /// (fit_surface_motion), along which the points move in between (a rigid
+  /// part stays rigid); empty: along chords.
   void set_surface_steps(std::span<const glm::vec3> positions, std::span<const glm::vec3> normals,
                          std::span<const glm::vec3> next_positions,
-                         std::span<const glm::vec3> next_normals);
+                         std::span<const glm::vec3> next_normals, const SurfaceMotion& motion = {});
   /// Whether set_surface_steps made the surface move (until set_mesh or replace_mesh).
   [[nodiscard]] bool moving() const { return moving_; }
   /// Replaces the field (same vertex count); keeps the texture.
@@ -320,18 +324,27 @@ class IbfvsRenderer {
   // and at the next where the surface moves (set_surface_steps).
   gl::Buffer vertices_;
   gl::Buffer vertices_next_;
+  // Where the surface moves: each vertex's screw between the two steps
+  // (omega, lever interleaved; zeros: chords).
+  gl::Buffer motion_;
   bool moving_ = false;
   // The pair of steps the last frame drew, where set_surface_steps replaced
-  // it since (drawn_next_ empty: the one static buffer), and its mix.
+  // it since (drawn_next_ empty: the one static buffer), its screws and its mix.
   gl::Buffer drawn_;
   gl::Buffer drawn_next_;
+  gl::Buffer drawn_motion_;
   bool drawn_elsewhere_ = false;
   float drawn_mix_ = 0.0f;
   // The last frame drew this mesh (not one that set_mesh or replace_mesh
   // replaced since): only then does its surface's motion enter the advection.
   bool drawn_this_mesh_ = false;
   void upload_mesh(const TriMesh& mesh, std::span<const glm::vec3> field);
-  void point_drawn_attributes();  // attributes 7, 8 at the pair the last frame drew
+  void point_drawn_attributes();  // attributes 7, 8, 11, 12 at the pair the last frame drew
+  // Whether a moving surface's own motion carries the texture: advecting in
+  // the last frame's view, with a field relative to the surface.
+  [[nodiscard]] bool carries_surface() const {
+    return ibfvs::carries_surface(settings_.advect_view, settings_.field_frame);
+  }
   gl::Buffer field_;
   gl::Buffer field_next_;
   gl::Buffer scalars_;       // (colour, beta) per vertex

@@ -52,10 +52,12 @@ class FramePacer {
   [[nodiscard]] int frames_per_step() const { return per_step_; }
   /// The frames of the next render. `changed`: its data differ from the
   /// last render's; `restart`: the texture starts afresh; `moved`: the
-  /// change moved the surface's points (a moving mesh's step), which gets
-  /// all frames_per_step whatever the renders before: the texture carried
-  /// with the surface takes them to follow the new flow (one frame shows
-  /// it half formed: docs/paraview.md, "Time").
+  /// change moved the surface's points (a moving mesh's step) under a
+  /// texture they do not carry (carries_surface false: a field that holds
+  /// the surface's motion), which gets all frames_per_step whatever the
+  /// renders before: the texture left in the image takes them to form on
+  /// the moved surface (one frame shows it half formed: docs/paraview.md,
+  /// "Time"). A texture the surface carries needs none: it rides on it.
   int next(bool changed, bool restart, bool moved = false);
 
  private:
@@ -63,6 +65,11 @@ class FramePacer {
   int renders_ = 0;    // renders of the data as it is
   bool first_ = true;  // that data is the one the texture started on
 };
+
+/// Time t (in steps, from 0) of a series of `steps` steps as it plays: with
+/// `loop` on from the last step back to the first (t modulo steps), else
+/// held at the last step (the series ends there, as ParaView's does).
+double session_time(double t, std::size_t steps, bool loop);
 
 class Session {
  public:
@@ -83,8 +90,12 @@ class Session {
   void render(const Camera& camera);
   /// The same with the host's own matrices (ParaView's camera and actor).
   void render(const ViewState& view);
-  /// Moves an unsteady field to time t, in steps (looping); nothing for a steady one.
+  /// Moves an unsteady scene to time t, in steps (session_time: looping
+  /// where the scene's loop key says so, else held at the last step);
+  /// nothing for a steady one.
   void seek(double t);
+  /// The time of the last seek as played (session_time).
+  [[nodiscard]] double time() const { return time_; }
 
   /// Frames rendered so far.
   [[nodiscard]] int frame() const { return frame_; }

@@ -235,6 +235,7 @@ IBFVS_SETTING(FilterLength, double, filter, in_range("filter", value))
 IBFVS_SETTING(Contrast, double, contrast, in_range("contrast", value))
 IBFVS_SETTING(Sharpen, double, sharpen, in_range("sharpen", value))
 IBFVS_SETTING(Resample, int, resample, in_enum<ibfvs::Resample>(value))
+IBFVS_SETTING(FieldFrame, int, field_frame, in_enum<ibfvs::FieldFrame>(value))
 IBFVS_SETTING(Seed, int, seed, static_cast<std::uint32_t>(std::max(value, 0)))
 #undef IBFVS_SETTING
 
@@ -526,8 +527,10 @@ void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor) {
   // frames the renders of the last data fell short of Frames Per Step
   // (ibfvs::FramePacer: Save Animation gives each step all of them at its
   // own data, Play and Sequence mode one a render), all of them where the
-  // points moved.
-  const int frames = in.pacer.next(all.changed || all.restart, all.restart, all.moved);
+  // points moved under a texture they do not carry (field_frame absolute).
+  const int frames = in.pacer.next(
+      all.changed || all.restart, all.restart,
+      all.moved && !ibfvs::carries_surface(in.scene.advect_view, in.scene.field_frame));
   this->UpdateSession(all, width, height);
 
   ibfvs::Session* session = in.session.get();

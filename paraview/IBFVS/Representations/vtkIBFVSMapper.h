@@ -48,7 +48,8 @@ class IBFVSREPRESENTATIONS_EXPORT vtkIBFVSMapper : public vtkCompositePolyDataMa
   void SetFilterLength(double pixels);
   void SetContrast(double contrast);
   void SetSharpen(double k);
-  void SetResample(int mode);  // ibfvs::Resample
+  void SetResample(int mode);     // ibfvs::Resample
+  void SetFieldFrame(int frame);  // ibfvs::FieldFrame
   void SetSeed(int seed);
   /// At least this many texture frames for each change of the data (a time
   /// step): a change adds the frames that the renders since the last one

@@ -65,6 +65,7 @@ IBFVS_FORWARD(FilterLength, double)
 IBFVS_FORWARD(Contrast, double)
 IBFVS_FORWARD(Sharpen, double)
 IBFVS_FORWARD(Resample, int)
+IBFVS_FORWARD(FieldFrame, int)
 IBFVS_FORWARD(Seed, int)
 IBFVS_FORWARD(FramesPerStep, int)
 #undef IBFVS_FORWARD

@@ -38,7 +38,8 @@ class IBFVSREPRESENTATIONS_EXPORT vtkIBFVSRepresentation
   void SetFilterLength(double pixels);
   void SetContrast(double contrast);
   void SetSharpen(double k);
-  void SetResample(int mode);  // ibfvs::Resample
+  void SetResample(int mode);     // ibfvs::Resample
+  void SetFieldFrame(int frame);  // ibfvs::FieldFrame
   void SetSeed(int seed);
   /// Texture frames a change of the data (a time step) is given at least.
   void SetFramesPerStep(int frames);

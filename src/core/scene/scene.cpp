@@ -197,6 +197,14 @@ std::vector<SceneKey> make_keys() {
          s.frames_per_step = static_cast<int>(parse_integer(t, 1, 100000));
        },
        [](const Scene& s) { return one(std::to_string(s.frames_per_step)); }, KeyEffect::kNone},
+      {"loop", KeyKind::Flag,
+       "a series plays on from its last step back to its first; else it ends at its last step "
+       "and holds it",
+       [](Scene& s, std::string_view t) { s.loop = flag(t); },
+       [](const Scene& s) { return s.loop ? one("true") : none(); }, KeyEffect::kNone},
+      IBFVS_ENUM_KEY(field_frame, FieldFrame,
+                     "what the field on a moving surface is relative to (docs/cfd.md)",
+                     KeyEffect::kLive),
       // ---- scalars and colour
       {"scalar", KeyKind::StringList,
        "repeatable: NAME=FILE:VAR, a per-vertex scalar sampled from a netCDF lon/lat grid",

@@ -287,6 +287,7 @@ void apply_texture_settings(const Scene& s, RenderSettings& settings) {
   settings.background = s.background;
   settings.surface_color = s.surface_color;
   settings.advect_view = s.advect_view;
+  settings.field_frame = s.field_frame;
   settings.object_noise = s.noise_space == NoiseSpace::Object;
   settings.color_map = s.color_map;
   if (s.color_range && !s.color_range->percentile)

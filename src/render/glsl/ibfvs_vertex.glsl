@@ -16,6 +16,34 @@ layout(location = 6) in vec3 a_normal_next;
 layout(location = 7) in vec3 a_drawn;
 layout(location = 8) in vec3 a_drawn_next;
 uniform float u_drawn_mix;
+// Each pair's screw (core/geometry/rigid_motion.h): the rotation vector and
+// the lever from the axis, so that a rigidly moving part turns between its
+// steps instead of cutting along chords; zero (an attribute not given): the
+// chord.
+layout(location = 9) in vec3 a_omega;
+layout(location = 10) in vec3 a_lever;
+layout(location = 11) in vec3 a_drawn_omega;
+layout(location = 12) in vec3 a_drawn_lever;
+
+// (R(phi) - I) l for the unit axis a, as rigid_motion.cpp computes it.
+vec3 turned_less_still(vec3 l, vec3 a, float phi) {
+  float half_turn = sin(0.5 * phi);
+  vec3 across = cross(a, l);
+  return sin(phi) * across + 2.0 * half_turn * half_turn * cross(a, across);
+}
+// interpolate_position (core/geometry/rigid_motion.h): p0 at m = 0, p1 at 1.
+vec3 moved_to(vec3 p0, vec3 p1, vec3 omega, vec3 lever, float m) {
+  float theta = length(omega);
+  if (theta <= 0.0) return mix(p0, p1, m);
+  vec3 a = omega / theta;
+  vec3 rest = p1 - p0 - turned_less_still(lever, a, theta);
+  return p0 + turned_less_still(lever, a, m * theta) + m * rest;
+}
+// v turned by the rotation vector omega.
+vec3 turned_by(vec3 v, vec3 omega) {
+  float theta = length(omega);
+  return theta > 0.0 ? v + turned_less_still(v, omega / theta, theta) : v;
+}
 #endif
 
 uniform mat4 u_view_projection;          // T_k: where the vertex is drawn
@@ -65,11 +93,13 @@ void main() {
   v_contrast = contrast_stage(texelFetch(u_stats, ivec2(0), 0).xyz);
 #endif
 #ifdef IBFVS_MOVING
-  vec3 position = mix(a_position, a_position_next, u_field_mix);
-  vec3 normal = mix(a_normal, a_normal_next, u_field_mix);
+  vec3 position = moved_to(a_position, a_position_next, a_omega, a_lever, u_field_mix);
+  // interpolate_normal: normalised below, where it is used.
+  vec3 normal = turned_by(a_normal, u_field_mix * a_omega) * (1.0 - u_field_mix) +
+                turned_by(a_normal_next, (u_field_mix - 1.0) * a_omega) * u_field_mix;
   // The surface's own motion enters the advection as the camera's does:
   // the texture comes from where the last frame drew this point.
-  vec3 drawn = mix(a_drawn, a_drawn_next, u_drawn_mix);
+  vec3 drawn = moved_to(a_drawn, a_drawn_next, a_drawn_omega, a_drawn_lever, u_drawn_mix);
 #else
   vec3 position = a_position;
   vec3 normal = a_normal;

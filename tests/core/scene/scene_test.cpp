@@ -45,6 +45,8 @@ Scene busy_scene() {
       {"field_step", "a.ply"},
       {"field_step", "b.ply"},
       {"frames_per_step", "12"},
+      {"loop", "true"},
+      {"field_frame", "absolute"},
       {"scalar", "relief=data/earth/etopo20.cdf:ROSE"},
       {"displace", "relief:1e-05"},
       {"color_by", "-kmax"},

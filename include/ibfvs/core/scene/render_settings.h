@@ -28,6 +28,33 @@ struct EnumNames<AdvectView> {
   };
 };
 
+/// What a field on a moving surface (a moving mesh's steps) is relative
+/// to: it decides whether the surface's motion carries the texture. The
+/// data cannot tell; docs/cfd.md, "Moving meshes", says which to choose.
+enum class FieldFrame {
+  Surface,   ///< a wall quantity (wall shear stress): the texture rides on the surface,
+             ///< the field moves it on top (an oil film on a turning blade)
+  Absolute,  ///< a velocity that holds the surface's motion already (U on a cut through a
+             ///< rotating zone): the texture is not carried, the field alone moves it
+};
+
+template <>
+struct EnumNames<FieldFrame> {
+  static constexpr EnumName<FieldFrame> table[] = {
+      {FieldFrame::Surface, "surface",
+       "relative to the surface (a wall quantity): the texture rides on a moving surface"},
+      {FieldFrame::Absolute, "absolute",
+       "holds the surface's motion (U on a moving cut): the texture is not carried"},
+  };
+};
+
+/// Whether a moving surface's own motion carries the texture (the renderer's
+/// advection and a host's frame pacing both ask): advecting in the last
+/// frame's view with a field relative to the surface.
+inline bool carries_surface(AdvectView view, FieldFrame frame) {
+  return view == AdvectView::Previous && frame == FieldFrame::Surface;
+}
+
 /// How F_t is sampled at t(x) (equation 13) each frame.
 enum class Resample {
   Linear,       ///< bilinear, as the paper's texture mapping
@@ -56,6 +83,7 @@ struct RenderSettings {
   glm::vec3 background{0.5f};                     ///< B, grey by default (section 3.5)
   glm::vec3 surface_color{0.82f, 0.80f, 0.76f};   ///< diffuse colour of the shaded surface F_s
   AdvectView advect_view = AdvectView::Previous;  ///< see AdvectView
+  FieldFrame field_frame = FieldFrame::Surface;   ///< see FieldFrame
   bool object_noise = false;               ///< G on a 3D lattice at the surface point (section 3.6)
   float object_cell = 0.05f;               ///< its spacing in world units
   ColorMap color_map = ColorMap::Viridis;  ///< map for the colour scalar

@@ -134,6 +134,10 @@ struct Scene {
   bool reverse = false;  ///< the field's vectors negated (OpenFOAM's wallShearStress)
   std::vector<std::string> field_steps;  ///< PLY files: the steps of an unsteady field
   int frames_per_step = 30;              ///< frames from one step to the next
+  /// A series plays on from its last step back to its first; else it ends
+  /// at its last step and holds it.
+  bool loop = false;
+  FieldFrame field_frame = FieldFrame::Surface;  ///< see FieldFrame
 
   // ---- scalars and colour
   std::vector<GridScalar> scalars;       ///< sampled from netCDF grids

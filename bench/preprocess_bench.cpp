@@ -1,11 +1,15 @@
 // Mesh preprocessing of paper section 5 ("for meshes in the order of 100K
 // triangles this preprocessing typically takes a few seconds"): vertex
-// normals, curvature and principal directions, vertex-cache order. On a
+// normals, curvature and principal directions, vertex-cache order; and the
+// fit of a moving mesh's motion between two saved steps (each vertex's
+// screw, core/geometry/rigid_motion.h: what a step change of a moving
+// series costs on the CPU). On a
 // procedural torus of 100K triangles and, when the data is fetched, on the
 // cow subdivided twice (92,864 triangles, the paper's largest Table 1 mesh).
 //
 //   build/bench/ibfvs_preprocess_bench [--benchmark_filter=...]
 
+#include <cmath>
 #include <filesystem>
 #include <random>
 
@@ -13,6 +17,7 @@
 #include <omp.h>
 
 #include "ibfvs/core/geometry/curvature.h"
+#include "ibfvs/core/geometry/rigid_motion.h"
 #include "ibfvs/core/mesh/gpu_prep.h"
 #include "ibfvs/core/mesh/mesh_io.h"
 #include "ibfvs/core/mesh/procedural.h"
@@ -111,6 +116,23 @@ void BM_Preprocess(benchmark::State& state) {
   set_label(state, *src);
 }
 
+// The mesh turned 3 degrees about an axis off its centre: every vertex's
+// one-ring fitted and written as a screw.
+void BM_SurfaceMotion(benchmark::State& state) {
+  const TriMesh* src = mesh_for(static_cast<int>(state.range(0)));
+  if (!src) return state.SkipWithError("cow.off not fetched (scripts/fetch_data.sh)");
+  omp_set_num_threads(static_cast<int>(state.range(1)));
+  std::vector<glm::vec3> turned = src->positions;
+  const float c = std::cos(0.05236f), s = std::sin(0.05236f);
+  for (glm::vec3& p : turned) p = {c * (p.x - 0.3f) - s * p.y, s * (p.x - 0.3f) + c * p.y, p.z};
+  for (auto _ : state)
+    benchmark::DoNotOptimize(
+        fit_surface_motion(src->triangles, src->positions, turned).omega.data());
+  set_label(state, *src);
+  state.counters["vertices/s"] = benchmark::Counter(static_cast<double>(src->vertex_count()),
+                                                    benchmark::Counter::kIsIterationInvariantRate);
+}
+
 const int threads = omp_get_num_procs();
 BENCHMARK(BM_Normals)->Args({0, 1})->Args({1, 1})->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Curvature)
@@ -123,6 +145,11 @@ BENCHMARK(BM_Curvature)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK(BM_CacheOrder)->Args({0, 1})->Args({1, 1})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SurfaceMotion)
+    ->Args({0, 1})
+    ->Args({0, threads})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK(BM_Preprocess)
     ->Args({0, 1})
     ->Args({0, threads})

@@ -26,6 +26,15 @@ playing the series alone. Prints Markdown tables; pictures go to OUT.
   --renders N          Play: renders at each time step (default 24)
   --region X,Y,Z,R     also measure within the sphere of radius R about (X, Y,
                        Z) only, as seen (a moving part)
+  --turn DEG           the moving part turns about the line of sight
+                       through the region's centre, by about DEG degrees a step
+                       (counter-clockwise as seen: positive): Play's texture
+                       (the picture less a 4-px Gaussian blur) of the last
+                       render before each step change, turned as the part
+                       turned (the turn within 2 degrees of DEG that best maps
+                       one silhouette onto the other), correlated with the
+                       first render after the change, within the region;
+                       beside it left in place, and two renders within a step
   --set NAME=VALUE     a property of the IBFVS representation (repeatable)
   --plugin PATH        IBFVS.so (default: build/lib/ibfvs/paraview/IBFVS/IBFVS.so)
   --ibfvs PATH         the ibfvs binary (default: build/ibfvs)
@@ -57,6 +66,7 @@ parser.add_argument("--reverse", action="store_true")
 parser.add_argument("--zoom", type=float, default=1.0)
 parser.add_argument("--renders", type=int, default=24)
 parser.add_argument("--region", default="")
+parser.add_argument("--turn", type=float, default=None)
 parser.add_argument("--set", action="append", default=[])
 parser.add_argument("--ibfvs", default=os.path.join(pvmeasure.ROOT, "build/ibfvs"))
 parser.add_argument("--no-lic", action="store_true")
@@ -298,6 +308,55 @@ try:
         return float(np.corrcoef(ga[mask], gb[mask])[0, 1])
 
     within = [corr(s, l) for _, s, l, _, _ in correlations]
+
+    # The issue's measure of a moving part (--turn): the texture turned with it.
+    turned_rows = []
+    if args.turn is not None and region:
+        from PIL import ImageFilter
+
+        def texture(path):
+            image = Image.open(path).convert("L")
+            return (np.asarray(image, dtype=float) -
+                    np.asarray(image.filter(ImageFilter.GaussianBlur(4)), dtype=float))
+
+        def silhouette(path):
+            g = grey(path)
+            return np.abs(g - g[0, 0]) > 2
+
+        rows_, columns_ = np.mgrid[0:h, 0:w]
+        inside = np.hypot(columns_ + 0.5 - region[0], (h - rows_ - 0.5) - region[1]) < region[2]
+        centre = (region[0], h - region[1])  # PIL's: y down
+
+        def turned(array, degrees):
+            """Turned counter-clockwise as seen about the region's centre."""
+            image = Image.fromarray(array.astype(np.float32), mode="F")
+            return np.asarray(image.rotate(degrees, resample=Image.BILINEAR, center=centre))
+
+        def eroded(mask, pixels=2):
+            out = mask.copy()
+            for dy in range(-pixels, pixels + 1):
+                for dx in range(-pixels, pixels + 1):
+                    out &= np.roll(np.roll(mask, dy, 0), dx, 1)
+            return out
+
+        def correlation(a, b, mask):
+            return float(np.corrcoef(a[mask], b[mask])[0, 1])
+
+        for k, second_last, last, previous_last, first in correlations:
+            if not previous_last:
+                continue
+            before, after = silhouette(previous_last) & inside, silhouette(first) & inside
+            def overlap(d):
+                r = turned(before.astype(float), d) > 0.5
+                return (r & after).sum() / max((r | after).sum(), 1)
+
+            degrees = max(np.arange(args.turn - 2.0, args.turn + 2.01, 0.1), key=overlap)
+            both = eroded(after & (turned(before.astype(float), degrees) > 0.99))
+            t_before, t_after = texture(previous_last), texture(first)
+            turned_rows.append((k, degrees, correlation(turned(t_before, degrees), t_after, both),
+                                correlation(t_before, t_after, eroded(before & after)),
+                                correlation(texture(second_last), texture(last),
+                                            eroded(silhouette(last) & inside))))
     across = [corr(p, f) for _, _, _, p, f in correlations if p]
     export_across = [corr(exported[k - 1], exported[k]) for k in range(1, len(exported))]
     # Whether a sequence frame shows other data than the one before: its
@@ -310,6 +369,7 @@ try:
         (sequence_across if changed else sequence_within).append(c)
 except ImportError:
     within = across = export_across = sequence_within = sequence_across = []
+    turned_rows = []
 
 print("\n%s (%s%s), %d time steps, %dx%d, view %s, pvbatch, ParaView %s, %s\n" % (
     os.path.basename(args.data), args.array, ", reversed" if args.reverse else "", len(times), w, h,
@@ -344,6 +404,18 @@ for label in dict.fromkeys(label for _, _, label, _, _ in rows):
 print("\nCorrelation of the pictures: Play, two frames apart within a step %s; across a step "
       "change %s; Save Animation, frame to frame %s" % (summary(within), summary(across),
                                                        summary(export_across)))
+if turned_rows:
+    print("\nThe moving part's texture across each step change (Play; the picture less a 4-px "
+          "blur, within the region):\n")
+    print("| change to step | turn (degrees) | turned with the part | left in place | "
+          "within the step before |")
+    print("|---|---|---|---|---|")
+    for k, degrees, t, l, wi in turned_rows:
+        print("| %d | %.1f | %.3f | %.3f | %.3f |" % (k, degrees, t, l, wi))
+    print("\nAfter the first change (min-max): turned %s, left in place %s, within a step %s" % (
+        summary([t for _, _, t, _, _ in turned_rows[1:]]),
+        summary([l for _, _, _, l, _ in turned_rows[1:]]),
+        summary([wi for _, _, _, _, wi in turned_rows[1:]])))
 if sequence:
     print("\nSave Animation in Sequence mode, %d frames%s, after the first two (min-max): A %s, "
           "W %s%s; correlation of consecutive frames within a step %s, across a step change %s" % (

@@ -65,6 +65,8 @@ void ViewerPanel::draw(ViewerSession& viewer, bool& show, bool& show_help, doubl
   changed |= slider("filter (px)", "filter", d.filter, "%.1f");
   changed |= slider("contrast", "contrast", d.contrast, "%.2f");
   changed |= enum_combo("resample", d.resample);
+  // A moving mesh's series: whether its motion carries the texture (docs/data.md).
+  if (viewer.scene().step_count > 1) changed |= enum_combo("field frame", d.field_frame);
   const ImGuiColorEditFlags swatch = ImGuiColorEditFlags_NoInputs;
   changed |= ImGui::ColorEdit3("bg", &d.background.x, swatch);
   ImGui::SameLine();

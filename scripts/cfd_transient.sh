@@ -20,18 +20,28 @@
 #                     its cells and points rotating (solid-body motion with an
 #                     arbitrary mesh interface); the front face of the slab
 #                     with U on it (endTime 1 s, written every 0.05 s: 21 times)
+#   propeller         pimpleFoam/RAS/propeller: a three-bladed propeller turning
+#                     at 158 rad/s inside an arbitrary mesh interface, its
+#                     cells and points rotating; snappyHexMesh two levels
+#                     coarser than the tutorial's, started from rest, written
+#                     every 0.32 ms (2.9 degrees of turn) to 6.4 ms: 21 times
+#                     (Courant number 0.8, not 2, on the coarser mesh);
+#                     wallShearStress on its walls at every written time
 # IBFVS_CFD_DIR=FOLDER puts the case elsewhere.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-name="${1:?usage: scripts/cfd_transient.sh TJunction|mixerVesselAMI2D}"
+name="${1:?usage: scripts/cfd_transient.sh TJunction|mixerVesselAMI2D|propeller}"
+resources=/usr/share/doc/openfoam-examples/examples/resources
 examples=/usr/share/doc/openfoam-examples/examples/incompressible/pimpleFoam
 case "$name" in
   TJunction)
     tutorial=$examples/RAS/TJunction end="" write="" patches="" ;;
   mixerVesselAMI2D)
     tutorial=$examples/laminar/mixerVesselAMI2D end=1 write=0.05 patches="front" ;;
+  propeller)
+    tutorial=$examples/RAS/propeller end=0.0064 write=0.00032 patches="" ;;
   *)
-    echo "cfd_transient: no case $name (TJunction or mixerVesselAMI2D)" >&2
+    echo "cfd_transient: no case $name (TJunction, mixerVesselAMI2D or propeller)" >&2
     exit 1 ;;
 esac
 case_dir="${IBFVS_CFD_DIR:-$root/data/cfd/$name}"
@@ -49,6 +59,21 @@ copy_tutorial "$tutorial" "$case_dir"
 [[ $name == TJunction ]] &&
   sed -i 's/(50 5 5)/(100 10 10)/; s/(5 5 5)/(10 10 10)/; s/(5 50 5)/(10 100 10)/g' system/blockMeshDict
 run blockMesh blockMesh
+if [[ $name == propeller ]]; then
+  # The tutorial's Allrun.pre, its refinement two levels coarser, and no
+  # function objects (Q, sampled surfaces, forces, AMI weights: minutes).
+  cp "$resources/geometry/propellerTip.obj.gz" constant/triSurface/
+  sed -i 's/level       4;/level       2;/; s/level       (4 4);/level       (2 2);/;
+          s/level       (4 5);/level       (2 3);/; s/levels      ((1E15 3));/levels      ((1E15 1));/' \
+    system/snappyHexMeshDict
+  # Courant 0.8, not 2: on the coarser mesh the tutorial's step diverges.
+  sed -i '/#includeFunc/d; /#include "/d; s/^maxCo .*/maxCo           0.8;/' system/controlDict
+  run surfaceFeatureExtract surfaceFeatureExtract
+  run snappyHexMesh snappyHexMesh -overwrite
+  rm -rf 0
+  run topoSet topoSet -dict system/createInletOutletSets.topoSetDict
+  run createPatch createPatch -overwrite
+fi
 [[ -f system/topoSetDict ]] && run topoSet topoSet
 [[ -d 0.orig && ! -d 0 ]] && cp -r 0.orig 0
 run pimpleFoam pimpleFoam

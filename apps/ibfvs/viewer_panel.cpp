@@ -90,18 +90,21 @@ void ViewerPanel::draw(ViewerSession& viewer, bool& show, bool& show_help, doubl
       viewer.time = t;
       viewer.session().seek(viewer.time);
     }
-    if (ImGui::SmallButton("<"))
-      viewer.time = std::floor(viewer.time) - 1.0 + viewer.scene().step_count;
+    if (ImGui::SmallButton("<")) {  // the step before; from the first, the last
+      viewer.time = std::floor(viewer.time) - 1.0;
+      if (viewer.time < 0.0) viewer.time += static_cast<double>(viewer.scene().step_count);
+    }
     ImGui::SameLine();
     if (ImGui::SmallButton(">")) viewer.time = std::floor(viewer.time) + 1.0;
     ImGui::SameLine();
     bool loop = viewer.desc().loop;
     if (ImGui::Checkbox("loop", &loop)) viewer.set("loop", loop ? "true" : "false");
+    viewer.session().seek(viewer.time);
+    viewer.time = viewer.session().time();  // as played: held at the last step, or looped
     ImGui::SameLine();
     ImGui::Text("step %d of %zu",
                 static_cast<int>(viewer.time) % static_cast<int>(viewer.scene().step_count),
                 viewer.scene().step_count);
-    viewer.session().seek(viewer.time);
   }
   if (ImGui::CollapsingHeader("More parameters")) draw_more_parameters(viewer);
   if (ImGui::CollapsingHeader("Styles and files")) draw_styles_and_files(viewer);

@@ -19,6 +19,9 @@ bool inside(const glm::dvec2& q, const glm::dvec2& a, const glm::dvec2& b, const
 }
 
 constexpr double kStraight = 1e-4;  // sine of a corner's turn taken as no turn
+// Ear clipping takes up to n^3 steps: a polygon larger than this (no
+// solver's face; a malicious file's) is fanned, in bounded time.
+constexpr std::size_t kMostClipped = 1024;
 
 }  // namespace
 
@@ -68,7 +71,7 @@ std::vector<Triangle> triangulate_polygon(std::span<const std::uint32_t> ids,
   bool convex = true;
   for (std::size_t k = 0; k < n && convex; ++k)
     convex = turns(k, (k + 1) % n, (k + 2) % n, kStraight);
-  if (convex) {
+  if (convex || n > kMostClipped) {
     fan(left);
     return out;
   }

@@ -229,6 +229,15 @@ TEST(Polygon, TrianglesFollowThePointsNotThePlace) {
   EXPECT_EQ(triangulate_polygon(std::vector<std::uint32_t>{0, 1, 2, 3, 4, 5}, hexagon),
             (std::vector<Triangle>{{0, 1, 2}, {0, 2, 3}, {0, 3, 4}, {0, 4, 5}}));
   EXPECT_TRUE(triangulate_polygon(std::vector<std::uint32_t>{0, 1}, hexagon).empty());
+  // A star of 4,000 points (no solver's face): fanned, in bounded time.
+  std::vector<glm::vec3> big;
+  std::vector<std::uint32_t> all;
+  for (std::uint32_t k = 0; k < 4000; ++k) {
+    const float a = 0.0015707963f * static_cast<float>(k), r = k % 2 ? 0.9f : 1.0f;
+    big.push_back({r * std::cos(a), r * std::sin(a), 0.0f});
+    all.push_back(k);
+  }
+  EXPECT_EQ(triangulate_polygon(all, big).size(), 3998u);
 }
 
 }  // namespace

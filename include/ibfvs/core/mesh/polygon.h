@@ -22,7 +22,8 @@ namespace ibfvs {
 /// where it is convex (seen along its mean normal, corners turning back by
 /// less than 1e-4 of their edges taken as straight), else ear clipping in
 /// the order of its points (each ear the first one found from the last).
-/// A polygon that is not simple (no ear left) is fanned from there on.
+/// A polygon that is not simple (no ear left) is fanned from there on, and
+/// so is one of over 1,024 points (ear clipping's time grows as the cube).
 /// Indices must be within `points`.
 std::vector<Triangle> triangulate_polygon(std::span<const std::uint32_t> ids,
                                           std::span<const glm::vec3> points);

@@ -24,8 +24,9 @@ playing the series alone. Prints Markdown tables; pictures go to OUT.
   --zoom F             the bounding sphere fills 1/F of the view height (default 1)
   --size W,H           default 1024,768
   --renders N          Play: renders at each time step (default 24)
-  --region X,Y,Z,R     also measure within the sphere of radius R about (X, Y,
-                       Z) only, as seen (a moving part)
+  --region X,Y,Z,R[,R0]  also measure within the sphere of radius R about (X, Y,
+                       Z) only, as seen (a moving part), and beyond R0 from it
+                       (a still shaft in the middle of a turning propeller)
   --turn DEG           the moving part turns about the line of sight
                        through the region's centre, by about DEG degrees a step
                        (counter-clockwise as seen: positive): Play's texture
@@ -53,6 +54,7 @@ playing the series alone. Prints Markdown tables; pictures go to OUT.
                        its size, and A and W of its picture in headless chromium
                        (web/test/shoot.mjs) as it reaches each step
 """
+import builtins
 import math
 import os
 import time
@@ -209,7 +211,9 @@ truth_view, axes = new_view()
 region = None
 if args.region:
     eye_, right_, up_, back_ = axes
-    rx, ry, rz, rr = (float(v) for v in args.region.split(","))
+    values = [float(v) for v in args.region.split(",")]
+    rx, ry, rz, rr = values[:4]
+    r0 = values[4] if len(values) > 4 else 0.0
     p = [rx - eye_[0], ry - eye_[1], rz - eye_[2]]
     depth = -math.fsum(a * b for a, b in zip(p, back_))
     # The axes above the horizon are shortened alike (pvmeasure.place_camera).
@@ -217,7 +221,7 @@ if args.region:
     n = [math.fsum(a * b for a, b in zip(p, right_)) / norm,
          math.fsum(a * b for a, b in zip(p, up_)) / norm]
     scale = (h / 2) / math.tan(math.radians(15.0)) / depth
-    region = (w / 2 + scale * n[0], h / 2 + scale * n[1], scale * rr)
+    region = (w / 2 + scale * n[0], h / 2 + scale * n[1], scale * rr, scale * r0)
 direction = pv.ProgrammableFilter(Input=flow)
 direction.Script = pvmeasure.DIRECTION_SCRIPT % axes
 direction_display = pv.Show(direction, truth_view)
@@ -242,7 +246,8 @@ def region_truth(path):
     rgb = np.array(Image.open(path).convert("RGB"))
     rows, columns = np.mgrid[0:rgb.shape[0], 0:rgb.shape[1]]
     x, y = columns + 0.5, rgb.shape[0] - rows - 0.5  # y up, as the region's centre
-    outside = np.hypot(x - region[0], y - region[1]) > region[2]
+    distance = np.hypot(x - region[0], y - region[1])
+    outside = (distance > region[2]) | (distance < region[3])
     rgb[outside, 2] = 0
     Image.fromarray(rgb).save(out)
     return out
@@ -324,7 +329,8 @@ try:
             return np.abs(g - g[0, 0]) > 2
 
         rows_, columns_ = np.mgrid[0:h, 0:w]
-        inside = np.hypot(columns_ + 0.5 - region[0], (h - rows_ - 0.5) - region[1]) < region[2]
+        distance = np.hypot(columns_ + 0.5 - region[0], (h - rows_ - 0.5) - region[1])
+        inside = (distance < region[2]) & (distance >= region[3])
         centre = (region[0], h - region[1])  # PIL's: y down
 
         def turned(array, degrees):
@@ -350,7 +356,9 @@ try:
                 r = turned(before.astype(float), d) > 0.5
                 return (r & after).sum() / max((r | after).sum(), 1)
 
-            degrees = max(np.arange(args.turn - 2.0, args.turn + 2.01, 0.1), key=overlap)
+            # (builtins': the programmable filter's script, which shares these
+            # globals, imports numpy_interface's max.)
+            degrees = builtins.max(np.arange(args.turn - 2.0, args.turn + 2.01, 0.1), key=overlap)
             both = eroded(after & (turned(before.astype(float), degrees) > 0.99))
             t_before, t_after = texture(previous_last), texture(first)
             turned_rows.append((k, degrees, correlation(turned(t_before, degrees), t_after, both),

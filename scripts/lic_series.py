@@ -354,7 +354,7 @@ try:
             before, after = silhouette(previous_last) & inside, silhouette(first) & inside
             def overlap(d):
                 r = turned(before.astype(float), d) > 0.5
-                return (r & after).sum() / max((r | after).sum(), 1)
+                return (r & after).sum() / builtins.max((r | after).sum(), 1)
 
             # (builtins': the programmable filter's script, which shares these
             # globals, imports numpy_interface's max.)

@@ -44,12 +44,11 @@ class Session::StepPlayer {
     apply(renderer);
   }
 
-  // Time t in steps (session_time: looping, or held at the last step);
-  // evaluates a step only when t leaves the current one.
+  // Time t in steps as played (Session::seek took it through
+  // session_time); evaluates a step only when t leaves the current one.
   void seek(double t, IbfvsRenderer& renderer) {
     const std::size_t n = scene_.step_count;
     if (n < 2) return;
-    t = session_time(t, n, scene_.scene.loop);
     const auto s = std::min(static_cast<std::size_t>(t), n - 1);
     const std::size_t after = following(s);
     if (s != step_ || after != next_step_) {

@@ -181,5 +181,15 @@ TEST_F(MovingSeriesCommand, ASeriesEndsAtItsLastStepUnlessItLoops) {
   EXPECT_GT(differ(coverage(frame_name(10)), last), 100u);  // on its way back to the first
 }
 
+TEST_F(MovingSeriesCommand, ItsOptionsRefuseBadValuesInOneLine) {
+  TriMesh m;
+  add_annulus(m, 0.2f, 1.0f, 2, 12, 0.0f);
+  write_ply(m, dir_ / "one.ply");
+  expect_error("render one.ply --field file --field-frame sideways --out x.png",
+               "--field-frame: expected surface or absolute, got 'sideways'");
+  expect_error("render one.ply --field file --loop maybe --out x.png", "maybe");
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "x.png"));
+}
+
 }  // namespace
 }  // namespace ibfvs

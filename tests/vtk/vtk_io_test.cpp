@@ -253,16 +253,23 @@ vtkSmartPointer<vtkPolyData> turned_annulus(double degrees) {
   return poly;
 }
 
+// The surface `at(0)` as read, after expecting the same triangles of
+// `at(degrees)` for every turn from `from` to `below` by `by` degrees.
+template <typename At>
+TriMesh same_triangles_as_it_turns(At at, double by, double below, double from = -1.0) {
+  const TriMesh first = vtk::surface_mesh(at(0.0), "turned");
+  for (double degrees = from < 0.0 ? by : from; degrees < below; degrees += by)
+    EXPECT_EQ(vtk::surface_mesh(at(degrees), "turned").triangles, first.triangles)
+        << degrees << " degrees";
+  return first;
+}
+
 TEST_F(VtkIo, QuadrilateralsSplitTheSameWayWhereverThePointsMove) {
   // A moving mesh keeps its triangles from step to step (scene_prep then
   // carries the texture with its points): VTK's triangle filter takes the
   // shorter diagonal, which for equal diagonals flips with the rounding.
-  const TriMesh first = vtk::surface_mesh(turned_annulus(0.0), "annulus");
+  const TriMesh first = same_triangles_as_it_turns(turned_annulus, 7.3, 360.0, 0.7);
   ASSERT_EQ(first.triangle_count(), 2u * 6 * 48);
-  for (double degrees = 0.7; degrees < 360.0; degrees += 7.3) {
-    const TriMesh turned = vtk::surface_mesh(turned_annulus(degrees), "annulus");
-    ASSERT_EQ(turned.triangles, first.triangles) << degrees << " degrees";
-  }
   // Each triangle keeps its cell's value.
   const std::vector<float>& id = first.scalars.at("id");
   EXPECT_GT(id.size(), 0u);
@@ -313,12 +320,8 @@ TEST_F(VtkIo, PolygonsSplitTheSameWayWhereverThePointsMove) {
   // of a few degrees (its ears by their shape, equal for a regular hexagon):
   // the steps of a moving mesh were then surfaces of their own, the texture
   // left standing in the image.
-  const TriMesh first = vtk::surface_mesh(turned_hexagons(0.0), "hexagons");
+  const TriMesh first = same_triangles_as_it_turns(turned_hexagons, 2.9, 60.0);
   ASSERT_EQ(first.triangle_count(), 4u * 30 * 6);
-  for (double degrees = 2.9; degrees < 60.0; degrees += 2.9) {
-    const TriMesh turned = vtk::surface_mesh(turned_hexagons(degrees), "hexagons");
-    ASSERT_EQ(turned.triangles, first.triangles) << degrees << " degrees";
-  }
   // A polygon that is not convex (an L of six points) is cut into triangles
   // that cover it: four, their area the L's (3 units).
   vtkNew<vtkPoints> l;

@@ -214,6 +214,22 @@ void tune_process_for_rendering() {
   if (std::thread::hardware_concurrency() == 2) setenv("LP_NUM_THREADS", "3", 0);
 }
 
+int current_gl_version() {
+  bool current = eglGetCurrentContext() != EGL_NO_CONTEXT;
+  // A GLX context (a host's X window) can be current only where the process
+  // has loaded GLX: asked without loading it.
+  for (const char* lib : {"libGLX.so.0", "libGL.so.1"}) {
+    if (current) break;
+    if (void* handle = dlopen(lib, RTLD_LAZY | RTLD_NOLOAD)) {
+      using GetCurrent = void* (*)();
+      if (auto get = reinterpret_cast<GetCurrent>(dlsym(handle, "glXGetCurrentContext")))
+        current = get() != nullptr;
+      dlclose(handle);
+    }
+  }
+  return current ? epoxy_gl_version() : 0;
+}
+
 void HeadlessContext::release_current() {
   eglMakeCurrent(impl_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
 }

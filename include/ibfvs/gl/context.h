@@ -59,6 +59,11 @@ class HeadlessContext {
 /// LP_NUM_THREADS wins and GPU drivers ignore it.
 void tune_process_for_rendering();
 
+/// The OpenGL version of the context current on this thread (a host's:
+/// VTK's or ParaView's render window, through EGL or GLX) as 10 major +
+/// minor, 45 for 4.5; 0 where none is current.
+int current_gl_version();
+
 /// Errors recorded by the KHR_debug callback of the current thread's context.
 std::vector<std::string> take_recorded_gl_errors();
 

@@ -3,6 +3,8 @@
 // vertices (vtkIBFVSMapper.cxx draws it).
 #include "IBFVSSurface.h"
 
+#include "ibfvs/core/image/colormap.h"
+
 #include <algorithm>
 #include <cmath>
 #include <exception>
@@ -136,19 +138,10 @@ bool map_colours(const ibfvs::TriMesh& mesh, const char* name, vtkScalarsToColor
   }
   const double* range = lut->GetRange();
   const bool log = lut->UsingLogScale() != 0 && range[0] > 0.0 && range[1] > 0.0;
+  t = ibfvs::table_positions(values, range[0], range[1], log);
   const auto f = [log](double x) { return log ? std::log10(x) : x; };
   const double lo = f(range[0]), hi = f(range[1]);
   const double span = hi > lo ? hi - lo : 1.0;
-  t.resize(values.size());
-  for (std::size_t i = 0; i < values.size(); ++i) {
-    if (std::isnan(values[i])) {
-      t[i] = values[i];
-      continue;
-    }
-    const double x = log && values[i] <= 0.0f ? lo : f(values[i]);
-    const double u = (x - lo) / span;
-    t[i] = std::isfinite(u) ? static_cast<float>(std::clamp(u, 0.0, 1.0)) : 0.0f;
-  }
   table.resize(256);
   for (int i = 0; i < 256; ++i) {
     const double u = lo + span * i / 255.0;

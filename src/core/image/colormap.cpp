@@ -95,4 +95,23 @@ glm::vec2 quantile_range(const std::vector<float>& values, float lo, float hi) {
   return r;
 }
 
+std::vector<float> table_positions(const std::vector<float>& values, double lo, double hi,
+                                   bool log) {
+  log = log && lo > 0.0 && hi > 0.0;
+  const auto f = [log](double x) { return log ? std::log10(x) : x; };
+  const double a = f(lo), b = f(hi);
+  const double span = b > a ? b - a : 1.0;
+  std::vector<float> t(values.size());
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (std::isnan(values[i])) {
+      t[i] = values[i];
+      continue;
+    }
+    const double x = log && values[i] <= 0.0f ? a : f(values[i]);
+    const double u = (x - a) / span;
+    t[i] = std::isfinite(u) ? static_cast<float>(std::clamp(u, 0.0, 1.0)) : 0.0f;
+  }
+  return t;
+}
+
 }  // namespace ibfvs

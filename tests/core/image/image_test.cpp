@@ -1,6 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "helpers.h"
+#include "ibfvs/core/image/colormap.h"
 #include "ibfvs/core/image/image.h"
 #include "ibfvs/core/image/image_analysis.h"
 #include "ibfvs/core/support/error.h"
@@ -173,6 +176,37 @@ TEST(ImageAnalysis, GrainAlongTellsSmoothLinesFromAZipper) {
   EXPECT_NEAR(grain_along(white, mask, along, 4), 1.0, 0.1);
   std::vector<std::uint8_t> none(96 * 96, 0);
   EXPECT_TRUE(std::isnan(grain_along(smooth, none, along, 4)));
+}
+
+}  // namespace
+}  // namespace ibfvs
+
+namespace ibfvs {
+namespace {
+
+// A host's colour mapping (VTK's lookup tables): linear or base-10 log over
+// the range, clamped, NaN kept for the host's NaN colour.
+TEST(TablePositions, MapTheRangeLinearlyOrLogarithmicallyAndKeepNaN) {
+  const float nan = std::nanf("");
+  const std::vector<float> t =
+      table_positions({-1.0f, 0.0f, 5.0f, 10.0f, 20.0f, nan}, 0.0, 10.0, false);
+  EXPECT_FLOAT_EQ(t[0], 0.0f);
+  EXPECT_FLOAT_EQ(t[1], 0.0f);
+  EXPECT_FLOAT_EQ(t[2], 0.5f);
+  EXPECT_FLOAT_EQ(t[3], 1.0f);
+  EXPECT_FLOAT_EQ(t[4], 1.0f);
+  EXPECT_TRUE(std::isnan(t[5]));
+  const std::vector<float> l =
+      table_positions({1.0f, 10.0f, 100.0f, 0.0f, -3.0f}, 1.0, 100.0, true);
+  EXPECT_FLOAT_EQ(l[0], 0.0f);
+  EXPECT_FLOAT_EQ(l[1], 0.5f);
+  EXPECT_FLOAT_EQ(l[2], 1.0f);
+  EXPECT_FLOAT_EQ(l[3], 0.0f);  // at or below 0: the low end
+  EXPECT_FLOAT_EQ(l[4], 0.0f);
+  // A log scale over a range that reaches 0 maps linearly (as VTK does).
+  EXPECT_FLOAT_EQ(table_positions({5.0f}, 0.0, 10.0, true)[0], 0.5f);
+  // A range of zero width: everything at the low end.
+  EXPECT_FLOAT_EQ(table_positions({3.0f}, 3.0, 3.0, false)[0], 0.0f);
 }
 
 }  // namespace

@@ -38,6 +38,14 @@ struct EnumNames<ColorMap> {
 /// The colour at t in [0, 1] (clamped), interpolated linearly in the table.
 glm::vec3 color_map(ColorMap map, float t);
 
+/// Positions in a host's colour table (ParaView's, VTK's) for `values`
+/// mapped over the range [lo, hi] as the host maps them: linear, or with
+/// `log` the base-10 logarithm (values at or below 0 at lo), clamped to
+/// [0, 1]. NaN stays NaN (the host's NaN colour); a range of zero width
+/// maps everything to 0.
+std::vector<float> table_positions(const std::vector<float>& values, double lo, double hi,
+                                   bool log);
+
 /// A per-vertex scalar by name: a property of the mesh (PLY scalar, kmin and
 /// kmax after `ibfvs geometry`, a landscape's height), or one derived here:
 /// `speed` (|v| of `field`), `kmin`/`kmax` (computed when absent), `x`, `y`,

@@ -1,0 +1,185 @@
+#include "ibfvs/render/host_flow.h"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "ibfvs/core/scene/render_settings.h"
+#include "ibfvs/core/scene/scene_prep.h"
+#include "ibfvs/core/support/error.h"
+#include "ibfvs/gl/context.h"
+
+namespace ibfvs {
+
+HostFlow::HostFlow() {
+  scene_.field = FieldSpec::parse("file");
+}
+
+HostFlow::~HostFlow() {
+  // Without the host's context there is nothing to delete the objects in:
+  // they go with the context (a host releases before it closes).
+  static_cast<void>(session_.release());
+}
+
+void HostFlow::set_scene(const Scene& next) {
+  Scene s = next;
+  s.field = scene_.field;
+  s.width = scene_.width;
+  s.height = scene_.height;
+  {
+    RenderSettings check;  // every value checked before anything changes
+    apply_texture_settings(s, check);
+    check.validate();
+  }
+  bool restart = false, regrid = false, live = false;
+  for (const std::string_view key : changed_keys(scene_, s)) {
+    switch (change_effect(key, s, false)) {
+      case KeyEffect::kLive:
+      case KeyEffect::kStep:
+        live = true;
+        break;
+      case KeyEffect::kNoise:
+        (key == "scale" ? regrid : restart) = true;
+        break;
+      default:
+        restart = true;  // a key the texture cannot take on: it starts afresh
+    }
+  }
+  scene_ = std::move(s);
+  restart_ = restart_ || restart;
+  regrid_ = regrid_ || regrid;
+  settings_changed_ = settings_changed_ || live;
+}
+
+void HostFlow::set_frames_per_step(int frames) {
+  pacer_.set_frames_per_step(frames);
+}
+
+void HostFlow::set_surface(TriMesh mesh, const std::string& name) {
+  validate_mesh(mesh, name);
+  if (mesh.vectors.size() != mesh.positions.size())
+    throw InputError(name + ": " + std::to_string(mesh.vectors.size()) + " vectors for " +
+                     std::to_string(mesh.positions.size()) + " points");
+  float speed = 0.0f;
+  for (const glm::vec3& v : mesh.vectors)
+    if (const float l = glm::length(v); std::isfinite(l)) speed = std::max(speed, l);
+  const std::shared_ptr<const TriMesh>& last = mesh_;
+  const bool same = last && last->positions == mesh.positions &&
+                    last->triangles == mesh.triangles && last->vectors == mesh.vectors &&
+                    last->scalars == mesh.scalars && last->normals == mesh.normals;
+  if (same) return;
+  const bool moved = last && last->triangles == mesh.triangles && last->positions != mesh.positions;
+  mesh_ = std::make_shared<const TriMesh>(std::move(mesh));
+  name_ = name;
+  speed_ = speed;
+  data_changed_ = true;
+  points_moved_ = points_moved_ || moved;
+  colours_changed_ = true;
+}
+
+void HostFlow::set_colours(HostColours colours) {
+  if (colours == colours_) return;
+  colours_ = std::move(colours);
+  colours_changed_ = true;
+}
+
+void HostFlow::restart() {
+  restart_ = true;
+}
+
+void HostFlow::release() {
+  session_.reset();
+  restart_ = true;
+}
+
+// The session made (a restart, the first surface) or taking on a new size,
+// noise grid or data: the texture goes on from where it is, only a restart
+// starts it afresh.
+void HostFlow::update_session(int width, int height) {
+  const bool restart = restart_ || !session_;
+  if (restart) {
+    session_.reset();
+    frame_ = 0;
+    Scene s = scene_;
+    s.width = width;
+    s.height = height;
+    session_ = std::make_unique<Session>(prepare_scene(s, *mesh_, name_));
+    settings_changed_ = true;
+    colours_changed_ = true;
+  } else {
+    if (width != width_ || height != height_) session_->resize(width, height);
+    if (regrid_) {
+      session_->scene().scene.scale = scene_.scale;
+      session_->scene().settings.noise.scale = scene_.scale;
+      session_->rebuild(false);
+      settings_changed_ = true;
+      colours_changed_ = true;
+    }
+    if (data_changed_) {
+      session_->change_data(prepare_change(session_->scene(), *mesh_, name_));
+      settings_changed_ = true;
+      colours_changed_ = true;
+    }
+  }
+  width_ = width;
+  height_ = height;
+  restart_ = regrid_ = data_changed_ = points_moved_ = false;
+}
+
+// The texture settings, the host's colours and dt for this render.
+void HostFlow::apply_settings(const HostRender& r) {
+  IbfvsRenderer& renderer = session_->renderer();
+  const Bounds b = mesh_bounds(*session_->scene().mesh);
+  const float diagonal = glm::length(b.max - b.min);
+  if (diagonal > 0.0f && std::isfinite(diagonal)) renderer.set_probe_length(1e-3f * diagonal);
+  RenderSettings settings = renderer.settings();
+  const RenderSettings before = settings;
+  apply_texture_settings(scene_, settings);
+  settings.surface_color = r.surface_color;
+  const auto& prepared = session_->scene().mesh->scalars;
+  const auto t = prepared.find(kHostColour);
+  const bool coloured = !colours_.table.empty() && t != prepared.end();
+  if (coloured && colours_changed_) renderer.set_scalars(t->second, {});
+  colours_changed_ = false;
+  if (coloured) settings.surface_color = colours_.nan;  // what NaN positions show
+  settings.use_color = coloured;
+  settings.color_table = coloured ? colours_.table : std::vector<glm::vec3>{};
+  settings.color_range = glm::vec2(0.0f, 1.0f);
+  if (settings_changed_ || settings.use_color != before.use_color ||
+      settings.color_table != before.color_table ||
+      settings.surface_color != before.surface_color) {
+    renderer.update_settings(settings);
+    settings_changed_ = false;
+  }
+  // dt: the fastest vector moves `step` pixels at the focal point (every
+  // vector does, normalised in image space).
+  float dt = 0.0f;
+  if (scene_.step > 0.0f && speed_ > 0.0f)
+    dt = scene_.image_normalize ? 1.0f
+                                : static_cast<float>(scene_.step * r.world_per_pixel / speed_);
+  session_->set_dt(dt);
+  renderer.defer_statistics(false);
+}
+
+void HostFlow::render(const HostRender& r) {
+  if (!mesh_) throw InputError("no surface to draw the texture on (set_surface)");
+  if (const int v = gl::current_gl_version(); v < 45)
+    throw GraphicsError(v == 0 ? std::string("no OpenGL context is current: the host draws in its "
+                                             "own (render in its render callback)")
+                               : "needs OpenGL 4.5 (the host's context has " +
+                                     std::to_string(v / 10) + "." + std::to_string(v % 10) + ")");
+  const int width = std::max(r.width, 1), height = std::max(r.height, 1);
+  const bool restart = restart_ || !session_;
+  const int frames =
+      pacer_.next(data_changed_ || restart, restart,
+                  points_moved_ && !carries_surface(scene_.advect_view, scene_.field_frame));
+  update_session(width, height);
+  apply_settings(r);
+  for (int k = 0; k < frames; ++k) {
+    session_->render(r.view);
+    ++frame_;
+  }
+  session_->renderer().draw_to_host(r.origin);
+}
+
+}  // namespace ibfvs

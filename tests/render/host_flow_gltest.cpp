@@ -1,0 +1,225 @@
+// HostFlow: the texture in a host's own framebuffer, one host render at a
+// time (PyVista's actor drives it in VTK's context). Here a framebuffer with
+// a magenta background stands for the host's: the texture goes where the
+// surface is and nowhere else, behind the host's nearer depth; each render
+// is one texture frame (three at the first); the host's colour table colours
+// it; settings go on live or start afresh by their keys' rules; bad calls
+// throw, naming the problem.
+
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include <epoxy/gl.h>
+#include <gtest/gtest.h>
+#include <glm/geometric.hpp>
+
+#include "gl_fixture.h"
+#include "ibfvs/core/mesh/procedural.h"
+#include "ibfvs/core/scene/camera.h"
+#include "ibfvs/core/support/error.h"
+#include "ibfvs/gl/objects.h"
+#include "ibfvs/render/host_flow.h"
+
+namespace ibfvs {
+namespace {
+
+class HostFlowGLTest : public test::GlTest {};
+
+constexpr int kW = 160, kH = 120;
+
+TriMesh swirl_torus() {
+  TriMesh m = make_torus(1.0f, 0.4f, 96, 32);
+  m.vectors.resize(m.positions.size());
+  for (std::size_t i = 0; i < m.positions.size(); ++i)
+    m.vectors[i] = glm::cross(glm::vec3(0.0f, 1.0f, 0.0f), m.positions[i]);
+  return m;
+}
+
+struct Host {
+  gl::Texture2D colour, depth;
+  gl::Framebuffer fb;
+  Host()
+      : colour(kW, kH, gl::Format::RGBA8, false),
+        depth(kW, kH, gl::Format::Depth24, false),
+        fb(gl::Framebuffer::create()) {
+    fb.attach_color(0, colour);
+    fb.attach_depth(depth);
+    fb.finish(1);
+    clear();
+  }
+  void clear() {
+    fb.clear_color(0, glm::vec4(1.0f, 0.0f, 1.0f, 1.0f));  // magenta: the host's background
+    fb.clear_depth();
+  }
+  std::vector<std::uint8_t> read() const {
+    std::vector<std::uint8_t> out(static_cast<std::size_t>(kW) * kH * 4);
+    fb.read_rgba8(0, kW, kH, out);
+    return out;
+  }
+};
+
+HostRender host_render(const TriMesh& mesh) {
+  CameraParams params;
+  params.elevation_deg = 35.0f;
+  const Camera camera(mesh_bounds(mesh), params, static_cast<float>(kW) / kH);
+  HostRender r;
+  r.width = kW;
+  r.height = kH;
+  r.view = ViewState{camera.view(), camera.projection()};
+  r.world_per_pixel = camera.world_per_pixel(kH);
+  return r;
+}
+
+bool magenta(const std::vector<std::uint8_t>& p, std::size_t i) {
+  return p[4 * i] == 255 && p[4 * i + 1] == 0 && p[4 * i + 2] == 255;
+}
+
+// One host render: its framebuffer bound and its viewport set, as VTK has them.
+void draw(HostFlow& flow, Host& host, const HostRender& r) {
+  host.fb.bind();
+  gl::set_viewport(kW, kH);
+  flow.render(r);
+}
+
+TEST_F(HostFlowGLTest, EachRenderDrawsAFrameWhereTheSurfaceIsAndOnlyThere) {
+  const TriMesh mesh = swirl_torus();
+  HostFlow flow;
+  flow.set_surface(mesh, "the torus");
+  Host host;
+  const HostRender r = host_render(mesh);
+  draw(flow, host, r);
+  EXPECT_EQ(flow.frame(), kDefaultFramesPerStep);  // a new texture forms over a few
+  std::vector<std::uint8_t> a;
+  for (int k = 0; k < 20; ++k) {
+    host.clear();
+    draw(flow, host, r);
+    if (k == 18) a = host.read();
+  }
+  EXPECT_EQ(flow.frame(), kDefaultFramesPerStep + 20);  // then one a render
+  const std::vector<std::uint8_t> b = host.read();
+  std::size_t background = 0, changed = 0;
+  for (std::size_t i = 0; i < a.size() / 4; ++i) {
+    EXPECT_EQ(magenta(a, i), magenta(b, i)) << "the surface moved in the image at " << i;
+    if (magenta(b, i)) {
+      ++background;
+    } else {
+      changed += std::abs(int(a[4 * i]) - int(b[4 * i])) > 8;
+    }
+  }
+  const std::size_t n = a.size() / 4;
+  EXPECT_GT(background, n / 5);      // the host's background stays off the surface
+  EXPECT_LT(background, n * 4 / 5);  // and the surface covers a good part
+  EXPECT_GT(changed, (n - background) / 10) << "the texture did not move between renders";
+}
+
+TEST_F(HostFlowGLTest, TheHostsNearerDepthHidesTheTexture) {
+  const TriMesh mesh = swirl_torus();
+  HostFlow flow;
+  flow.set_surface(mesh, "the torus");
+  Host host;
+  const HostRender r = host_render(mesh);
+  draw(flow, host, r);
+  host.clear();
+  // The host drew something nearer than everything over the left half.
+  glEnable(GL_SCISSOR_TEST);
+  glScissor(0, 0, kW / 2, kH);
+  host.fb.clear_depth(0.0f);
+  glDisable(GL_SCISSOR_TEST);
+  draw(flow, host, r);
+  const std::vector<std::uint8_t> p = host.read();
+  std::size_t left = 0, right = 0;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      const std::size_t i = static_cast<std::size_t>(y) * kW + x;
+      (x < kW / 2 ? left : right) += !magenta(p, i);
+    }
+  EXPECT_EQ(left, 0u);
+  EXPECT_GT(right, static_cast<std::size_t>(kW * kH / 10));
+}
+
+TEST_F(HostFlowGLTest, TheHostsTableColoursTheSurfaceAtThePositionsGiven) {
+  TriMesh mesh = swirl_torus();
+  std::vector<float> t(mesh.positions.size());
+  for (std::size_t i = 0; i < t.size(); ++i) t[i] = mesh.positions[i].x < 0.0f ? 0.0f : 1.0f;
+  mesh.scalars[kHostColour] = t;
+  HostFlow flow;
+  flow.set_surface(mesh, "the torus");
+  HostColours colours;
+  for (int i = 0; i < 256; ++i) {
+    const float u = static_cast<float>(i) / 255.0f;
+    colours.table.emplace_back(1.0f - u, 0.2f, u);  // red to blue
+  }
+  flow.set_colours(colours);
+  Host host;
+  const HostRender r = host_render(mesh);
+  for (int k = 0; k < 5; ++k) draw(flow, host, r);
+  const std::vector<std::uint8_t> p = host.read();
+  // The camera looks at the torus from +Z (azimuth 0): -X on the left.
+  long red_left = 0, blue_right = 0, surface_left = 0, surface_right = 0;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      const std::size_t i = static_cast<std::size_t>(y) * kW + x;
+      if (magenta(p, i) || std::abs(x - kW / 2) < kW / 10) continue;
+      const int red = p[4 * i], blue = p[4 * i + 2];
+      if (x < kW / 2) {
+        ++surface_left;
+        red_left += red > blue + 10;
+      } else {
+        ++surface_right;
+        blue_right += blue > red + 10;
+      }
+    }
+  ASSERT_GT(surface_left, 200);
+  ASSERT_GT(surface_right, 200);
+  EXPECT_GT(red_left, surface_left * 9 / 10);
+  EXPECT_GT(blue_right, surface_right * 9 / 10);
+}
+
+TEST_F(HostFlowGLTest, SettingsGoOnLiveOrStartAfreshByTheirKeysRules) {
+  const TriMesh mesh = swirl_torus();
+  HostFlow flow;
+  flow.set_surface(mesh, "the torus");
+  Host host;
+  const HostRender r = host_render(mesh);
+  for (int k = 0; k < 5; ++k) draw(flow, host, r);
+  const int before = flow.frame();
+  Scene s = flow.scene();
+  s.alpha = 0.2f;
+  s.scale = 3.0f;  // a new noise grid: the texture goes on over it
+  flow.set_scene(s);
+  draw(flow, host, r);
+  EXPECT_EQ(flow.frame(), before + 1);
+  s.seed = 99;  // a new seed: afresh
+  flow.set_scene(s);
+  draw(flow, host, r);
+  EXPECT_EQ(flow.frame(), kDefaultFramesPerStep);
+  s.alpha = 7.0f;
+  EXPECT_THROW(flow.set_scene(s), SettingError);
+  EXPECT_EQ(flow.scene().alpha, 0.2f);  // nothing changed
+}
+
+TEST_F(HostFlowGLTest, BadCallsThrowNamingTheProblem) {
+  HostFlow flow;
+  Host host;
+  TriMesh mesh = swirl_torus();
+  EXPECT_THROW(draw(flow, host, host_render(mesh)), InputError);  // no surface yet
+  mesh.vectors.pop_back();
+  try {
+    flow.set_surface(mesh, "the torus");
+    ADD_FAILURE() << "vectors of the wrong count were taken";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("the torus"), std::string::npos) << e.what();
+  }
+  mesh = swirl_torus();
+  mesh.positions[3].y = std::nanf("");
+  EXPECT_THROW(flow.set_surface(mesh, "the torus"), InputError);
+  mesh = swirl_torus();
+  flow.set_surface(mesh, "the torus");
+  context().release_current();  // no host context
+  EXPECT_THROW(flow.render(host_render(mesh)), GraphicsError);
+  context().make_current();
+}
+
+}  // namespace
+}  // namespace ibfvs

@@ -10,6 +10,7 @@
 #include <pybind11/stl.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -22,6 +23,7 @@
 
 #include <glm/trigonometric.hpp>
 
+#include "ibfvs/core/image/colormap.h"
 #include "ibfvs/core/image/image.h"
 #include "ibfvs/core/scene/camera.h"
 #include "ibfvs/core/scene/scene.h"
@@ -30,6 +32,7 @@
 #include "ibfvs/gl/context.h"
 #include "ibfvs/page/web_page.h"
 #include "ibfvs/render/export.h"
+#include "ibfvs/render/host_flow.h"
 #include "ibfvs/render/session.h"
 #include "ibfvs/video/video_writer.h"
 #ifdef IBFVS_HAVE_VTK
@@ -311,6 +314,71 @@ TriMesh mesh_from_arrays(const Array<double>& points, const Array<std::int64_t>&
   return mesh;
 }
 
+// A 4x4 matrix as VTK hands it (row-major numpy) in glm's columns.
+glm::mat4 mat4_of(const Array<double>& a, const char* what) {
+  if (a.ndim() != 2 || a.shape(0) != 4 || a.shape(1) != 4)
+    throw py::value_error(std::string(what) + " must be a 4x4 matrix");
+  glm::mat4 m;
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) m[c][r] = static_cast<float>(a.data()[4 * r + c]);
+  return m;
+}
+
+// The flow texture in a host's own picture (ibfvs/pyvista.py: a VTK render
+// window's context, current in its render callback): HostFlow.
+class HostLayer {
+ public:
+  void set(const Options& options) {
+    Scene s = host_.scene();
+    std::vector<Setting> settings;
+    for (const auto& [key, text] : options) settings.push_back({key, text, ""});
+    apply_settings(s, settings);
+    host_.set_scene(s);
+  }
+  void set_frames_per_step(int frames) { host_.set_frames_per_step(frames); }
+
+  // points (n, 3), triangles (m, 3), vectors (n, 3); colour positions (n,)
+  // in the host's table where it colours by an array.
+  void set_surface(const Array<double>& points, const Array<std::int64_t>& triangles,
+                   const Array<double>& vectors, const std::optional<Array<double>>& colour,
+                   const std::string& name) {
+    std::map<std::string, py::array> arrays;
+    if (colour) arrays[kHostColour] = *colour;
+    TriMesh mesh = mesh_from_arrays(points, triangles, arrays, {});
+    mesh.vectors = vec3s(vectors, "vectors");
+    if (mesh.vectors.size() != mesh.positions.size())
+      throw py::value_error("vectors: " + std::to_string(mesh.vectors.size()) + " rows for " +
+                            std::to_string(mesh.positions.size()) + " points");
+    host_.set_surface(std::move(mesh), name);
+  }
+
+  void set_colours(const Array<double>& table, std::array<double, 3> nan) {
+    HostColours c;
+    if (table.size() > 0) c.table = vec3s(table, "table");
+    c.nan = glm::vec3(nan[0], nan[1], nan[2]);
+    host_.set_colours(std::move(c));
+  }
+
+  void render(std::array<int, 4> viewport, const Array<double>& view,
+              const Array<double>& projection, double world_per_pixel,
+              std::array<double, 3> surface_color) {
+    HostRender r;
+    r.origin = glm::ivec2(viewport[0], viewport[1]);
+    r.width = viewport[2];
+    r.height = viewport[3];
+    r.view = ViewState{mat4_of(view, "view"), mat4_of(projection, "projection")};
+    r.world_per_pixel = world_per_pixel;
+    r.surface_color = glm::vec3(surface_color[0], surface_color[1], surface_color[2]);
+    host_.render(r);
+  }
+
+  void release() { host_.release(); }
+  [[nodiscard]] int frame() const { return host_.frame(); }
+
+ private:
+  HostFlow host_;
+};
+
 }  // namespace
 }  // namespace ibfvs::python
 
@@ -348,6 +416,27 @@ PYBIND11_MODULE(_ibfvs, m) {
       },
       "Every scene key: (name, help, default text forms).");
 
+  m.attr("__version__") = IBFVS_VERSION;
+  m.def(
+      "table_positions",
+      [](const std::vector<float>& values, double lo, double hi, bool log) {
+        return ibfvs::table_positions(values, lo, hi, log);
+      },
+      py::arg("values"), py::arg("lo"), py::arg("hi"), py::arg("log"),
+      "Positions in a colour table of VALUES over [LO, HI] (log: base-10), as VTK maps them.");
+  py::class_<ibfvs::python::HostLayer>(m, "HostLayer",
+                                       "The flow texture drawn in a host's own OpenGL context "
+                                       "(ibfvs.pyvista); every call that draws needs it current.")
+      .def(py::init<>())
+      .def("set", &ibfvs::python::HostLayer::set, py::arg("options"))
+      .def("set_frames_per_step", &ibfvs::python::HostLayer::set_frames_per_step)
+      .def("set_surface", &ibfvs::python::HostLayer::set_surface, py::arg("points"),
+           py::arg("triangles"), py::arg("vectors"), py::arg("colour"), py::arg("name"))
+      .def("set_colours", &ibfvs::python::HostLayer::set_colours, py::arg("table"), py::arg("nan"))
+      .def("render", &ibfvs::python::HostLayer::render, py::arg("viewport"), py::arg("view"),
+           py::arg("projection"), py::arg("world_per_pixel"), py::arg("surface_color"))
+      .def("release", &ibfvs::python::HostLayer::release)
+      .def_property_readonly("frame", &ibfvs::python::HostLayer::frame);
   py::class_<Animation>(m, "Animation")
       .def(py::init([](const std::string& scene_file, const ibfvs::python::Options& options) {
              return std::make_unique<Animation>(ibfvs::python::scene_from(scene_file, options),

@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # The checks beyond the Release build and its tests (docs/reliability.md),
-# each timed: the sources as clang-format leaves them; every libFuzzer
+# each timed: the sources as clang-format leaves them; the pip package
+# (scripts/python-package.sh: the wheel built, repaired and tested with
+# PyVista in a fresh venv); every libFuzzer
 # harness for 12 seconds from a fixed seed (the fuzz preset: clang,
 # AddressSanitizer, UndefinedBehaviorSanitizer); and the asan-ubsan preset
 # (the dev preset's build with warnings as errors, plus AddressSanitizer and
@@ -39,6 +41,7 @@ sanitized() {
     ctest --test-dir build/asan -j2 -LE optimised --output-on-failure
 }
 stage "clang-format" format
+stage "pip package: wheel, auditwheel, its tests in a fresh venv" ./scripts/python-package.sh
 stage "fuzzers, 12 s each" fuzz
 if [[ ${1:-} != --no-asan ]]; then
   stage "asan-ubsan build (warnings as errors) and tests" sanitized

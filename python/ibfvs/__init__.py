@@ -25,8 +25,9 @@ import numpy as np
 
 from . import _ibfvs
 
-__all__ = ["render", "Animation", "Video", "keys", "has_vtk"]
+__all__ = ["render", "Animation", "Video", "keys", "has_vtk", "__version__"]
 
+__version__ = _ibfvs.__version__  # CMakeLists.txt's project(), the one version
 has_vtk = _ibfvs.has_vtk
 
 

@@ -300,3 +300,14 @@ def test_ctrl_c_interrupts_a_long_step():
     assert time.perf_counter() - start < 30
     assert 0 < anim.frame < 100000
     anim.step(1)  # still usable
+
+
+@pytest.mark.skipif(not ibfvs.has_vtk, reason="a build without ParaView's VTK")
+def test_the_pyvista_front_end_refuses_a_module_that_links_paraviews_vtk():
+    """One VTK a process: this module links ParaView's VTK, so ibfvs.pyvista
+    (PyPI's vtk) is refused before it loads a second one."""
+    import sys
+
+    with pytest.raises(ImportError, match="pip package"):
+        import ibfvs.pyvista  # noqa: F401
+    assert "pyvista" not in sys.modules

@@ -1,0 +1,28 @@
+"""docs/python.md's PyVista examples (```python pyvista blocks) run, in
+order, in the pip package's venv, writing into a temporary folder."""
+
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def test_every_pyvista_example_in_the_docs_runs(tmp_path, monkeypatch):
+    pytest.importorskip("imageio")
+    text = (ROOT / "docs" / "python.md").read_text()
+    blocks = re.findall(r"```python pyvista\n(.*?)```", text, re.S)
+    assert len(blocks) >= 2
+    monkeypatch.chdir(tmp_path)
+    namespace = {}
+    for block in blocks:
+        exec(compile(block, "docs/python.md", "exec"), namespace)
+    assert namespace["actor"].ibfvs.frame >= 30 and namespace["actor"].ibfvs.problem is None
+    for name in ("swirl.png", "swirl.mp4", "turning.mp4"):
+        assert (tmp_path / name).stat().st_size > 1000, name
+    from PIL import Image
+
+    picture = np.asarray(Image.open(tmp_path / "swirl.png"))
+    assert picture[..., :3].std() > 20  # the texture, not a blank plotter

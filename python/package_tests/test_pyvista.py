@@ -1,0 +1,356 @@
+"""ibfvs.pyvista.add_flow in a PyVista plotter, as a PyVista user draws:
+the texture aligned with the true flow and animating from render to render,
+coloured as add_mesh colours, hidden by nearer actors, on the surface and
+only there, kept on the surface by a turning camera and carried by moving
+points; one VTK in the process; bad input a Python exception."""
+
+import colorsys
+import math
+import os
+import shutil
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+import pyvista as pv
+from PIL import Image
+
+import ibfvs
+import ibfvs.pyvista
+
+SIZE = (320, 240)
+SCALE = 1.2  # the parallel scale: the unit sphere fills 1/1.2 of the height
+
+
+def swirl_sphere(res=96):
+    """The unit sphere, its swirl about +Z and scalars to colour by."""
+    s = pv.Sphere(radius=1.0, theta_resolution=res, phi_resolution=res)
+    s.point_data["swirl"] = np.cross([0.0, 0.0, 1.0], s.points)
+    s.point_data["height"] = s.points[:, 2]
+    s.point_data["level"] = 1.0 + 99.0 * (s.points[:, 1] + 1.0) / 2.0  # 1..100, for log scale
+    s.point_data["flat"] = np.stack([s.points[:, 0], s.points[:, 1]], axis=1)  # 2 components
+    s.cell_data["band"] = s.cell_centers().points[:, 0]
+    s.point_data["east"] = np.tile([1.0, 0.0, 0.0], (s.n_points, 1))  # on the surface: projected
+    return s
+
+
+def plotter(size=SIZE):
+    p = pv.Plotter(off_screen=True, window_size=size)
+    p.set_background("white")
+    return p
+
+
+def look_down_z(p):
+    """The camera on +Z looking at the origin, Y up, parallel projection."""
+    p.camera.position = (0.0, 0.0, 5.0)
+    p.camera.focal_point = (0.0, 0.0, 0.0)
+    p.camera.up = (0.0, 1.0, 0.0)
+    p.enable_parallel_projection()
+    p.camera.parallel_scale = SCALE
+
+
+def start(p):
+    p.show(auto_close=False)  # off screen: the first render
+    return p
+
+
+def frames(p, n):
+    """N renders (each a texture frame), the last as an RGB picture."""
+    for _ in range(n):
+        p.render()
+    return p.screenshot(return_img=True)[..., :3]
+
+
+def radius_map(size=SIZE):
+    """Per pixel: its distance from the image centre in world units, and
+    the unit image direction of the swirl there (x right, y up)."""
+    w, h = size
+    px = np.arange(w) + 0.5 - w / 2.0
+    py = h / 2.0 - (np.arange(h) + 0.5)
+    x, y = np.meshgrid(px, py)
+    per_unit = (h / 2.0) / SCALE
+    r = np.hypot(x, y)
+    d = np.stack([-y, x], axis=-1) / np.maximum(r, 1e-9)[..., None]
+    return r / per_unit, d
+
+
+def direction_png(path, size=SIZE):
+    """The swirl's image direction as `ibfvs quality --direction` takes it
+    (red, green 0.5 + 0.5 x, y; blue 255 where defined: off the silhouette
+    and the pole)."""
+    r, d = radius_map(size)
+    ok = (r > 0.15) & (r < 0.85)
+    rgb = np.zeros(r.shape + (3,), np.uint8)
+    rgb[..., 0] = np.clip(np.round(127.5 + 127.5 * np.where(ok, d[..., 0], 0)), 0, 255)
+    rgb[..., 1] = np.clip(np.round(127.5 + 127.5 * np.where(ok, d[..., 1], 0)), 0, 255)
+    rgb[..., 2] = np.where(ok, 255, 0)
+    Image.fromarray(rgb).save(path)
+    return path
+
+
+def ibfvs_command():
+    exe = shutil.which("ibfvs", path=os.path.dirname(sys.executable))
+    assert exe, "the console script ibfvs is not installed beside this Python"
+    return exe
+
+
+def alignment(picture, tmp_path, name="picture"):
+    """A and W of `ibfvs quality` (the measure of the other picture tests)."""
+    png = tmp_path / f"{name}.png"
+    Image.fromarray(picture).save(png)
+    done = subprocess.run([ibfvs_command(), "quality", "--png", str(png), "--direction",
+                           str(direction_png(tmp_path / f"{name}-direction.png"))],
+                          capture_output=True, text=True, check=True).stdout
+    values = {}
+    for line in done.splitlines():
+        if "alignment A" in line:
+            values["A"] = float(line.split()[2])
+        if "streak width W" in line:
+            values["W"] = float(line.split()[3])
+    assert "A" in values, done
+    return values
+
+
+def hues(picture, mask):
+    """Hue in degrees and saturation of the masked pixels."""
+    rgb = picture[mask].astype(float) / 255.0
+    hsv = np.array([colorsys.rgb_to_hsv(*c) for c in rgb])
+    return hsv[:, 0] * 360.0, hsv[:, 1]
+
+
+def hue_difference(a, b):
+    d = np.abs(a - b) % 360.0
+    return np.minimum(d, 360.0 - d)
+
+
+def test_one_version_everywhere():
+    from importlib.metadata import version
+
+    out = subprocess.run([ibfvs_command(), "--version"], capture_output=True, text=True,
+                         check=True).stdout
+    assert ibfvs.__version__ == version("ibfvs") == out.split()[0]
+    source = os.environ.get("IBFVS_SOURCE_DIR")
+    if source:
+        with open(os.path.join(source, "CMakeLists.txt")) as f:
+            assert f"project(ibfvs VERSION {ibfvs.__version__}" in f.read()
+
+
+def test_the_swirl_is_drawn_along_the_flow_and_animates(tmp_path):
+    p = start(plotter())
+    actor = ibfvs.pyvista.add_flow(p, swirl_sphere(), vectors="swirl", scalars="height",
+                                   cmap="viridis", show_scalar_bar=False)
+    look_down_z(p)
+    a = frames(p, 40)
+    b = frames(p, 1)
+    assert actor.ibfvs.problem is None
+    assert actor.ibfvs.frame >= 41  # one frame a render
+    measured = alignment(a, tmp_path)
+    assert measured["A"] > 0.9, measured  # random noise: about 0.5
+    r, _ = radius_map()
+    surface, outside = r < 0.9, r > 1.05
+    change = np.abs(a.astype(int) - b.astype(int)).mean(axis=2)
+    assert change[surface].mean() > 3.0, "the texture stood still from one render to the next"
+    assert change[outside].max() == 0, "the background changed"
+    assert (a[outside] == 255).all(), "texture off the surface"
+    assert (a[surface] == 255).all(axis=1).mean() < 0.01, "background on the surface"
+
+
+@pytest.mark.parametrize("keywords", [
+    {"scalars": "height", "cmap": "coolwarm"},
+    {"scalars": "height", "cmap": "viridis", "clim": (-0.2, 0.6)},
+    {"scalars": "level", "cmap": "plasma", "log_scale": True},
+    {"scalars": "band", "cmap": "turbo"},  # cell data
+    {"color": "tomato"},
+], ids=["point", "clim", "log", "cell", "colour"])
+def test_colours_are_add_mesh_colours(keywords):
+    """Hue where the surface is coloured, against add_mesh with the same
+    keywords: the texture changes lightness, never the colour."""
+    pictures = []
+    for flow in (False, True):
+        p = start(plotter())
+        kw = dict(keywords, show_scalar_bar=False)
+        if flow:
+            ibfvs.pyvista.add_flow(p, swirl_sphere(), vectors="swirl", **kw)
+        else:
+            p.add_mesh(swirl_sphere(), **kw)
+        look_down_z(p)
+        pictures.append(frames(p, 30))
+    r, _ = radius_map()
+    mask = r < 0.8
+    mesh_hue, mesh_sat = hues(pictures[0], mask)
+    flow_hue, flow_sat = hues(pictures[1], mask)
+    coloured = (mesh_sat > 0.25) & (flow_sat > 0.25)
+    assert coloured.mean() > 0.3, "too few coloured pixels to compare"
+    d = hue_difference(mesh_hue[coloured], flow_hue[coloured])
+    assert np.median(d) < 4.0 and np.percentile(d, 90) < 12.0, (np.median(d),
+                                                               np.percentile(d, 90))
+
+
+def test_nearer_actors_hide_the_texture_and_the_scalar_bar_stays():
+    p = start(plotter())
+    ibfvs.pyvista.add_flow(p, swirl_sphere(), vectors="swirl", scalars="height")
+    p.add_mesh(pv.Cube(center=(0.5, 0.0, 1.5), x_length=0.5, y_length=0.5, z_length=0.5),
+               color="red", lighting=False)
+    look_down_z(p)
+    a = frames(p, 20)
+    w, h = SIZE
+    per_unit = (h / 2.0) / SCALE
+    cx, cy = int(w / 2 + 0.5 * per_unit), int(h / 2)
+    patch = a[cy - 5:cy + 5, cx - 5:cx + 5].reshape(-1, 3)
+    assert (patch[:, 0] > 200).all() and (patch[:, 1] < 60).all() and (patch[:, 2] < 60).all()
+    # The scalar bar, drawn after the surfaces, is not covered by the texture:
+    # where it is, the picture is add_mesh's.
+    plain = []
+    for bar in (True, False):
+        q = start(plotter())
+        q.add_mesh(swirl_sphere(), scalars="height", show_scalar_bar=bar)
+        look_down_z(q)
+        plain.append(frames(q, 1))
+    bar = np.abs(plain[0].astype(int) - plain[1].astype(int)).max(axis=2) > 40
+    assert bar.sum() > 500
+    same = np.abs(plain[0][bar].astype(int) - a[bar].astype(int)).max(axis=1) < 40
+    assert same.mean() > 0.95, same.mean()  # all but the text's edges over the sphere
+
+
+def turned(picture, degrees):
+    """The picture turned about its centre (counter-clockwise)."""
+    return np.asarray(Image.fromarray(picture.astype(np.uint8)).rotate(degrees,
+                                                                       resample=Image.BILINEAR))
+
+
+def test_a_turning_camera_keeps_the_texture_on_the_surface():
+    """A roll of the camera about its axis turns the picture of the sphere:
+    the texture (streaks along X) turns with it, on the surface, rather than
+    standing in the image."""
+    p = start(plotter(size=(240, 240)))
+    ibfvs.pyvista.add_flow(p, swirl_sphere(), vectors="east", step=0.05)
+    look_down_z(p)
+    before = frames(p, 40).mean(axis=2)
+    p.camera.roll += 30.0
+    after = frames(p, 1).mean(axis=2)
+    r, _ = radius_map((240, 240))
+    mask = (r > 0.1) & (r < 0.7)
+    on_surface = np.corrcoef(after[mask], turned(before, 30.0)[mask])[0, 1]
+    in_image = np.corrcoef(after[mask], before[mask])[0, 1]
+    assert on_surface > 0.6 and on_surface > in_image + 0.3, (on_surface, in_image)
+
+
+def test_moving_points_carry_the_texture_from_step_to_step():
+    """A time step that turns the sphere 30 degrees about the view axis, its
+    vectors with it (FlowLayer.update, as a moving mesh's next step): the
+    texture turns with the points."""
+    sphere = swirl_sphere()
+    p = start(plotter(size=(240, 240)))
+    actor = ibfvs.pyvista.add_flow(p, sphere, vectors="east", step=0.05)
+    look_down_z(p)
+    before = frames(p, 40).mean(axis=2)
+    moved = sphere.rotate_z(30.0, inplace=False)
+    c, s = math.cos(math.radians(30.0)), math.sin(math.radians(30.0))
+    moved.point_data["east"] = np.tile([c, s, 0.0], (moved.n_points, 1))
+    actor.ibfvs.update(moved)
+    after = frames(p, 1).mean(axis=2)
+    r, _ = radius_map((240, 240))
+    mask = (r > 0.1) & (r < 0.7)
+    carried = np.corrcoef(after[mask], turned(before, 30.0)[mask])[0, 1]
+    left = np.corrcoef(after[mask], before[mask])[0, 1]
+    assert carried > 0.6 and carried > left + 0.3, (carried, left)
+
+
+def test_a_movie_takes_one_texture_frame_a_picture(tmp_path):
+    pytest.importorskip("imageio")
+    p = plotter()
+    actor = ibfvs.pyvista.add_flow(p, swirl_sphere(), vectors="swirl")
+    look_down_z(p)
+    p.open_movie(str(tmp_path / "swirl.mp4"), framerate=10)
+    for _ in range(10):
+        p.write_frame()
+    p.close()
+    assert actor.ibfvs.frame >= 10
+    assert (tmp_path / "swirl.mp4").stat().st_size > 1000
+
+
+def test_settings_are_the_scene_keys_and_go_on_live():
+    p = start(plotter())
+    actor = ibfvs.pyvista.add_flow(p, swirl_sphere(), vectors="swirl", alpha=0.2, scale=3.0,
+                                   style="surface")
+    look_down_z(p)
+    frames(p, 5)
+    actor.ibfvs.set(alpha=0.05, contrast=0.2)
+    frames(p, 5)
+    assert actor.ibfvs.frame >= 10  # the texture went on through the change
+    with pytest.raises(ValueError, match="alpha"):
+        actor.ibfvs.set(alpha=5.0)
+    with pytest.raises(TypeError, match="not a texture setting"):
+        actor.ibfvs.set(camera="iso")
+
+
+def test_the_mesh_accessor_adds_the_flow():
+    p = start(plotter())
+    actor = swirl_sphere().ibfvs.add_flow(p, vectors="swirl")
+    look_down_z(p)
+    frames(p, 3)
+    assert actor.ibfvs.frame >= 3 and actor.ibfvs.problem is None
+
+
+def test_bad_input_raises_naming_the_problem():
+    p = plotter()
+    s = swirl_sphere()
+    with pytest.raises(ValueError, match="no array named 'wind'.*swirl"):
+        ibfvs.pyvista.add_flow(p, s, vectors="wind")
+    with pytest.raises(ValueError, match="'flat' has 2 components"):
+        ibfvs.pyvista.add_flow(p, s, vectors="flat")
+    bad = s.copy()
+    bad.points[7] = np.nan
+    with pytest.raises(ValueError, match="point 7 has a non-finite coordinate"):
+        ibfvs.pyvista.add_flow(p, bad, vectors="swirl")
+    with pytest.raises(TypeError, match="pyvista.Plotter"):
+        ibfvs.pyvista.add_flow("not a plotter", s, vectors="swirl")
+    with pytest.raises(TypeError, match="mesh must be"):
+        ibfvs.pyvista.add_flow(p, 42, vectors="swirl")
+    with pytest.raises(ValueError, match="opacity"):
+        ibfvs.pyvista.add_flow(p, s, vectors="swirl", opacity=0.5)
+    with pytest.raises(ValueError, match="alpha"):
+        ibfvs.pyvista.add_flow(p, s, vectors="swirl", alpha=-1.0)
+    p.close()
+    with pytest.raises(ValueError, match="closed"):
+        ibfvs.pyvista.add_flow(p, s, vectors="swirl")
+
+
+def test_one_vtk_in_the_process():
+    """ibfvs and pyvista side by side map one libvtkCommonCore: pip's."""
+    p = start(plotter())
+    ibfvs.pyvista.add_flow(p, swirl_sphere(), vectors="swirl")
+    frames(p, 2)
+    with open("/proc/self/maps") as f:
+        paths = {line.split()[-1] for line in f if "libvtkCommonCore" in line}
+    assert len(paths) == 1, paths
+    import vtkmodules
+
+    assert next(iter(paths)).startswith(os.path.dirname(vtkmodules.__file__)), paths
+    assert not any("paraview" in path for path in paths)
+
+
+def test_the_wheel_carries_its_libraries():
+    """The repaired wheel needs nothing beyond the system libraries every
+    Linux has (auditwheel's manylinux policy), and the installed module and
+    command find every library they link."""
+    wheel = os.environ.get("IBFVS_WHEEL")
+    tool = os.environ.get("IBFVS_AUDITWHEEL")
+    if not wheel or not tool:
+        pytest.skip("run by scripts/python-package.sh, which sets IBFVS_WHEEL")
+    shown = subprocess.run([tool, "show", wheel], capture_output=True, text=True,
+                           check=True).stdout
+    assert "consistent with the following platform tag" in " ".join(shown.split()), shown
+    assert "external shared libraries" not in shown, shown
+    package = os.path.dirname(ibfvs.__file__)
+    for binary in (ibfvs._ibfvs.__file__, os.path.join(package, "bin", "ibfvs")):
+        linked = subprocess.run(["ldd", binary], capture_output=True, text=True,
+                                check=True).stdout
+        assert "not found" not in linked, linked
+        bundled = [line for line in linked.splitlines() if "ibfvs.libs" in line]
+        assert bundled, f"{binary} links no bundled library:\n{linked}"
+        for name in ("libpng", "libnetcdf", "libavcodec", "libepoxy", "libOpenMesh"):
+            for line in linked.splitlines():
+                if name in line:
+                    assert "ibfvs.libs" in line, f"{name} from the system: {line}"

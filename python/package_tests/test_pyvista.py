@@ -354,3 +354,43 @@ def test_the_wheel_carries_its_libraries():
             for line in linked.splitlines():
                 if name in line:
                     assert "ibfvs.libs" in line, f"{name} from the system: {line}"
+
+
+def test_a_pvd_series_read_by_pyvista_plays_into_a_movie_carrying_the_texture(tmp_path):
+    """A .pvd of a sphere turning 10 degrees a step (written as VTK's XML
+    files), read by PyVista's own reader and played step by step into a
+    movie: each step goes on from the last, its moved points carrying the
+    texture (after three steps it has turned 30 degrees with them)."""
+    pytest.importorskip("imageio")
+    sphere = swirl_sphere()
+    entries = []
+    for k in range(4):
+        step = sphere.rotate_z(10.0 * k, inplace=False)
+        a = math.radians(10.0 * k)
+        step.point_data["east"] = np.tile([math.cos(a), math.sin(a), 0.0], (step.n_points, 1))
+        step.save(tmp_path / f"sphere_{k}.vtp")
+        entries.append(f'<DataSet timestep="{k}" part="0" file="sphere_{k}.vtp"/>')
+    (tmp_path / "sphere.pvd").write_text(
+        '<?xml version="1.0"?>\n<VTKFile type="Collection" version="0.1">\n<Collection>\n' +
+        "\n".join(entries) + "\n</Collection>\n</VTKFile>\n")
+    reader = pv.get_reader(str(tmp_path / "sphere.pvd"))
+    assert list(reader.time_values) == [0.0, 1.0, 2.0, 3.0]
+    reader.set_active_time_value(0.0)
+    p = start(plotter(size=(240, 240)))
+    actor = ibfvs.pyvista.add_flow(p, reader.read(), vectors="east", step=0.05,
+                                   frames_per_step=1)
+    look_down_z(p)
+    before = frames(p, 40).mean(axis=2)
+    p.open_movie(str(tmp_path / "series.mp4"), framerate=4)
+    for t in reader.time_values[1:]:
+        reader.set_active_time_value(t)
+        actor.ibfvs.update(reader.read())
+        p.write_frame()
+    after = p.screenshot(return_img=True)[..., :3].mean(axis=2)
+    p.close()
+    assert (tmp_path / "series.mp4").stat().st_size > 1000
+    r, _ = radius_map((240, 240))
+    mask = (r > 0.1) & (r < 0.7)
+    carried = np.corrcoef(after[mask], turned(before, 30.0)[mask])[0, 1]
+    left = np.corrcoef(after[mask], before[mask])[0, 1]
+    assert carried > 0.5 and carried > left + 0.3, (carried, left)

@@ -149,6 +149,7 @@ class FlowLayer:
 
     def __init__(self, plotter, actor, vectors, settings, frames_per_step):
         self._plotter = plotter
+        self._renderer = plotter.renderer  # the subplot add_mesh put the actor in
         self._actor = actor
         self._layer = _ibfvs.HostLayer()
         self._vectors = vectors
@@ -299,8 +300,7 @@ class FlowLayer:
     # ------------------------------------------------------------ the draw
 
     def _draw(self, mapper, event):
-        plotter = self._plotter
-        renderer = plotter.renderer if self._renderer is None else self._renderer
+        renderer = self._renderer
         if renderer.GetSelector() is not None:
             return
         window = renderer.GetRenderWindow()
@@ -339,8 +339,6 @@ class FlowLayer:
             self._tag = None
         warnings.warn(f"ibfvs: {problem}; drawing the plain surface", RuntimeWarning, stacklevel=2)
 
-    _renderer = None
-
 
 def add_flow(plotter, mesh, vectors=None, *, frames_per_step=None, animate=True, **keywords):
     """Adds `mesh` to `plotter` with the animated flow texture of its array
@@ -374,7 +372,6 @@ def add_flow(plotter, mesh, vectors=None, *, frames_per_step=None, animate=True,
         raise ValueError("opacity: the flow texture is drawn on opaque surfaces (opacity 1)")
     actor = plotter.add_mesh(surface, **mesh_keywords)
     layer = FlowLayer(plotter, actor, name, settings, frames_per_step)
-    layer._renderer = plotter.renderer
     pv.set_new_attribute(actor, "ibfvs", layer)
     if animate and not plotter.off_screen:
         _animate(plotter)

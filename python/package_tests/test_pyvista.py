@@ -394,3 +394,32 @@ def test_a_pvd_series_read_by_pyvista_plays_into_a_movie_carrying_the_texture(tm
     carried = np.corrcoef(after[mask], turned(before, 30.0)[mask])[0, 1]
     left = np.corrcoef(after[mask], before[mask])[0, 1]
     assert carried > 0.5 and carried > left + 0.3, (carried, left)
+
+
+WINDOW = """
+import time, numpy as np, pyvista as pv, ibfvs.pyvista
+s = pv.Sphere(radius=1.0, theta_resolution=80, phi_resolution=80)
+s["swirl"] = np.cross([0, 0, 1.0], s.points)
+p = pv.Plotter(window_size=(320, 240))
+a = ibfvs.pyvista.add_flow(p, s, vectors="swirl", scalars=s.points[:, 2])
+p.show(interactive_update=True, auto_close=False)
+start = time.time()
+while time.time() - start < 2.0:
+    p.update(1)                      # the window's events: its timer renders
+print(type(p.render_window).__name__, a.ibfvs.frame, a.ibfvs.problem)
+p.close()
+"""
+
+
+def test_a_window_animates_by_itself_under_x():
+    """A plotter with a window (VTK's GLX window, under Xvfb): add_flow's
+    timer renders on its own, about 30 frames a second, with the texture."""
+    xvfb = shutil.which("xvfb-run")
+    assert xvfb, "xvfb-run (Debian's xvfb) is missing"
+    env = {k: v for k, v in os.environ.items() if k != "VTK_DEFAULT_OPENGL_WINDOW"}
+    done = subprocess.run([xvfb, "-a", "-s", "-noreset -screen 0 1024x768x24", sys.executable,
+                           "-c", WINDOW], capture_output=True, text=True, timeout=120, env=env)
+    assert done.returncode == 0, done.stderr[-2000:]
+    window, frames, problem = done.stdout.split()[-3:]
+    assert window == "vtkXOpenGLRenderWindow"
+    assert int(frames) >= 20 and problem == "None", done.stdout

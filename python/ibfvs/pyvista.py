@@ -222,6 +222,9 @@ class FlowLayer:
         lut = m.GetLookupTable()
         if not m.GetScalarVisibility() or lut is None:
             return None, None
+        if m.GetColorMode() == 2:  # VTK_COLOR_MODE_DIRECT_SCALARS: no table to map through
+            raise ValueError("colours given directly (rgb) are not drawn under the flow texture "
+                             "yet; colour by a scalar array with a cmap")
         surface = self._surface
         # VTK's scalar modes: 0 the active point scalars, else the active
         # cell scalars; 1 and 2 the active point or cell scalars; 3 and 4 the
@@ -370,6 +373,9 @@ def add_flow(plotter, mesh, vectors=None, *, frames_per_step=None, animate=True,
             mesh_keywords[key] = value
     if mesh_keywords.get("opacity", 1.0) not in (1, 1.0, None):
         raise ValueError("opacity: the flow texture is drawn on opaque surfaces (opacity 1)")
+    if mesh_keywords.get("rgb") or mesh_keywords.get("rgba"):
+        raise ValueError("rgb: colours given directly are not drawn under the flow texture yet; "
+                         "colour by a scalar array with a cmap")
     actor = plotter.add_mesh(surface, **mesh_keywords)
     layer = FlowLayer(plotter, actor, name, settings, frames_per_step)
     pv.set_new_attribute(actor, "ibfvs", layer)

@@ -310,6 +310,8 @@ def test_bad_input_raises_naming_the_problem():
         ibfvs.pyvista.add_flow(p, 42, vectors="swirl")
     with pytest.raises(ValueError, match="opacity"):
         ibfvs.pyvista.add_flow(p, s, vectors="swirl", opacity=0.5)
+    with pytest.raises(ValueError, match="rgb"):  # never a picture in the wrong colours
+        ibfvs.pyvista.add_flow(p, s, vectors="swirl", scalars="swirl", rgb=True)
     with pytest.raises(ValueError, match="alpha"):
         ibfvs.pyvista.add_flow(p, s, vectors="swirl", alpha=-1.0)
     p.close()

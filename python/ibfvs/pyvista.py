@@ -74,7 +74,9 @@ def _surface(mesh):
             raise ValueError("mesh: the MultiBlock is empty")
         mesh = mesh.combine(merge_points=False)
     if not isinstance(mesh, pv.PolyData):
-        mesh = mesh.extract_surface()
+        mesh = mesh.extract_surface(algorithm="dataset_surface")
+    if mesh.GetStrips() is not None and mesh.GetStrips().GetNumberOfCells() > 0:
+        mesh = mesh.triangulate()  # triangle strips: their triangles (polygons stay as they are)
     if mesh.n_points == 0 or mesh.n_cells == 0:
         raise ValueError("mesh has no surface to draw (no points or no polygons)")
     if not np.all(np.isfinite(mesh.points)):
@@ -315,8 +317,7 @@ class FlowLayer:
         projection = _vtk_matrix(camera.GetProjectionTransformMatrix(width / height, -1, 1))
         try:
             self._surface = pv.wrap(self._mapper.GetInput())  # brought up to date by VTK
-            key = (self._mapper.GetMTime(), self._lut_time(), id(self._surface),
-                   self._surface.GetMTime())
+            key = self._content_key()
             if key != self._colour_key:
                 self._send_surface()
                 self._colour_key = key
@@ -329,9 +330,28 @@ class FlowLayer:
         finally:
             window.GetState().Reset()
 
-    def _lut_time(self):
-        lut = self._mapper.GetLookupTable()
-        return lut.GetMTime() if lut is not None else 0
+    def _content_key(self):
+        """What the texture takes from the surface and the mapper's colours:
+        the same key, nothing to send. add_mesh's pipeline hands the mapper a
+        new shallow copy at every render (its MTime moves): the arrays are the
+        same objects, so they are compared by address and modification time."""
+        def array(a):
+            return None if a is None else (a.GetAddressAsString("vtkObject"), a.GetMTime())
+
+        surface = self._surface
+        data = []
+        for fields in (surface.GetPointData(), surface.GetCellData()):
+            for i in range(fields.GetNumberOfArrays()):
+                data.append((fields.GetArrayName(i), array(fields.GetAbstractArray(i))))
+            scalars = fields.GetScalars()
+            data.append(scalars.GetName() if scalars is not None else None)
+        points = surface.GetPoints()
+        m = self._mapper
+        lut = m.GetLookupTable()
+        return (array(points.GetData()) if points is not None else None,
+                array(surface.GetPolys()), tuple(data), m.GetScalarVisibility(), m.GetScalarMode(),
+                m.GetArrayName(), m.GetColorMode(), tuple(m.GetScalarRange()),
+                m.GetUseLookupTableScalarRange(), lut.GetMTime() if lut is not None else 0)
 
     def _fail(self, problem):
         """The plain surface from now on, and one warning that says why."""

@@ -187,6 +187,43 @@ def test_colours_are_add_mesh_colours(keywords):
                                                                np.percentile(d, 90))
 
 
+def test_colours_changed_on_a_live_plotter_are_taken_the_surface_sent_once():
+    """The colour map changed between renders reaches the texture; renders
+    with nothing changed send the surface no more (add_mesh's pipeline hands
+    the mapper a new copy each render: its arrays are the same)."""
+    p = start(plotter())
+    actor = ibfvs.pyvista.add_flow(p, swirl_sphere(), vectors="swirl", scalars="height",
+                                   cmap="Reds", show_scalar_bar=False)
+    look_down_z(p)
+    sent = []
+    layer = actor.ibfvs
+    original = layer._send_surface
+    layer._send_surface = lambda: (sent.append(1), original())
+    red = frames(p, 10)
+    assert len(sent) == 1
+    actor.mapper.lookup_table.cmap = "Blues"
+    blue = frames(p, 3)
+    assert len(sent) == 2
+    r, _ = radius_map()
+    mask = r < 0.8
+    before, after = red[mask].astype(int), blue[mask].astype(int)
+    assert (before[:, 0] - before[:, 2]).mean() > 20  # reddish
+    assert (after[:, 2] - after[:, 0]).mean() > 20  # bluish
+
+
+def test_triangle_strips_are_drawn_whole():
+    """A surface of triangle strips (vtkStripper's, PyVista's strip()) is
+    drawn with its every triangle: no background on the sphere."""
+    stripped = swirl_sphere().strip()
+    assert stripped.GetStrips().GetNumberOfCells() > 0
+    p = start(plotter())
+    ibfvs.pyvista.add_flow(p, stripped, vectors="swirl")
+    look_down_z(p)
+    a = frames(p, 10)
+    r, _ = radius_map()
+    assert (a[r < 0.9] == 255).all(axis=1).mean() < 0.01
+
+
 def test_nearer_actors_hide_the_texture_and_the_scalar_bar_stays():
     p = start(plotter())
     ibfvs.pyvista.add_flow(p, swirl_sphere(), vectors="swirl", scalars="height")

@@ -305,17 +305,18 @@ class FlowLayer:
     # ------------------------------------------------------------ the draw
 
     def _draw(self, mapper, event):
+        """The mapper's EndEvent: VTK's context current, its framebuffer bound."""
         renderer = self._renderer
         if renderer.GetSelector() is not None:
-            return
+            return  # picking: VTK's own ids, no texture
         window = renderer.GetRenderWindow()
-        (w, h), (x0, y0) = renderer.GetSize(), renderer.GetOrigin()  # its viewport, pixels
-        width, height = max(int(w), 1), max(int(h), 1)
-        camera = renderer.GetActiveCamera()
-        view = _vtk_matrix(camera.GetModelViewTransformMatrix()) @ _vtk_matrix(
-            self._actor.GetMatrix())
-        projection = _vtk_matrix(camera.GetProjectionTransformMatrix(width / height, -1, 1))
         try:
+            (w, h), (x0, y0) = renderer.GetSize(), renderer.GetOrigin()  # its viewport, pixels
+            width, height = max(int(w), 1), max(int(h), 1)
+            camera = renderer.GetActiveCamera()
+            view = _vtk_matrix(camera.GetModelViewTransformMatrix()) @ _vtk_matrix(
+                self._actor.GetMatrix())
+            projection = _vtk_matrix(camera.GetProjectionTransformMatrix(width / height, -1, 1))
             self._surface = pv.wrap(self._mapper.GetInput())  # brought up to date by VTK
             key = self._content_key()
             if key != self._colour_key:
@@ -398,6 +399,13 @@ def add_flow(plotter, mesh, vectors=None, *, frames_per_step=None, animate=True,
                          "colour by a scalar array with a cmap")
     actor = plotter.add_mesh(surface, **mesh_keywords)
     layer = FlowLayer(plotter, actor, name, settings, frames_per_step)
+    # The plotter keeps the layer as long as itself. Else the layer, its
+    # mapper's Python wrapper and the observer's bound method are a cycle that
+    # Python's collector finds unreachable once the caller drops the actor,
+    # and clears while VTK still calls it: the surface vanished.
+    if not hasattr(plotter, "_ibfvs_layers"):
+        plotter._ibfvs_layers = []
+    plotter._ibfvs_layers.append(layer)
     pv.set_new_attribute(actor, "ibfvs", layer)
     if animate and not plotter.off_screen:
         _animate(plotter)

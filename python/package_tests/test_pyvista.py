@@ -187,6 +187,21 @@ def test_colours_are_add_mesh_colours(keywords):
                                                                np.percentile(d, 90))
 
 
+def test_the_texture_outlives_the_actor_the_caller_dropped():
+    """add_flow's actor not kept, and Python's collector run: the plotter
+    still draws the texture (it keeps the layer)."""
+    import gc
+
+    p = start(plotter())
+    ibfvs.pyvista.add_flow(p, swirl_sphere(), vectors="swirl")
+    look_down_z(p)
+    gc.collect()
+    a = frames(p, 5)
+    r, _ = radius_map()
+    assert (a[r < 0.9] == 255).all(axis=1).mean() < 0.01
+    assert a[r < 0.9].mean(axis=1).std() > 10
+
+
 def test_colours_changed_on_a_live_plotter_are_taken_the_surface_sent_once():
     """The colour map changed between renders reaches the texture; renders
     with nothing changed send the surface no more (add_mesh's pipeline hands
@@ -236,6 +251,9 @@ def test_nearer_actors_hide_the_texture_and_the_scalar_bar_stays():
     cx, cy = int(w / 2 + 0.5 * per_unit), int(h / 2)
     patch = a[cy - 5:cy + 5, cx - 5:cx + 5].reshape(-1, 3)
     assert (patch[:, 0] > 200).all() and (patch[:, 1] < 60).all() and (patch[:, 2] < 60).all()
+    # The texture beside the cube, though the returned actor was dropped.
+    left = a[cy - 20:cy + 20, int(w / 2 - 0.5 * per_unit) - 20:int(w / 2 - 0.5 * per_unit) + 20]
+    assert (left == 255).all(axis=2).mean() < 0.01 and left.mean(axis=2).std() > 10
     # The scalar bar, drawn after the surfaces, is not covered by the texture:
     # where it is, the picture is add_mesh's.
     plain = []
@@ -254,6 +272,25 @@ def turned(picture, degrees):
     """The picture turned about its centre (counter-clockwise)."""
     return np.asarray(Image.fromarray(picture.astype(np.uint8)).rotate(degrees,
                                                                        resample=Image.BILINEAR))
+
+
+def test_a_translucent_actor_in_front_blends_over_the_texture():
+    """Drawn in the opaque pass with its depth, the texture is what VTK's
+    translucent pass blends over: the red square in front tints it, and the
+    streaks show through."""
+    p = start(plotter())
+    ibfvs.pyvista.add_flow(p, swirl_sphere(), vectors="swirl", show_scalar_bar=False)
+    p.add_mesh(pv.Plane(center=(0.3, 0.0, 1.5), direction=(0, 0, 1), i_size=0.6, j_size=0.6),
+               color="red", opacity=0.4)
+    look_down_z(p)
+    a = frames(p, 10).astype(float)
+    w, h = SIZE
+    per_unit = (h / 2.0) / SCALE
+    cx, cy, half = int(w / 2 + 0.3 * per_unit), int(h / 2), int(0.2 * per_unit)
+    under = a[cy - half:cy + half, cx - half:cx + half]
+    beside = a[cy - half:cy + half, int(w / 2 - 0.5 * per_unit) - half:int(w / 2 - 0.5 * per_unit) + half]
+    assert (under[..., 0] - under[..., 1]).mean() > (beside[..., 0] - beside[..., 1]).mean() + 30
+    assert under.mean(axis=2).std() > 10  # the streaks through it
 
 
 def test_a_turning_camera_keeps_the_texture_on_the_surface():

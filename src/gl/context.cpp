@@ -214,20 +214,25 @@ void tune_process_for_rendering() {
   if (std::thread::hardware_concurrency() == 2) setenv("LP_NUM_THREADS", "3", 0);
 }
 
-int current_gl_version() {
-  bool current = eglGetCurrentContext() != EGL_NO_CONTEXT;
+const void* current_context() {
+  if (const EGLContext egl = eglGetCurrentContext(); egl != EGL_NO_CONTEXT) return egl;
   // A GLX context (a host's X window) can be current only where the process
   // has loaded GLX: asked without loading it.
+  const void* glx = nullptr;
   for (const char* lib : {"libGLX.so.0", "libGL.so.1"}) {
-    if (current) break;
+    if (glx) break;
     if (void* handle = dlopen(lib, RTLD_LAZY | RTLD_NOLOAD)) {
       using GetCurrent = void* (*)();
       if (auto get = reinterpret_cast<GetCurrent>(dlsym(handle, "glXGetCurrentContext")))
-        current = get() != nullptr;
+        glx = get();
       dlclose(handle);
     }
   }
-  return current ? epoxy_gl_version() : 0;
+  return glx;
+}
+
+int current_gl_version() {
+  return current_context() ? epoxy_gl_version() : 0;
 }
 
 void HeadlessContext::release_current() {

@@ -16,9 +16,10 @@ HostFlow::HostFlow() {
 }
 
 HostFlow::~HostFlow() {
-  // Without the host's context there is nothing to delete the objects in:
-  // they go with the context (a host releases before it closes).
-  static_cast<void>(session_.release());
+  // The objects are deleted where the context they were made in is current;
+  // elsewhere there is nothing to delete them in, and they go with that
+  // context (a host releases before it closes).
+  if (session_ && gl::current_context() != made_in_) static_cast<void>(session_.release());
 }
 
 void HostFlow::set_scene(const Scene& next) {
@@ -104,6 +105,7 @@ void HostFlow::update_session(int width, int height) {
     s.width = width;
     s.height = height;
     session_ = std::make_unique<Session>(prepare_scene(s, *mesh_, name_));
+    made_in_ = gl::current_context();
     settings_changed_ = true;
     colours_changed_ = true;
   } else {

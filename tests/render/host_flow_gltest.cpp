@@ -111,6 +111,7 @@ TEST_F(HostFlowGLTest, EachRenderDrawsAFrameWhereTheSurfaceIsAndOnlyThere) {
   EXPECT_GT(background, n / 5);      // the host's background stays off the surface
   EXPECT_LT(background, n * 4 / 5);  // and the surface covers a good part
   EXPECT_GT(changed, (n - background) / 10) << "the texture did not move between renders";
+  flow.release();  // as a host does before its context goes
 }
 
 TEST_F(HostFlowGLTest, TheHostsNearerDepthHidesTheTexture) {
@@ -136,6 +137,7 @@ TEST_F(HostFlowGLTest, TheHostsNearerDepthHidesTheTexture) {
     }
   EXPECT_EQ(left, 0u);
   EXPECT_GT(right, static_cast<std::size_t>(kW * kH / 10));
+  flow.release();
 }
 
 TEST_F(HostFlowGLTest, TheHostsTableColoursTheSurfaceAtThePositionsGiven) {
@@ -174,6 +176,7 @@ TEST_F(HostFlowGLTest, TheHostsTableColoursTheSurfaceAtThePositionsGiven) {
   ASSERT_GT(surface_right, 200);
   EXPECT_GT(red_left, surface_left * 9 / 10);
   EXPECT_GT(blue_right, surface_right * 9 / 10);
+  flow.release();
 }
 
 TEST_F(HostFlowGLTest, SettingsGoOnLiveOrStartAfreshByTheirKeysRules) {
@@ -197,6 +200,7 @@ TEST_F(HostFlowGLTest, SettingsGoOnLiveOrStartAfreshByTheirKeysRules) {
   s.alpha = 7.0f;
   EXPECT_THROW(flow.set_scene(s), SettingError);
   EXPECT_EQ(flow.scene().alpha, 0.2f);  // nothing changed
+  flow.release();
 }
 
 TEST_F(HostFlowGLTest, BadCallsThrowNamingTheProblem) {

@@ -63,6 +63,9 @@ void tune_process_for_rendering();
 /// VTK's or ParaView's render window, through EGL or GLX) as 10 major +
 /// minor, 45 for 4.5; 0 where none is current.
 int current_gl_version();
+/// The context current on this thread (an EGL or a GLX context's handle),
+/// null where none is: to tell whether the one objects were made in is.
+const void* current_context();
 
 /// Errors recorded by the KHR_debug callback of the current thread's context.
 std::vector<std::string> take_recorded_gl_errors();

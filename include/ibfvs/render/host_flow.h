@@ -48,7 +48,9 @@ struct HostRender {
 class HostFlow {
  public:
   HostFlow();
-  ~HostFlow();  // the GL objects, unless release() took them, go with the context
+  /// Deletes the GL objects where their context is current; elsewhere they
+  /// go with that context (release() first, where the host can).
+  ~HostFlow();
   HostFlow(const HostFlow&) = delete;
   HostFlow& operator=(const HostFlow&) = delete;
 
@@ -97,6 +99,7 @@ class HostFlow {
   float speed_ = 0.0f;  // the fastest vector
   HostColours colours_;
   std::unique_ptr<Session> session_;
+  const void* made_in_ = nullptr;  // the context the session's objects are in
   int width_ = 0, height_ = 0;
   int frame_ = 0;
   bool restart_ = true, regrid_ = false, settings_changed_ = false;

@@ -109,7 +109,10 @@ void HostFlow::update_session(int width, int height) {
     settings_changed_ = true;
     colours_changed_ = true;
   } else {
-    if (width != width_ || height != height_) session_->resize(width, height);
+    if (width != width_ || height != height_) {
+      session_->resize(width, height);
+      settings_changed_ = true;
+    }
     if (regrid_) {
       session_->scene().scene.scale = scene_.scale;
       session_->scene().settings.noise.scale = scene_.scale;
@@ -131,9 +134,13 @@ void HostFlow::update_session(int width, int height) {
 // The texture settings, the host's colours and dt for this render.
 void HostFlow::apply_settings(const HostRender& r) {
   IbfvsRenderer& renderer = session_->renderer();
-  const Bounds b = mesh_bounds(*session_->scene().mesh);
-  const float diagonal = glm::length(b.max - b.min);
-  if (diagonal > 0.0f && std::isfinite(diagonal)) renderer.set_probe_length(1e-3f * diagonal);
+  if (settings_changed_) {
+    // The probe for the surface's motion: once for a new renderer, size or
+    // surface, not at every render (a pass over every point).
+    const Bounds b = mesh_bounds(*session_->scene().mesh);
+    const float diagonal = glm::length(b.max - b.min);
+    if (diagonal > 0.0f && std::isfinite(diagonal)) renderer.set_probe_length(1e-3f * diagonal);
+  }
   RenderSettings settings = renderer.settings();
   const RenderSettings before = settings;
   apply_texture_settings(scene_, settings);

@@ -204,6 +204,12 @@ class Animation {
   // The scene as a self-contained web page (docs/web.md): the browser
   // animates it from the first frame, with the settings in force now.
   [[nodiscard]] py::bytes page() const { return web_page(session_->scene()); }
+  // The page's scene as (header JSON, block bytes): the notebook widget's.
+  [[nodiscard]] std::pair<std::string, py::bytes> page_parts() const {
+    WebPageParts parts = web_page_parts(session_->scene());
+    return {std::move(parts.header),
+            py::bytes(reinterpret_cast<const char*>(parts.block.data()), parts.block.size())};
+  }
 
   void save_png(const std::string& path) {
     const Current current(*this);
@@ -485,6 +491,14 @@ PYBIND11_MODULE(_ibfvs, m) {
       .def("save_png", &Animation::save_png, py::arg("path"))
       .def("_page", &Animation::page, "The scene as a self-contained web page (bytes, UTF-8).")
       .def_static("_has_page", &ibfvs::has_web_runtime)
+      .def("_page_parts", &Animation::page_parts,
+           "The page's scene as (header JSON text, binary block bytes).")
+      .def_static("_widget_module",
+                  []() -> std::optional<std::string> {
+                    const char* module = ibfvs::web_widget_module();
+                    return module ? std::optional<std::string>(module) : std::nullopt;
+                  })
+      .def_static("_page_style", []() { return std::string(ibfvs::web_page_style()); })
       .def_property_readonly("frame", &Animation::frame)
       .def_property_readonly("size", &Animation::size)
       .def_property_readonly("step_count", &Animation::step_count)

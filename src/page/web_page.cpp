@@ -25,8 +25,10 @@ extern "C" {
 
 namespace ibfvs {
 
-// The bundled runtime, generated at build time (web_runtime.cpp), or null.
+// The bundled runtime and the notebook widget's module, generated at build
+// time (web_runtime.cpp, web_widget.cpp), or null.
 extern const char* const kWebRuntime;
+extern const char* const kWebWidget;
 
 namespace {
 
@@ -110,7 +112,8 @@ bool has_web_runtime() {
   return kWebRuntime != nullptr;
 }
 
-std::string web_page(const PreparedScene& p, WebPageReport* report, const WebPageLimits& limits) {
+WebPageParts web_page_parts(const PreparedScene& p, WebPageReport* report,
+                            const WebPageLimits& limits) {
   const std::string what = "page of " + p.mesh_name;
   if (!has_web_runtime())
     throw InputError(what +
@@ -226,32 +229,45 @@ std::string web_page(const PreparedScene& p, WebPageReport* report, const WebPag
       {"plan", plan()},
       {"ranges", ranges()}};
 
+  if (report) report->scene = block.bytes().size();
+  return {script_json(header), block.bytes(), name.empty() ? "ibfvs" : name};
+}
+
+std::string_view web_page_style() {
+  return ".ibfvs-canvas{display:block;touch-action:none;cursor:grab;max-width:100%}"
+         ".ibfvs-panel{margin:.5em 0;display:flex;gap:1em;flex-wrap:wrap;align-items:center}"
+         ".ibfvs-message{padding:1em;border:1px solid #c33;background:#fee;max-width:40em}";
+}
+
+const char* web_widget_module() {
+  return kWebWidget;
+}
+
+std::string web_page(const PreparedScene& p, WebPageReport* report, const WebPageLimits& limits) {
+  const WebPageParts parts = web_page_parts(p, report, limits);
   const std::string runtime = kWebRuntime;
   std::string page =
       "<!doctype html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
       "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
       "<title>" +
-      html_escape(name) +
+      html_escape(parts.name) +
       " - ibfvs</title>\n"
-      "<style>body{font:14px system-ui,sans-serif;margin:1em;background:#fafafa;color:#222}"
-      ".ibfvs-canvas{display:block;touch-action:none;cursor:grab;max-width:100%}"
-      ".ibfvs-panel{margin:.5em 0;display:flex;gap:1em;flex-wrap:wrap;align-items:center}"
-      ".ibfvs-message{padding:1em;border:1px solid #c33;background:#fee;max-width:40em}</style>\n"
+      "<style>body{font:14px system-ui,sans-serif;margin:1em;background:#fafafa;color:#222}" +
+      std::string(web_page_style()) +
+      "</style>\n"
       "</head>\n<body>\n<div id=\"ibfvs\"><p class=\"ibfvs-message\">This page shows an animated "
       "flow texture with WebGL2 and JavaScript; it needs both switched on.</p></div>\n"
       "<p>" +
-      html_escape(name) +
+      html_escape(parts.name) +
       ": drag to turn, shift-drag to move, wheel to zoom, space to "
       "pause. Made by ibfvs.</p>\n"
       "<script type=\"application/json\" id=\"ibfvs-scene\">" +
-      script_json(header) +
+      parts.header +
       "</script>\n"
       "<script type=\"application/octet-stream\" id=\"ibfvs-data\">\n" +
-      base64(block.bytes()) + "\n</script>\n<script>\n" + runtime +
-      "\n</script>\n</body>\n</html>\n";
+      base64(parts.block) + "\n</script>\n<script>\n" + runtime + "\n</script>\n</body>\n</html>\n";
   if (report) {
     report->page = page.size();
-    report->scene = block.bytes().size();
     report->runtime = runtime.size();
   }
   return page;

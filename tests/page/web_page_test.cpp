@@ -114,6 +114,28 @@ TEST(WebPage, HoldsTheSceneTheShadersAndTheRuntime) {
   EXPECT_EQ(closings, 3u);
 }
 
+// The notebook widget's parts are the page's own: its header and block,
+// and its module is the runtime's other bundle (an ES module exporting
+// anywidget's render), with the page's style sheet.
+TEST(WebPage, TheWidgetsPartsAreThePagesHeaderAndBlock) {
+  const PreparedScene scene = torus_scene();
+  if (!has_web_runtime()) {
+    EXPECT_EQ(web_widget_module(), nullptr);
+    GTEST_SKIP() << "built without the browser runtime";
+  }
+  WebPageReport report;
+  const WebPageParts widget = web_page_parts(scene, &report);
+  const PageParts page = parts(web_page(scene));
+  EXPECT_EQ(nlohmann::json::parse(widget.header), page.header);
+  EXPECT_EQ(widget.block, page.block);
+  EXPECT_EQ(report.scene, widget.block.size());
+  EXPECT_EQ(widget.name, "torus");
+  const std::string module = web_widget_module();
+  EXPECT_NE(module.find("export"), std::string::npos);
+  EXPECT_NE(module.find("render"), std::string::npos);
+  EXPECT_NE(web_page(scene).find(std::string(web_page_style())), std::string::npos);
+}
+
 TEST(WebPage, AMovingSurfaceStoresTheMovingPointsOfEachStepOnce) {
   if (!has_web_runtime()) GTEST_SKIP() << "built without the browser runtime";
   // A square of two halves: the right half (x > 0.05) lifts at steps 2 and 3

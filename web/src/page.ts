@@ -4,15 +4,18 @@
 // The renderer and its camera are runtime.ts; Session::advance's order of a
 // frame is PageRenderer.advance.
 //
-// Sections: the page's elements; the context; the panel; recording; input;
-// start.
-import { MeshoptDecoder } from "meshoptimizer/decoder";
-import { type SceneHeader, decodeBase64 } from "./format";
+// The panel's settings are also reachable by name (PageControls): the
+// notebook widget (widget.ts) sets them from Python and hears a person move
+// them. The page's own script element start is main.ts.
+//
+// Sections: the page's elements; the context; the settings by name; the
+// panel; recording; input; start.
+import type { SceneHeader } from "./format";
 import { Navigation, PageRenderer } from "./runtime";
 
 // ---------------------------------------------------------------- the page's elements
 
-function say(root: HTMLElement, text: string): void {
+export function say(root: HTMLElement, text: string): void {
   const p = document.createElement("p");
   p.className = "ibfvs-message";
   p.textContent = text;
@@ -21,9 +24,11 @@ function say(root: HTMLElement, text: string): void {
 }
 
 // A slider; `log`: it moves on the logarithm of the value (spans like the
-// step's, 0.25 to 64 pixels, where the common values are a few).
+// step's, 0.25 to 64 pixels, where the common values are a few). With
+// `controls` and `key`, the setting of that name.
 function slider(panel: HTMLElement, label: string, min: number, max: number, value: number,
-                change: (v: number) => void, log = false): HTMLInputElement {
+                change: (v: number) => void, log = false,
+                controls?: PageControls, key?: string): HTMLInputElement {
   const wrap = document.createElement("label");
   wrap.textContent = label + " ";
   const input = document.createElement("input");
@@ -34,11 +39,73 @@ function slider(panel: HTMLElement, label: string, min: number, max: number, val
   input.step = String((to(max) - to(min)) / 100);
   input.value = String(to(value));
   input.dataset.name = label;
-  input.addEventListener("input", () => change(from(parseFloat(input.value))));
+  // The value as set: a range input holds only its steps' values.
+  let current = value;
+  input.addEventListener("input", () => {
+    current = from(parseFloat(input.value));
+    change(current);
+    if (key) controls?.changed();
+  });
   wrap.appendChild(input);
   panel.appendChild(wrap);
+  if (controls && key)
+    controls.add(key, {
+      get: () => current,
+      set: (v) => {
+        if (typeof v !== "number" || !Number.isFinite(v)) return false;
+        current = Math.min(Math.max(v, min), max);
+        input.value = String(to(current));
+        change(current);
+        return true;
+      },
+    });
   return input;
 }
+
+// ---------------------------------------------------------------- the settings by name
+
+/// A setting's value: a slider's number, a checkbox's or play's on, the style's name.
+export type SettingValue = number | boolean | string;
+
+interface Control {
+  get(): SettingValue;
+  set(value: SettingValue): boolean; // false: not a value this control takes
+}
+
+/** The panel's settings by name: alpha, beta, step (pixels a frame) or
+ * speed, scale (the noise cells' pixels), style, playing, loop and hold,
+ * as far as this page's scene and look have them. Setting one moves its
+ * control as a person would; `onChange` hears the settings after a person
+ * changed one (and after a new style brought its own sliders). */
+export class PageControls {
+  onChange: ((values: Record<string, SettingValue>) => void) | null = null;
+  private readonly controls = new Map<string, Control>();
+
+  add(name: string, control: Control): void {
+    this.controls.set(name, control);
+  }
+  /** Drops the look's own settings (a new style brings its own). */
+  remove(names: readonly string[]): void {
+    for (const name of names) this.controls.delete(name);
+  }
+  /** Sets NAME as its control would; false where the page has no such
+   * setting now or the value is not one it takes. */
+  set(name: string, value: SettingValue): boolean {
+    const control = this.controls.get(name);
+    return control ? control.set(value) : false;
+  }
+  values(): Record<string, SettingValue> {
+    const out: Record<string, SettingValue> = {};
+    for (const [name, control] of this.controls) out[name] = control.get();
+    return out;
+  }
+  changed(): void {
+    this.onChange?.(this.values());
+  }
+}
+
+// The look's own settings: each style brings its own.
+const lookSettings = ["alpha", "beta", "step", "speed", "scale"] as const;
 
 // What the panel, the input and the loop share.
 interface PageState {
@@ -89,17 +156,25 @@ function openRenderer(root: HTMLElement, scene: SceneHeader, data: ArrayBuffer):
 // ---------------------------------------------------------------- the panel
 
 function addPanel(root: HTMLElement, canvas: HTMLCanvasElement, scene: SceneHeader,
-                  renderer: PageRenderer, nav: Navigation): PageState {
+                  renderer: PageRenderer, nav: Navigation, controls: PageControls): PageState {
   const panel = document.createElement("div");
   panel.className = "ibfvs-panel";
   root.appendChild(panel);
   const play = document.createElement("button");
   const state: PageState = { playing: true, dtFactor: 1, time: 0, loop: scene.loop, hold: false,
                              timeSlider: null, play };
-  play.textContent = "Pause";
+  const setPlaying = (on: boolean) => {
+    state.playing = on;
+    play.textContent = on ? "Pause" : "Play";
+  };
+  setPlaying(true);
   play.addEventListener("click", () => {
-    state.playing = !state.playing;
-    play.textContent = state.playing ? "Pause" : "Play";
+    setPlaying(!state.playing);
+    controls.changed();
+  });
+  controls.add("playing", {
+    get: () => state.playing,
+    set: (v) => typeof v === "boolean" && (setPlaying(v), true),
   });
   panel.appendChild(play);
   // A scene with a lock (the topology style) plays to it and stays: Replay starts it again.
@@ -114,10 +189,11 @@ function addPanel(root: HTMLElement, canvas: HTMLCanvasElement, scene: SceneHead
   }
   // The styles that take the page's data (the scene's own first): each
   // brings its own sliders.
-  const controls = document.createElement("span");
-  controls.style.display = "contents"; // its sliders flow in the panel
+  const sliders = document.createElement("span");
+  sliders.style.display = "contents"; // its sliders flow in the panel
   const lookControls = () => {
-    controls.replaceChildren();
+    sliders.replaceChildren();
+    controls.remove(lookSettings);
     state.dtFactor = 1;
     const uniform = (name: string) => renderer.look.uniforms.find((u) => u.name === name);
     // Each slider spans its key's range (the scene keys' table, in the header).
@@ -125,29 +201,29 @@ function addPanel(root: HTMLElement, canvas: HTMLCanvasElement, scene: SceneHead
     for (const [name, label] of [["u_alpha", "alpha"], ["u_beta", "beta"]] as const) {
       const u = uniform(name);
       if (!u) continue;
-      slider(controls, label, range[label].min, range[label].max, u.values[0], (v) => {
+      slider(sliders, label, range[label].min, range[label].max, u.values[0], (v) => {
         u.values[0] = v;
         renderer.applySettings([u]);
-      });
+      }, false, controls, label);
     }
     // The step: pixels per frame of every point (image-space normalisation),
     // else a factor on the look's dt.
     const imageStep = uniform("u_image_step");
     if (imageStep && imageStep.values[0] > 0) {
       const step = range.step;
-      slider(controls, "step (px)", Math.max(step.min, step.max / 256), step.max, imageStep.values[0], (v) => {
+      slider(sliders, "step (px)", Math.max(step.min, step.max / 256), step.max, imageStep.values[0], (v) => {
         imageStep.values[0] = v;
         renderer.applySettings([imageStep]);
-      }, true);
+      }, true, controls, "step");
     } else {
-      slider(controls, "speed", 0, 4, 1, (v) => (state.dtFactor = v));
+      slider(sliders, "speed", 0, 4, 1, (v) => (state.dtFactor = v), false, controls, "speed");
     }
     // The noise scale, from the look's own up (the phases cover finer grids only).
     const noiseScale = uniform("u_noise_scale");
     if (noiseScale) {
       const base = noiseScale.values[0];
-      slider(controls, "noise scale (px)", base, Math.min(6 * base, range.scale.max), base,
-             (v) => renderer.setNoiseScale(v));
+      slider(sliders, "noise scale (px)", base, Math.min(6 * base, range.scale.max), base,
+             (v) => renderer.setNoiseScale(v), false, controls, "scale");
     }
   };
   if (scene.looks.length > 1) {
@@ -162,15 +238,29 @@ function addPanel(root: HTMLElement, canvas: HTMLCanvasElement, scene: SceneHead
       option.title = look.description;
       menu.appendChild(option);
     });
-    menu.addEventListener("change", () => {
-      renderer.setLook(parseInt(menu.value, 10));
+    const setLook = (index: number) => {
+      menu.value = String(index);
+      renderer.setLook(index);
       lookControls();
+    };
+    menu.addEventListener("change", () => {
+      setLook(parseInt(menu.value, 10));
+      controls.changed();
+    });
+    controls.add("style", {
+      get: () => scene.looks[parseInt(menu.value, 10)].name,
+      set: (v) => {
+        const index = scene.looks.findIndex((look) => look.name === v);
+        if (index < 0) return false;
+        if (String(index) !== menu.value) setLook(index);
+        return true;
+      },
     });
     wrap.appendChild(menu);
     panel.appendChild(wrap);
   }
   lookControls();
-  panel.appendChild(controls);
+  panel.appendChild(sliders);
   // Time steps: a slider over the steps, moving while playing; whether the
   // series loops, and whether each step holds (no blend towards the next).
   if (scene.steps > 1) {
@@ -182,11 +272,11 @@ function addPanel(root: HTMLElement, canvas: HTMLCanvasElement, scene: SceneHead
     checkbox(panel, "loop", state.loop, (on) => {
       state.loop = on;
       state.timeSlider!.max = String(on ? scene.steps : scene.steps - 1);
-    });
+    }, controls, "loop");
     checkbox(panel, "hold each step", state.hold, (on) => {
       state.hold = on;
       renderer.setTime(shownTime(state));
-    });
+    }, controls, "hold");
   }
   const save = document.createElement("button");
   save.textContent = "Save PNG";
@@ -201,14 +291,27 @@ function addPanel(root: HTMLElement, canvas: HTMLCanvasElement, scene: SceneHead
   return state;
 }
 
-// A labelled checkbox in the panel.
-function checkbox(panel: HTMLElement, label: string, on: boolean, change: (on: boolean) => void): HTMLInputElement {
+// A labelled checkbox in the panel; the setting KEY of `controls`.
+function checkbox(panel: HTMLElement, label: string, on: boolean, change: (on: boolean) => void,
+                  controls: PageControls, key: string): HTMLInputElement {
   const row = document.createElement("label");
   const box = document.createElement("input");
   box.type = "checkbox";
   box.checked = on;
   box.dataset.name = label;
-  box.addEventListener("change", () => change(box.checked));
+  box.addEventListener("change", () => {
+    change(box.checked);
+    controls.changed();
+  });
+  controls.add(key, {
+    get: () => box.checked,
+    set: (v) => {
+      if (typeof v !== "boolean") return false;
+      box.checked = v;
+      change(v);
+      return true;
+    },
+  });
   row.appendChild(box);
   row.appendChild(document.createTextNode(" " + label));
   panel.appendChild(row);
@@ -263,7 +366,7 @@ function addRecorder(panel: HTMLElement, canvas: HTMLCanvasElement, name: string
 // ---------------------------------------------------------------- input
 
 function attachInput(canvas: HTMLCanvasElement, scene: SceneHeader, nav: Navigation,
-                     state: PageState): void {
+                     state: PageState, keys: HTMLElement | Document): void {
   // Mouse, pen and touch: one pointer turns (or pans with shift), two pinch to zoom.
   let last: [number, number] | null = null;
   const pointers = new Map<number, [number, number]>();
@@ -303,21 +406,38 @@ function attachInput(canvas: HTMLCanvasElement, scene: SceneHeader, nav: Navigat
     e.preventDefault();
     nav.zoom = Math.min(Math.max(nav.zoom * Math.exp(-e.deltaY * 0.001), 0.1), 20);
   }, { passive: false });
-  document.addEventListener("keydown", (e) => {
-    if (e.key === " ") state.play.click();
+  keys.addEventListener("keydown", (e) => {
+    if ((e as KeyboardEvent).key !== " ") return;
+    e.preventDefault();
+    state.play.click();
   });
 }
 
 // ---------------------------------------------------------------- start
 
-export function start(root: HTMLElement, scene: SceneHeader, data: ArrayBuffer): PageRenderer | null {
+/// A running page: its renderer, its settings by name, and stop (the loop
+/// ends and the context is given back: a notebook's widget removed).
+export interface RunningPage {
+  renderer: PageRenderer;
+  controls: PageControls;
+  stop(): void;
+}
+
+/** Starts the page in ROOT. `keys`: where the space bar pauses (the whole
+ * document for a page of its own; a widget its own element, so typing in
+ * a notebook does not pause it). */
+export function start(root: HTMLElement, scene: SceneHeader, data: ArrayBuffer,
+                      keys: HTMLElement | Document = document): RunningPage | null {
   const opened = openRenderer(root, scene, data);
   if (!opened) return null;
   const { canvas, renderer } = opened;
   const nav = new Navigation(scene);
-  const state = addPanel(root, canvas, scene, renderer, nav);
-  attachInput(canvas, scene, nav, state);
+  const controls = new PageControls();
+  const state = addPanel(root, canvas, scene, renderer, nav, controls);
+  attachInput(canvas, scene, nav, state, keys);
+  let running = true;
   const tick = () => {
+    if (!running) return;
     if (state.playing) {
       // Frame k at time k / frames_per_step, as Session::advance.
       if (scene.steps > 1) {
@@ -335,16 +455,12 @@ export function start(root: HTMLElement, scene: SceneHeader, data: ArrayBuffer):
     requestAnimationFrame(tick);
   };
   requestAnimationFrame(tick);
-  return renderer;
-}
-
-const root = document.getElementById("ibfvs");
-const header = document.getElementById("ibfvs-scene");
-const block = document.getElementById("ibfvs-data");
-if (root && header && block) {
-  const scene = JSON.parse(header.textContent!) as SceneHeader;
-  const data = decodeBase64(block.textContent!);
-  MeshoptDecoder.ready.then(
-    () => start(root, scene, data),
-    (e: Error) => say(root, "This page needs WebAssembly to unpack its mesh: " + e.message));
+  return {
+    renderer,
+    controls,
+    stop: () => {
+      running = false;
+      canvas.getContext("webgl2")?.getExtension("WEBGL_lose_context")?.loseContext();
+    },
+  };
 }

@@ -7,8 +7,11 @@
 // from disk: no server, no network.
 
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "ibfvs/core/scene/scene_prep.h"
 
@@ -39,6 +42,29 @@ struct WebPageReport {
   /// Steps whose triangles are their own (a changing mesh): each a mesh of its own.
   std::size_t other_meshes = 0;
 };
+
+/// A page's scene without the page around it: what the notebook widget
+/// (python/ibfvs/notebook.py) hands the runtime in place of the page's two
+/// script elements.
+struct WebPageParts {
+  std::string header;               ///< the JSON header (page.schema.json)
+  std::vector<std::uint8_t> block;  ///< the binary arrays
+  std::string name;                 ///< the scene's name (its mesh file's stem)
+};
+
+/// The scene's parts, as web_page() puts them in the page (its header and
+/// limits; `report` gets the scene's sizes).
+[[nodiscard]] WebPageParts web_page_parts(const PreparedScene& scene,
+                                          WebPageReport* report = nullptr,
+                                          const WebPageLimits& limits = {});
+
+/// The page's style sheet for its canvas, panel and message: the page's
+/// and the notebook widget's.
+[[nodiscard]] std::string_view web_page_style();
+
+/// The notebook widget's ES module (web/src/widget.ts: anywidget's render
+/// around the page's runtime), or null in a build without the runtime.
+[[nodiscard]] const char* web_widget_module();
 
 /// The page as text; an unsteady field's steps all go in (the page plays
 /// them, with a time slider; points that move and steps with triangles of

@@ -51,15 +51,15 @@ install() {
 }
 docs_line() {
   # The set-up line of docs/python.md and README.md as it stands, in the checkout (its
-  # venv v removed after): `pip install .` with the pyvista extra, from
-  # the build folder the wheel left, and the console script runs.
+  # venv v removed after): `pip install .` with the pyvista and notebook
+  # extras, from the build folder the wheel left, and the console script runs.
   local line
   line="$(grep -m1 '^python3 -m venv v && v/bin/pip install' "$root/docs/python.md")"
   [[ -n $line ]] || { echo "docs/python.md has no pip line"; return 1; }
   [[ "$(grep -m1 '^python3 -m venv v' "$root/README.md")" == "$line" ]] ||
     { echo "README.md's pip line is not docs/python.md's"; return 1; }
   (cd "$root" && trap 'rm -rf "$root/v"' EXIT && eval "$line" -q &&
-    v/bin/ibfvs --version && v/bin/python -c "import ibfvs.pyvista; print(ibfvs.__version__)")
+    v/bin/ibfvs --version && v/bin/python -c "import ibfvs.pyvista, ibfvs.notebook; print(ibfvs.__version__)")
 }
 tests() {
   # From OUT, not the checkout: `import ibfvs` is the installed package.

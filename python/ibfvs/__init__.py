@@ -25,7 +25,7 @@ import numpy as np
 
 from . import _ibfvs
 
-__all__ = ["render", "Animation", "Video", "keys", "has_vtk", "__version__"]
+__all__ = ["render", "Animation", "Video", "widget", "keys", "has_vtk", "__version__"]
 
 __version__ = _ibfvs.__version__  # CMakeLists.txt's project(), the one version
 has_vtk = _ibfvs.has_vtk
@@ -260,6 +260,13 @@ class Animation(_ibfvs.Animation):
         return (f'<iframe srcdoc="{html.escape(page, quote=True)}" width="{max(width + 40, 480)}" '
                 f'height="{height + 160}" style="border:0"></iframe>')
 
+    def widget(self):
+        """The live notebook widget of this animation (needs anywidget):
+        the page's runtime in Jupyter, its settings synced both ways."""
+        from .notebook import FlowWidget
+
+        return FlowWidget(self)
+
     def video(self, frames=90, fps=30.0):
         """The next FRAMES frames as an MP4 Video, shown in Jupyter as an
         HTML5 <video>."""
@@ -283,6 +290,19 @@ class Video:
     def _repr_html_(self):
         encoded = base64.b64encode(self.data).decode("ascii")
         return f'<video controls loop autoplay muted src="data:video/mp4;base64,{encoded}"></video>'
+
+
+def widget(source=None, triangles=None, vectors=None, **options):
+    """The live notebook widget (docs/python.md): an Animation, or the
+    arguments that make one, shown by the web page's runtime in Jupyter.
+    Its traits alpha, beta, step, scale, style, playing, ... follow the
+    page's sliders and move them; `set(**keys)` takes any scene key.
+    Needs anywidget (pip install 'ibfvs[notebook]')."""
+    if isinstance(source, Animation):
+        if triangles is not None or vectors is not None or options:
+            raise TypeError("widget(animation) takes no other arguments; use animation.set(...)")
+        return source.widget()
+    return Animation(source, triangles, vectors, **options).widget()
 
 
 def render(points, triangles=None, vectors=None, *, size=(512, 512), frames=150, alpha_channel=False, **options):

@@ -41,3 +41,18 @@ def test_the_gallery_notebook_runs(tmp_path, monkeypatch):
     for cell in code:
         exec(compile(cell, "docs/gallery/pyvista.ipynb", "exec"), namespace)
     assert namespace["actor"].ibfvs.frame >= 60 and namespace["actor"].ibfvs.problem is None
+    assert namespace["w"].alpha == 0.05 and len(namespace["w"].data) > 100_000  # the widget's cells
+
+
+def test_the_notebook_widget_example_in_the_docs_runs(tmp_path, monkeypatch, capsys):
+    """docs/python.md's ```python notebook block, outside a notebook (the
+    widget's Python side: its settings and set)."""
+    pytest.importorskip("anywidget")
+    text = (ROOT / "docs" / "python.md").read_text()
+    blocks = re.findall(r"```python notebook\n(.*?)```", text, re.S)
+    assert len(blocks) == 1
+    monkeypatch.chdir(tmp_path)
+    namespace = {}
+    exec(compile(blocks[0], "docs/python.md", "exec"), namespace)
+    w = namespace["w"]
+    assert w.alpha == 0.2 and w.look == "crisp" and "'look': 'crisp'" in capsys.readouterr().out

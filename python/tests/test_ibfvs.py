@@ -311,3 +311,14 @@ def test_the_pyvista_front_end_refuses_a_module_that_links_paraviews_vtk():
     with pytest.raises(ImportError, match="pip package"):
         import ibfvs.pyvista  # noqa: F401
     assert "pyvista" not in sys.modules
+
+
+def test_the_widget_without_anywidget_says_how_to_install_it():
+    """ibfvs.widget needs anywidget (the pip package's notebook extra); the
+    build tree's Python has none: one ImportError that names the extra."""
+    import importlib.util
+
+    if importlib.util.find_spec("anywidget") is not None:
+        pytest.skip("anywidget is installed: python/package_tests test the widget")
+    with pytest.raises(ImportError, match=r"ibfvs\[notebook\]"):
+        ibfvs.widget(mesh="torus", size=(32, 32))

@@ -7,7 +7,7 @@ import assert from "node:assert/strict";
 import { execFileSync } from "node:child_process";
 import fs from "node:fs";
 import path from "node:path";
-import puppeteer from "puppeteer-core";
+import { canvasPixels, launch } from "./browser.mjs";
 import Ajv from "ajv";
 
 const ibfvs = process.env.IBFVS || "build/ibfvs";
@@ -16,11 +16,7 @@ fs.mkdirSync(out, { recursive: true });
 let browser;
 
 before(async () => {
-  browser = await puppeteer.launch({
-    executablePath: process.env.CHROMIUM || "/usr/bin/chromium",
-    headless: true,
-    args: ["--no-sandbox", "--use-angle=swiftshader", "--enable-unsafe-swiftshader"],
-  });
+  browser = await launch();
 });
 after(async () => browser && (await browser.close()));
 
@@ -87,19 +83,13 @@ test("the page animates a texture aligned with the flow, without a console error
 
 // Which pixels show the surface (not the grey background): the texture
 // changes every frame, the silhouette only when the mesh turns.
-const silhouette = (page) => page.evaluate(() => {
-  const c = document.querySelector("canvas");
-  const t = document.createElement("canvas");
-  t.width = c.width;
-  t.height = c.height;
-  const x = t.getContext("2d");
-  x.drawImage(c, 0, 0);
-  const d = x.getImageData(0, 0, c.width, c.height).data;
+const silhouette = async (page) => {
+  const d = await canvasPixels(page);
   const bits = [];
   for (let i = 0; i < d.length; i += 4)
     bits.push(d[i] === d[i + 1] && d[i + 1] === d[i + 2] && Math.abs(d[i] - 127.5) < 1 ? 0 : 1);
   return bits;
-});
+};
 const changed = (a, b) => a.filter((v, i) => v !== b[i]).length / a.length;
 
 test("a drag turns the mesh; the animation alone does not move it", async () => {
@@ -124,72 +114,14 @@ test("a drag turns the mesh; the animation alone does not move it", async () => 
 
 // Mean difference between horizontal neighbours on the surface: fine noise
 // is rough, coarse noise smooth.
-const roughness = (page) => page.evaluate(() => {
-  const c = document.querySelector("canvas");
-  const t = document.createElement("canvas");
-  t.width = c.width;
-  t.height = c.height;
-  const x = t.getContext("2d");
-  x.drawImage(c, 0, 0);
-  const d = x.getImageData(0, 0, c.width, c.height).data;
+const roughness = async (page) => {
+  const d = await canvasPixels(page);
   const grey = (i) => d[i] === d[i + 1] && d[i + 1] === d[i + 2] && Math.abs(d[i] - 127.5) < 1;
   let sum = 0, n = 0;
   for (let i = 0; i + 4 < d.length; i += 4)
     if (!grey(i) && !grey(i + 4)) { sum += Math.abs(d[i] - d[i + 4]); ++n; }
   return sum / n;
-});
-
-async function setSlider(page, name, value) {
-  await page.$eval(`input[data-name="${name}"]`, (e, v) => {
-    e.value = String(v);
-    e.dispatchEvent(new Event("input"));
-  }, value);
-}
-
-test("the noise scale slider coarsens the texture", async () => {
-  const { page, messages } = await open(writePage("cow-scale"));
-  await frames(page, 40);
-  const fine = await roughness(page);
-  await setSlider(page, "noise scale (px)", 5);
-  await frames(page, (await frameNow(page)) + 40);
-  const coarse = await roughness(page);
-  assert.deepEqual(messages, []);
-  assert.ok(coarse < 0.8 * fine, `roughness ${fine} at the page's scale, ${coarse} at 5 px`);
-  await page.close();
-});
-
-test("the style menu shows the same data in another style, as ibfvs render draws it", async () => {
-  const { page, messages } = await open(writePage("cow-styles"));
-  const menu = 'select[data-name="style"]';
-  await page.waitForSelector(menu);
-  // The styles that take the page's data; bronze, particles, ... need other data.
-  const names = await page.$$eval(menu + " option", (o) => o.map((e) => e.textContent));
-  assert.deepEqual(names, ["as rendered", "flow", "crisp", "paper"]);
-  await frames(page, 10);
-  // The default look's sliders span the keys' ranges (the scene keys' table): alpha 0..1,
-  // the step logarithmic up to 64 pixels.
-  const span = (name) => page.$eval(`input[data-name="${name}"]`, (e) => [+e.min, +e.max]);
-  assert.deepEqual(await span("alpha"), [0, 1]);
-  const [lo, hi] = await span("step (px)");
-  assert.ok(Math.abs(Math.exp(hi) - 64) < 1e-6 && Math.abs(Math.exp(lo) - 0.25) < 1e-6, `${lo} ${hi}`);
-  await page.select(menu, String(names.indexOf("paper")));  // from a fresh texture: frame 0
-  await pauseAt(page, 61);
-  const a = alignment(await shot(page, "cow-paper"));
-  const rendered = path.join(out, "cow-paper-render.png");
-  execFileSync(ibfvs, ["render", "--mesh", "data/meshes/cow.off", "--field", "rotate:0,0,1",
-                       "--size", "256x256", "--style", "paper", "--frames", "61", "--out", rendered,
-                       "-q"]);
-  const reference = alignment(rendered);
-  assert.deepEqual(messages, []);
-  assert.ok(Math.abs(a - reference) <= 0.03, `page ${a}, ibfvs render --style paper ${reference}`);
-  // The paper's 4-pixel cells, not the page's own 1-pixel ones.
-  assert.ok(await page.$('input[data-name="noise scale (px)"][min="4"]'));
-  await page.close();
-});
-
-// The fraction of the canvas's pixels that differ from a PNG (ibfvs
-// render's frame) by more than 24 of 255 in a channel, compared in the page
-// (the PNG as a data URL: no file access).
+};
 const differsFrom = (page, png) => page.evaluate(async (url) => {
   const image = new Image();
   image.src = url;

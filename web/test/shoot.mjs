@@ -7,7 +7,7 @@
 // canvas as OUT.png and prints {"frames", "time", "steps"} as JSON. Exit 1
 // with what the console said on a page error or console error.
 import path from "node:path";
-import puppeteer from "puppeteer-core";
+import { launch } from "./browser.mjs";
 
 const [file, shot, framesText = "60", timeText = "0"] = process.argv.slice(2);
 if (!file || !shot) {
@@ -15,11 +15,7 @@ if (!file || !shot) {
   process.exit(2);
 }
 const frames = Number(framesText), time = Number(timeText);
-const browser = await puppeteer.launch({
-  executablePath: process.env.CHROMIUM || "/usr/bin/chromium",
-  headless: true,
-  args: ["--no-sandbox", "--use-angle=swiftshader", "--enable-unsafe-swiftshader"],
-});
+const browser = await launch();
 let status = 0;
 try {
   const page = await browser.newPage();

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <utility>
 
 #include "ibfvs/core/scene/render_settings.h"
@@ -73,6 +74,8 @@ void HostFlow::set_surface(TriMesh mesh, const std::string& name) {
   mesh_ = std::make_shared<const TriMesh>(std::move(mesh));
   name_ = name;
   speed_ = speed;
+  const Bounds b = mesh_bounds(*mesh_);
+  bounds_ = {b.min, b.max};
   data_changed_ = true;
   points_moved_ = points_moved_ || moved;
   colours_changed_ = true;
@@ -84,6 +87,13 @@ void HostFlow::set_colours(HostColours colours) {
   colours_changed_ = true;
 }
 
+void HostFlow::clear_surface() {
+  if (!mesh_) return;
+  mesh_.reset();
+  speed_ = 0.0f;
+  data_changed_ = true;
+}
+
 void HostFlow::restart() {
   restart_ = true;
 }
@@ -93,52 +103,72 @@ void HostFlow::release() {
   restart_ = true;
 }
 
-// The session made (a restart, the first surface) or taking on a new size,
-// noise grid or data: the texture goes on from where it is, only a restart
-// starts it afresh.
-void HostFlow::update_session(int width, int height) {
-  const bool restart = restart_ || !session_;
-  if (restart) {
+float HostChanges::diagonal() const {
+  return bounds ? glm::length(bounds->second - bounds->first) : 0.0f;
+}
+
+HostChanges HostFlow::pending(int width, int height) const {
+  HostChanges c;
+  c.restart = restart_ || (mesh_ && !session_);
+  c.resize = std::max(width, 1) != width_ || std::max(height, 1) != height_;
+  c.regrid = regrid_;
+  c.changed = data_changed_;
+  c.moved = points_moved_;
+  c.speed = speed_;
+  if (mesh_) c.bounds = bounds_;
+  return c;
+}
+
+// The session made (a restart, the first surface), dropped (no surface), or
+// taking on a new size, noise grid or data, as agreed: the texture goes on
+// from where it is, only a restart starts it afresh.
+void HostFlow::update_session(int width, int height, const HostChanges& all) {
+  const bool new_renderer = all.restart || all.resize || all.regrid;
+  try {
+    if (all.restart || (!mesh_ && session_)) {
+      session_.reset();
+      frame_ = 0;
+      if (mesh_) {
+        Scene s = scene_;
+        s.width = width;
+        s.height = height;
+        session_ = std::make_unique<Session>(prepare_scene(s, *mesh_, name_));
+        made_in_ = gl::current_context();
+      }
+    } else if (session_) {
+      if (all.resize) session_->resize(width, height);
+      if (all.regrid) {
+        session_->scene().scene.scale = scene_.scale;
+        session_->scene().settings.noise.scale = scene_.scale;
+        session_->rebuild(false);
+      }
+      if (data_changed_ && mesh_)
+        session_->change_data(prepare_change(session_->scene(), *mesh_, name_));
+    }
+  } catch (const std::exception& e) {
+    // No texture from this surface: the host's other processes go on (this
+    // one as an empty piece) until their next agreement.
+    failure_ = std::current_exception();
+    problem_ = e.what();
     session_.reset();
-    frame_ = 0;
-    Scene s = scene_;
-    s.width = width;
-    s.height = height;
-    session_ = std::make_unique<Session>(prepare_scene(s, *mesh_, name_));
-    made_in_ = gl::current_context();
-    settings_changed_ = true;
-    colours_changed_ = true;
-  } else {
-    if (width != width_ || height != height_) {
-      session_->resize(width, height);
-      settings_changed_ = true;
-    }
-    if (regrid_) {
-      session_->scene().scene.scale = scene_.scale;
-      session_->scene().settings.noise.scale = scene_.scale;
-      session_->rebuild(false);
-      settings_changed_ = true;
-      colours_changed_ = true;
-    }
-    if (data_changed_) {
-      session_->change_data(prepare_change(session_->scene(), *mesh_, name_));
-      settings_changed_ = true;
-      colours_changed_ = true;
-    }
   }
+  if (new_renderer || all.changed) {
+    settings_changed_ = true;  // a new renderer, or new data: the settings and colours again
+    colours_changed_ = true;
+  }
+  if (new_renderer) renderer_frame_ = 0;
   width_ = width;
   height_ = height;
   restart_ = regrid_ = data_changed_ = points_moved_ = false;
 }
 
 // The texture settings, the host's colours and dt for this render.
-void HostFlow::apply_settings(const HostRender& r) {
+void HostFlow::apply_settings(const HostRender& r, const HostChanges& all) {
   IbfvsRenderer& renderer = session_->renderer();
   if (settings_changed_) {
-    // The probe for the surface's motion: once for a new renderer, size or
-    // surface, not at every render (a pass over every point).
-    const Bounds b = mesh_bounds(*session_->scene().mesh);
-    const float diagonal = glm::length(b.max - b.min);
+    // The probe for the surface's motion, from the bounds of every piece:
+    // once for a new renderer, size or surface, not at every render.
+    const float diagonal = all.diagonal();
     if (diagonal > 0.0f && std::isfinite(diagonal)) renderer.set_probe_length(1e-3f * diagonal);
   }
   RenderSettings settings = renderer.settings();
@@ -160,14 +190,35 @@ void HostFlow::apply_settings(const HostRender& r) {
     renderer.update_settings(settings);
     settings_changed_ = false;
   }
-  // dt: the fastest vector moves `step` pixels at the focal point (every
-  // vector does, normalised in image space).
+  // dt: the fastest vector of the whole surface moves `step` pixels at the
+  // focal point (every vector does, normalised in image space).
   float dt = 0.0f;
-  if (scene_.step > 0.0f && speed_ > 0.0f)
+  if (scene_.step > 0.0f && all.speed > 0.0f)
     dt = scene_.image_normalize ? 1.0f
-                                : static_cast<float>(scene_.step * r.world_per_pixel / speed_);
+                                : static_cast<float>(scene_.step * r.world_per_pixel / all.speed);
   session_->set_dt(dt);
-  renderer.defer_statistics(false);
+  renderer.defer_statistics(r.defer_statistics);
+}
+
+int HostFlow::begin(const HostRender& r, const HostChanges& all) {
+  failure_ = nullptr;
+  problem_.clear();
+  const int frames =
+      pacer_.next(all.changed || all.restart, all.restart,
+                  all.moved && !carries_surface(scene_.advect_view, scene_.field_frame));
+  update_session(std::max(r.width, 1), std::max(r.height, 1), all);
+  if (session_) apply_settings(r, all);
+  return frames;
+}
+
+void HostFlow::frame(const ViewState& view) {
+  if (session_) session_->render(view);
+  ++frame_;
+  ++renderer_frame_;
+}
+
+void HostFlow::finish(glm::ivec2 origin, bool within_surface) {
+  if (session_) session_->renderer().draw_to_host(origin, within_surface);
 }
 
 void HostFlow::render(const HostRender& r) {
@@ -177,18 +228,10 @@ void HostFlow::render(const HostRender& r) {
                                              "own (render in its render callback)")
                                : "needs OpenGL 4.5 (the host's context has " +
                                      std::to_string(v / 10) + "." + std::to_string(v % 10) + ")");
-  const int width = std::max(r.width, 1), height = std::max(r.height, 1);
-  const bool restart = restart_ || !session_;
-  const int frames =
-      pacer_.next(data_changed_ || restart, restart,
-                  points_moved_ && !carries_surface(scene_.advect_view, scene_.field_frame));
-  update_session(width, height);
-  apply_settings(r);
-  for (int k = 0; k < frames; ++k) {
-    session_->render(r.view);
-    ++frame_;
-  }
-  session_->renderer().draw_to_host(r.origin);
+  const int frames = begin(r, pending(r.width, r.height));
+  if (failure_) std::rethrow_exception(failure_);
+  for (int k = 0; k < frames; ++k) frame(r.view);
+  finish(r.origin);
 }
 
 }  // namespace ibfvs

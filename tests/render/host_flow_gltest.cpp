@@ -3,11 +3,14 @@
 // a magenta background stands for the host's: the texture goes where the
 // surface is and nowhere else, behind the host's nearer depth; each render
 // is one texture frame (three at the first); the host's colour table colours
-// it; settings go on live or start afresh by their keys' rules; bad calls
+// it; settings go on live or start afresh by their keys' rules; several
+// processes render in steps (ParaView's mapper) as one renders; bad calls
 // throw, naming the problem.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <initializer_list>
 #include <vector>
 
 #include <epoxy/gl.h>
@@ -201,6 +204,75 @@ TEST_F(HostFlowGLTest, SettingsGoOnLiveOrStartAfreshByTheirKeysRules) {
   EXPECT_THROW(flow.set_scene(s), SettingError);
   EXPECT_EQ(flow.scene().alpha, 0.2f);  // nothing changed
   flow.release();
+}
+
+// A host of several processes renders in steps: what each owes (pending),
+// agreed (any flag, the fastest vector, every piece's bounds), begin, the
+// frames with the host's compositing between them, finish. The steps give
+// render()'s picture; an empty piece takes part in every frame without
+// drawing; and a step change agreed by another piece reaches this one.
+TEST_F(HostFlowGLTest, SeveralProcessesRenderInStepsAsOneRenders) {
+  const TriMesh mesh = swirl_torus();
+  const HostRender r = host_render(mesh);
+  HostFlow one, stepped, empty;
+  one.set_surface(mesh, "the torus");
+  stepped.set_surface(mesh, "the torus");
+  Host a, b, c;
+  auto agree = [&](std::initializer_list<const HostFlow*> flows) {
+    HostChanges all;
+    for (const HostFlow* f : flows) {
+      const HostChanges mine = f->pending(r.width, r.height);
+      all.restart |= mine.restart;
+      all.resize |= mine.resize;
+      all.regrid |= mine.regrid;
+      all.changed |= mine.changed;
+      all.moved |= mine.moved;
+      all.speed = std::max(all.speed, mine.speed);
+      if (mine.bounds) all.bounds = mine.bounds;
+    }
+    return all;
+  };
+  EXPECT_FALSE(empty.pending(r.width, r.height).bounds);
+  for (int render = 0; render < 6; ++render) {
+    draw(one, a, r);
+    const HostChanges all = agree({&stepped, &empty});
+    EXPECT_EQ(all.restart, render == 0);
+    HostRender rs = r;
+    rs.defer_statistics = false;
+    const int frames = stepped.begin(rs, all);
+    EXPECT_EQ(empty.begin(rs, all), frames);
+    EXPECT_EQ(frames, render == 0 ? kDefaultFramesPerStep : 1);
+    for (int k = 0; k < frames; ++k) {
+      stepped.frame(r.view);
+      empty.frame(r.view);  // the host would composite here
+    }
+    b.fb.bind();
+    gl::set_viewport(kW, kH);
+    stepped.finish(r.origin);
+    c.fb.bind();
+    empty.finish(r.origin);
+    EXPECT_TRUE(stepped.problem().empty() && empty.problem().empty());
+  }
+  EXPECT_EQ(stepped.frame(), one.frame());
+  EXPECT_EQ(empty.frame(), one.frame());  // its frame count keeps step with the others
+  EXPECT_EQ(empty.session(), nullptr);
+  EXPECT_EQ(a.read(), b.read()) << "the steps drew another picture than render()";
+  const std::vector<std::uint8_t> nothing = c.read();
+  for (std::size_t i = 0; i < nothing.size() / 4; ++i)
+    ASSERT_TRUE(magenta(nothing, i)) << "an empty piece drew at " << i;
+  // A piece whose data changed: every piece takes the change alike (the
+  // frames Frames Per Step owes), the one whose data did not included.
+  TriMesh moved = mesh;
+  for (glm::vec3& p : moved.positions) p += glm::vec3(0.01f, 0.0f, 0.0f);
+  stepped.set_surface(moved, "the torus");
+  const HostChanges all = agree({&stepped, &empty});
+  EXPECT_TRUE(all.changed && all.moved && !all.restart);
+  const int frames = stepped.begin(r, all);
+  EXPECT_EQ(empty.begin(r, all), frames);
+  EXPECT_GE(frames, 1);
+  one.release();
+  stepped.release();
+  empty.release();
 }
 
 TEST_F(HostFlowGLTest, BadCallsThrowNamingTheProblem) {

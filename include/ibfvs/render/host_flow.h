@@ -1,6 +1,7 @@
 #pragma once
 // A flow texture drawn into a host's own picture, one host render at a time:
-// the unit a VTK mapper drives (PyVista's actor, python/ibfvs/pyvista.py).
+// the unit both VTK mappers drive (PyVista's actor, python/ibfvs/pyvista.py;
+// ParaView's representation, paraview/IBFVS/Representations/vtkIBFVSMapper).
 // The host keeps its camera, its colour map and its other objects; each of
 // its renders draws one texture frame (more at a change of the data:
 // FramePacer) with the host's matrices, and the texture and its depth go
@@ -9,9 +10,19 @@
 // Like Session, it needs the host's OpenGL 4.5 context current in every
 // call that draws (render, release) and never makes one. It holds no GL
 // object before the first render.
+//
+// A host of several processes (ParaView under MPI), each with its piece of
+// the surface, renders in steps: pending() says what this process's flow
+// owes, the host agrees it across the processes (any flag, the fastest
+// vector, the bounds of every piece), begin() takes the agreement, and
+// between the frames (frame()) the host composites the texture images;
+// finish() draws. render() is those steps for one process.
 
+#include <exception>
 #include <memory>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -43,6 +54,25 @@ struct HostRender {
   ViewState view;              ///< its camera (and the actor's matrix) and projection
   double world_per_pixel = 0;  ///< world units a pixel spans at the focal point
   glm::vec3 surface_color{1.0f};
+  /// The contrast statistics wait for the host (it composites the images
+  /// of several processes first).
+  bool defer_statistics = false;
+};
+
+/// What a flow owes before a render: for several processes, each one's,
+/// agreed into one (any flag of any, the fastest vector, the bounds of all
+/// pieces) that they all take alike.
+struct HostChanges {
+  bool restart = false;  ///< the texture starts afresh (a new seed, a first surface)
+  bool resize = false;   ///< the view's size changed
+  bool regrid = false;   ///< the noise grid changed
+  bool changed = false;  ///< the surface changed
+  bool moved = false;    ///< and its points moved
+  float speed = 0.0f;    ///< the fastest vector
+  /// The surface's bounds (lower, upper); none for an empty piece.
+  std::optional<std::pair<glm::vec3, glm::vec3>> bounds;
+  /// The length of the bounds' diagonal (0 without bounds).
+  [[nodiscard]] float diagonal() const;
 };
 
 class HostFlow {
@@ -70,6 +100,9 @@ class HostFlow {
   /// with them (field_frame surface), anything else is new data the
   /// texture goes on over.
   void set_surface(TriMesh mesh, const std::string& name);
+  /// No surface: this process's piece is empty (it still takes part in the
+  /// host's frames); render() refuses.
+  void clear_surface();
   void set_colours(HostColours colours);
   /// Starts the texture afresh from noise at the next render.
   void restart();
@@ -78,30 +111,58 @@ class HostFlow {
   /// framebuffer at `r.origin`. The host's state is left as it was but for
   /// what a draw writes (its state cache must read the context again).
   void render(const HostRender& r);
+
+  /// The render in steps, for a host of several processes. What this
+  /// flow owes a render of width x height.
+  [[nodiscard]] HostChanges pending(int width, int height) const;
+  /// The session made, or taking on the agreed changes, and its settings,
+  /// colours and dt; returns the texture frames of this render (FramePacer,
+  /// the same in every process that takes the same agreement). A surface
+  /// the texture cannot take leaves no session, problem() saying why: the
+  /// host still calls frame() as often.
+  int begin(const HostRender& r, const HostChanges& agreed);
+  /// One texture frame (none drawn without a session).
+  void frame(const ViewState& view);
+  /// The texture and its depth into the bound framebuffer at `origin`;
+  /// `within_surface`: only where the host's picture already shows the
+  /// surface (again after an image filter over the host's picture).
+  void finish(glm::ivec2 origin, bool within_surface = false);
+
   /// Drops the GL objects (the host's context current); the next render
   /// starts afresh.
   void release();
 
   /// Texture frames since the texture last started afresh.
   [[nodiscard]] int frame() const { return frame_; }
+  /// Texture frames since the session's renderer was made (a new size or
+  /// noise grid makes one): the contrast statistics' schedule.
+  [[nodiscard]] int renderer_frame() const { return renderer_frame_; }
+  [[nodiscard]] int frames_per_step() const { return pacer_.frames_per_step(); }
   [[nodiscard]] bool has_surface() const { return mesh_ != nullptr; }
-  /// The running session (null before the first render).
+  /// Why the last begin() left no session with a surface to draw; empty otherwise.
+  [[nodiscard]] const std::string& problem() const { return problem_; }
+  /// The running session (null before the first render, for an empty
+  /// piece, or after a problem): a host composites its images.
   [[nodiscard]] const Session* session() const { return session_.get(); }
+  [[nodiscard]] Session* session() { return session_.get(); }
 
  private:
-  void update_session(int width, int height);
-  void apply_settings(const HostRender& r);
+  void update_session(int width, int height, const HostChanges& agreed);
+  void apply_settings(const HostRender& r, const HostChanges& agreed);
 
   Scene scene_;
   FramePacer pacer_;
   std::shared_ptr<const TriMesh> mesh_;
   std::string name_;
   float speed_ = 0.0f;  // the fastest vector
+  std::pair<glm::vec3, glm::vec3> bounds_{};
+  std::string problem_;
+  std::exception_ptr failure_;  // what left no session at the last begin()
   HostColours colours_;
   std::unique_ptr<Session> session_;
   const void* made_in_ = nullptr;  // the context the session's objects are in
   int width_ = 0, height_ = 0;
-  int frame_ = 0;
+  int frame_ = 0, renderer_frame_ = 0;
   bool restart_ = true, regrid_ = false, settings_changed_ = false;
   bool data_changed_ = false, points_moved_ = false, colours_changed_ = true;
 };

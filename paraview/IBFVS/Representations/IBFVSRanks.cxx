@@ -10,8 +10,6 @@
 #include <string_view>
 #include <vector>
 
-#include <glm/geometric.hpp>
-
 #include "ibfvs/core/image/composite.h"
 #include "ibfvs/core/mesh/mesh.h"
 #include "ibfvs/core/mesh/mesh_bytes.h"
@@ -43,18 +41,15 @@ constexpr double kNone = -1e300;
 
 }  // namespace
 
-float Agreement::diagonal() const {
-  return bounds ? glm::length(bounds->second - bounds->first) : 0.0f;
-}
-
 Agreement agree(const Agreement& mine, vtkMultiProcessController* controller) {
   double slots[kSize];
-  const bool flags[] = {mine.bad, mine.restart, mine.resize, mine.regrid, mine.changed, mine.moved};
+  const ibfvs::HostChanges& c = mine.changes;
+  const bool flags[] = {mine.bad, c.restart, c.resize, c.regrid, c.changed, c.moved};
   for (int k = 0; k < kSpeed; ++k) slots[k] = flags[k] ? 1.0 : 0.0;
-  slots[kSpeed] = mine.speed;
+  slots[kSpeed] = c.speed;
   for (int k = 0; k < 3; ++k) {
-    slots[kMinX + k] = mine.bounds ? -static_cast<double>(mine.bounds->first[k]) : kNone;
-    slots[kMaxX + k] = mine.bounds ? static_cast<double>(mine.bounds->second[k]) : kNone;
+    slots[kMinX + k] = c.bounds ? -static_cast<double>(c.bounds->first[k]) : kNone;
+    slots[kMaxX + k] = c.bounds ? static_cast<double>(c.bounds->second[k]) : kNone;
   }
   if (controller && controller->GetNumberOfProcesses() > 1) {
     double all[kSize];
@@ -62,17 +57,18 @@ Agreement agree(const Agreement& mine, vtkMultiProcessController* controller) {
     std::copy(all, all + kSize, slots);
   }
   Agreement out;
-  bool* const out_flags[] = {&out.bad,    &out.restart, &out.resize,
-                             &out.regrid, &out.changed, &out.moved};
+  ibfvs::HostChanges& all = out.changes;
+  bool* const out_flags[] = {&out.bad,    &all.restart, &all.resize,
+                             &all.regrid, &all.changed, &all.moved};
   for (int k = 0; k < kSpeed; ++k) *out_flags[k] = slots[k] > 0.0;
-  out.speed = static_cast<float>(slots[kSpeed]);
+  all.speed = static_cast<float>(slots[kSpeed]);
   if (slots[kMaxX] > kNone) {
     glm::vec3 lower, upper;
     for (int k = 0; k < 3; ++k) {
       lower[k] = static_cast<float>(-slots[kMinX + k]);
       upper[k] = static_cast<float>(slots[kMaxX + k]);
     }
-    out.bounds = {lower, upper};
+    all.bounds = {lower, upper};
   }
   return out;
 }

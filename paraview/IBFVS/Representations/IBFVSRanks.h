@@ -6,10 +6,7 @@
 #ifndef IBFVSRanks_h
 #define IBFVSRanks_h
 
-#include <optional>
-#include <utility>
-
-#include <glm/vec3.hpp>
+#include "ibfvs/render/host_flow.h"
 
 class vtkMultiProcessController;
 
@@ -20,19 +17,12 @@ struct TriMesh;
 
 namespace ibfvs::paraview {
 
-/// What a process says before a frame; agree() gives every process the same.
+/// What a process says before a frame: whether its piece cannot be drawn
+/// with the texture, and what its flow owes (HostFlow::pending); agree()
+/// gives every process the same.
 struct Agreement {
-  bool bad = false;      ///< a piece cannot be drawn with the texture: all draw plain
-  bool restart = false;  ///< the texture starts afresh (a new seed, a first surface)
-  bool resize = false;   ///< the view's size changed
-  bool regrid = false;   ///< the noise grid changed
-  bool changed = false;  ///< the data changed
-  bool moved = false;    ///< and its points moved
-  float speed = 0.0f;    ///< the fastest vector
-  /// The surface's bounds (lower, upper); none for an empty piece.
-  std::optional<std::pair<glm::vec3, glm::vec3>> bounds;
-  /// The length of the bounds' diagonal (0 without bounds).
-  [[nodiscard]] float diagonal() const;
+  bool bad = false;  ///< a piece cannot be drawn with the texture: all draw plain
+  ibfvs::HostChanges changes;
 };
 
 /// Every process's agreement: any flag of any process, the fastest vector

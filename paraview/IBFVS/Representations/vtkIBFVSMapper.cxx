@@ -1,7 +1,9 @@
 // Sections: settings from the properties; after FXAA; one frame (the order
-// of its steps); a page's layer. The surface and its colours, the processes' agreement and
-// compositing, and ParaView's camera are units of their own (IBFVSSurface,
-// IBFVSRanks, IBFVSView).
+// of its steps); a page's layer. The texture itself (its settings by their
+// keys' rules, frame pacing, the session, colours and dt) is the library's
+// host unit, ibfvs::HostFlow, which PyVista's actor drives too. The surface
+// and its colours, the processes' agreement and compositing, and ParaView's
+// camera are units of their own (IBFVSSurface, IBFVSRanks, IBFVSView).
 #include "vtkIBFVSMapper.h"
 
 #include "IBFVSPage.h"
@@ -32,6 +34,7 @@
 #include "ibfvs/core/scene/scene_prep.h"
 #include "ibfvs/core/support/error.h"
 #include "ibfvs/gl/objects.h"
+#include "ibfvs/render/host_flow.h"
 #include "ibfvs/render/session.h"
 
 #include "vtkActor.h"
@@ -54,61 +57,28 @@ vtkStandardNewMacro(vtkIBFVSMapper);
 
 class vtkIBFVSMapper::Internals {
  public:
-  // ---- settings from the properties
-  ibfvs::Scene scene;
+  // ---- the texture: settings (by each key's rule), frame pacing (Frames
+  // Per Step), the session, colours and dt
+  ibfvs::HostFlow flow;
   int association = 0;
   std::string vectors;
-  bool settings_changed = false;  // live settings: applied without starting afresh
-  bool restart = true;            // a new seed, or asked: the texture starts afresh
-  bool regrid = false;            // a new noise scale: a new renderer, the texture goes on
-  ibfvs::FramePacer pacer;        // texture frames of each render (Frames Per Step)
-
-  // What a property's change does, by its scene key's rule in the library's
-  // table (change_effect, the rule Session::set follows): a live setting or
-  // the step applies to the running texture; a new noise scale makes a new
-  // grid and the texture goes on; a new seed, or any other key, starts it
-  // afresh.
-  void Changed(std::string_view key) {
-    switch (ibfvs::change_effect(key, scene, false)) {
-      case ibfvs::KeyEffect::kLive:
-      case ibfvs::KeyEffect::kStep:
-        settings_changed = true;
-        break;
-      case ibfvs::KeyEffect::kNoise:
-        (key == "scale" ? regrid : restart) = true;
-        break;
-      default:
-        restart = true;
-    }
-  }
 
   // ---- the surface
   vtkMTimeType input_time = 0;
   vtkDataObject* input = nullptr;
   std::string input_vectors;
   bool cells_apart = false;              // coloured by a cell array: triangles apart
-  std::shared_ptr<ibfvs::TriMesh> mesh;  // null: this rank's piece is empty
+  std::shared_ptr<ibfvs::TriMesh> mesh;  // this rank's piece as taken; null: empty
   std::string problem;                   // why this rank cannot draw the texture
-  float speed = 0.0f;                    // fastest vector of this piece
-  glm::vec3 lower{0.0f}, upper{0.0f};    // its bounds (the header's, every frame)
   bool retake = true;                    // take the surface again (the vectors were set)
-  bool data_changed = true;              // a new surface or array: the session takes it on
-  bool points_moved = false;             // and its points moved (the same triangles)
+  std::string colour_key;  // the array, table and mode the flow's colours were mapped by
 
   // ---- the whole surface on process 0, for a page (SetGatherForPage)
   bool gather_for_page = false;
   std::shared_ptr<ibfvs::TriMesh> page_mesh;  // null: this process's own piece
 
-  // ---- colour by ParaView's lookup table
-  std::string colour_key;
-  std::vector<float> colour_t;  // per vertex, position in the table [0, 1]
-  std::vector<glm::vec3> colour_table;
-
   // ---- drawing
-  std::unique_ptr<ibfvs::Session> session;
   int width = 0, height = 0;
-  int frame = 0;           // texture frames since the texture started afresh
-  int renderer_frame = 0;  // since the renderer was made (its statistics' schedule)
   vtkWeakPointer<vtkOpenGLRenderWindow> window;
   std::string warned;  // the last problem warned about
   std::string last_problem;
@@ -127,16 +97,10 @@ class vtkIBFVSMapper::Internals {
 
   ~Internals() {
     this->StopObserving();
-    this->Release();
-  }
-
-  void Release() {
-    if (this->session && this->window) {
+    // Without a window to make current, the objects go with its context.
+    if (this->window) {
       this->window->MakeCurrent();
-      this->session.reset();
-    } else {
-      // No context to delete its objects in: they go with the context.
-      static_cast<void>(this->session.release());
+      this->flow.release();
     }
   }
 };
@@ -150,17 +114,15 @@ vtkIBFVSMapper::~vtkIBFVSMapper() {
 void vtkIBFVSMapper::PrintSelf(ostream& os, vtkIndent indent) {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Vectors: " << this->Internal->vectors << "\n";
-  os << indent << "Frame: " << this->Internal->frame << "\n";
+  os << indent << "Frame: " << this->Internal->flow.frame() << "\n";
 }
 
 void vtkIBFVSMapper::ReleaseGraphicsResources(vtkWindow* window) {
-  if (this->Internal->session) {
-    if (auto* w = vtkOpenGLRenderWindow::SafeDownCast(window)) {
-      w->MakeCurrent();
-      this->Internal->session.reset();
-    }
+  if (auto* w = vtkOpenGLRenderWindow::SafeDownCast(window)) {
+    w->MakeCurrent();
+    this->Internal->flow.release();
   }
-  this->Internal->restart = true;
+  this->Internal->flow.restart();
   this->Superclass::ReleaseGraphicsResources(window);
 }
 
@@ -197,14 +159,27 @@ E in_enum(int value) {
 }
 }  // namespace
 
-// A property of a scene key: its value in range, and the key's rule.
+// The scene with one property's value: checked by the keys' own rules and
+// acted on by each changed key's (HostFlow::set_scene: live, a new noise
+// grid, or a new start); a value the key refuses is an error, and the
+// setting stays as it was.
+void vtkIBFVSMapper::SetScene(const ibfvs::Scene& scene) {
+  try {
+    this->Internal->flow.set_scene(scene);
+    this->Modified();
+  } catch (const std::exception& e) {
+    vtkErrorMacro(<< "IBFVS: " << e.what());
+  }
+}
+
+// A property of a scene key: its value in the key's range, then the key's rules.
 #define IBFVS_SETTING(Name, Type, member, conversion) \
   void vtkIBFVSMapper::Set##Name(Type value) {        \
-    auto v = conversion;                              \
-    if (this->Internal->scene.member == v) return;    \
-    this->Internal->scene.member = v;                 \
-    this->Internal->Changed(#member);                 \
-    this->Modified();                                 \
+    ibfvs::Scene s = this->Internal->flow.scene();    \
+    const auto v = conversion;                        \
+    if (s.member == v) return;                        \
+    s.member = v;                                     \
+    this->SetScene(s);                                \
   }
 IBFVS_SETTING(Alpha, double, alpha, in_range("alpha", value))
 IBFVS_SETTING(Beta, double, beta, in_range("beta", value))
@@ -212,8 +187,8 @@ IBFVS_SETTING(NoiseScale, double, scale, in_range("scale", value))
 
 void vtkIBFVSMapper::SetFramesPerStep(int frames) {
   const int v = std::clamp(frames, 1, ibfvs::kMaxFramesPerStep);
-  if (this->Internal->pacer.frames_per_step() == v) return;
-  this->Internal->pacer.set_frames_per_step(v);
+  if (this->Internal->flow.frames_per_step() == v) return;
+  this->Internal->flow.set_frames_per_step(v);
   this->Modified();
 }
 
@@ -223,7 +198,7 @@ void vtkIBFVSMapper::SetGatherForPage(int on) {
 }
 
 void vtkIBFVSMapper::Restart() {
-  this->Internal->restart = true;
+  this->Internal->flow.restart();
   this->Modified();
 }
 
@@ -240,7 +215,7 @@ IBFVS_SETTING(Seed, int, seed, static_cast<std::uint32_t>(std::max(value, 0)))
 #undef IBFVS_SETTING
 
 int vtkIBFVSMapper::GetFrame() {
-  return this->Internal->frame;
+  return this->Internal->flow.frame();
 }
 
 const char* vtkIBFVSMapper::GetProblem() {
@@ -275,7 +250,7 @@ void vtkIBFVSMapper::RedrawAfterFXAA() {
   Internals& in = *this->Internal;
   if (!in.redraw) return;
   in.redraw = false;
-  if (!in.session || !in.window || !in.observed) return;
+  if (!in.flow.session() || !in.window || !in.observed) return;
   // Volumes are drawn after the filter and write no depth: drawing the
   // texture again would cover those in front of the surface.
   vtkVolumeCollection* volumes = in.observed->GetVolumes();
@@ -287,15 +262,15 @@ void vtkIBFVSMapper::RedrawAfterFXAA() {
   GLint viewport[4] = {0, 0, 0, 0};
   glGetIntegerv(GL_VIEWPORT, viewport);
   glViewport(in.origin.x, in.origin.y, in.width, in.height);
-  in.session->renderer().draw_to_host(in.origin, true);
+  in.flow.finish(in.origin, true);
   glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
   in.window->GetState()->Reset();
 }
 
 // ------------------------------------------------------------ one frame
 
-// This process's surface again (the data or the vectors changed): whether
-// the texture must take on a change, and whether the points moved.
+// This process's surface again (the data or the vectors changed); its
+// colours and the flow's surface follow (GiveSurface).
 void vtkIBFVSMapper::TakeSurface(vtkDataObject* input, vtkMTimeType input_time, bool cells_apart) {
   Internals& in = *this->Internal;
   in.retake = false;
@@ -303,131 +278,42 @@ void vtkIBFVSMapper::TakeSurface(vtkDataObject* input, vtkMTimeType input_time, 
   in.input_time = input_time;
   in.input_vectors = in.vectors;
   in.cells_apart = cells_apart;
-  std::shared_ptr<ibfvs::TriMesh> last = std::move(in.mesh);
-  in.mesh = ibfvs::paraview::take_surface(input, in.vectors, cells_apart, in.problem, in.speed);
-  // The same content again (a time within the same step, a pipeline that
-  // ran again): nothing changed for the texture.
-  const bool same = last && in.mesh && last->positions == in.mesh->positions &&
-                    last->triangles == in.mesh->triangles && last->vectors == in.mesh->vectors &&
-                    last->scalars == in.mesh->scalars &&
-                    last->vector_arrays == in.mesh->vector_arrays;
-  if (in.mesh && !in.mesh->positions.empty()) {
-    const ibfvs::Bounds bounds = ibfvs::mesh_bounds(*in.mesh);
-    in.lower = bounds.min;
-    in.upper = bounds.max;
-  }
+  in.problem.clear();
+  float speed = 0.0f;
+  in.mesh = ibfvs::paraview::take_surface(input, in.vectors, cells_apart, in.problem, speed);
   in.colour_key.clear();
-  in.data_changed = in.data_changed || !same;
-  in.points_moved = in.points_moved || (last && in.mesh && last->triangles == in.mesh->triangles &&
-                                        last->positions != in.mesh->positions);
 }
 
-// The session made (a restart, a first surface), or taking on a new size,
-// noise grid or data as all processes agreed: the texture goes on from where
-// it is, only a restart starts it afresh.
-void vtkIBFVSMapper::UpdateSession(const ibfvs::paraview::Agreement& all, int width, int height) {
+// The piece to the flow, with ParaView's colours at its vertices (positions
+// in its table, the way the Surface representation maps them): the flow
+// takes a change of content as new data (moved points carry the texture)
+// and the same content again as nothing.
+void vtkIBFVSMapper::GiveSurface(vtkActor* actor, const char* colour_array) {
   Internals& in = *this->Internal;
-  const bool restart = all.restart;
-  const bool changed = all.changed || restart;
-  const bool new_renderer = restart || all.resize || all.regrid;
-  try {
-    if (restart || (!in.mesh && in.session)) {
-      in.session.reset();
-      in.frame = 0;
-      in.restart = false;
-      if (in.mesh) {
-        ibfvs::Scene s = in.scene;
-        s.width = width;
-        s.height = height;
-        s.field = ibfvs::FieldSpec::parse("file");
-        in.session =
-            std::make_unique<ibfvs::Session>(ibfvs::prepare_scene(s, *in.mesh, "the input"));
-      }
-    } else if (in.session) {
-      if (all.resize) in.session->resize(width, height);
-      if (all.regrid) {
-        in.session->scene().scene.scale = in.scene.scale;
-        in.session->scene().settings.noise.scale = in.scene.scale;
-        in.session->rebuild(false);
-      }
-      if (in.data_changed && in.mesh)
-        in.session->change_data(ibfvs::prepare_change(in.session->scene(), *in.mesh, "the input"));
-    }
-  } catch (const std::exception& e) {
-    // This rank still takes part in the compositing (as an empty piece);
-    // the next frame's agreement turns every rank plain.
-    in.problem = e.what();
-    in.session.reset();
+  if (!in.problem.empty()) return;
+  if (!in.mesh) {
+    in.flow.clear_surface();
+    return;
   }
-  if (new_renderer || changed) {
-    // A new renderer, or new data: the settings and colours again.
-    in.settings_changed = true;
-    in.colour_key.clear();
-  }
-  if (new_renderer) in.renderer_frame = 0;
-  in.width = width;
-  in.height = height;
-  in.regrid = false;
-  in.data_changed = false;
-  in.points_moved = false;
-}
-
-// The settings, ParaView's colours and dt for this frame's session (which
-// must exist); the view to draw it in. `deferred`: the statistics wait for
-// the composite (several processes).
-ibfvs::HostView vtkIBFVSMapper::ApplySettings(vtkRenderer* ren, vtkActor* actor,
-                                              const char* colour_array,
-                                              const ibfvs::paraview::Agreement& all, int width,
-                                              int height, bool deferred) {
-  Internals& in = *this->Internal;
-  ibfvs::Session* session = in.session.get();
-  const float diagonal = all.diagonal();
-  if (diagonal > 0.0f && std::isfinite(diagonal))
-    session->renderer().set_probe_length(1e-3f * diagonal);
-  ibfvs::RenderSettings settings = session->renderer().settings();
-  const ibfvs::RenderSettings before = settings;
-  ibfvs::apply_texture_settings(in.scene, settings);
-  double diffuse[3];
-  actor->GetProperty()->GetDiffuseColor(diffuse);
-  settings.surface_color = glm::vec3(diffuse[0], diffuse[1], diffuse[2]);
-  // Colour by ParaView's own colour map, when the Surface representation
-  // would, at the prepared mesh's vertices (ordered for the GPU: not the
-  // input's order).
+  ibfvs::TriMesh mesh = *in.mesh;
+  ibfvs::HostColours colours;
   vtkScalarsToColors* lut = this->GetLookupTable();
-  const std::string key = std::string(colour_array ? colour_array : "") + "|" +
-                          std::to_string(lut ? lut->GetMTime() : 0) + "|" +
-                          std::to_string(this->GetScalarMode());
-  if (key != in.colour_key) {
-    in.colour_key = key;
-    in.colour_table.clear();
-    if (ibfvs::paraview::map_colours(*session->scene().mesh, colour_array, lut, in.colour_t,
-                                     in.colour_table))
-      session->renderer().set_scalars(in.colour_t, {});
+  std::vector<float> t;
+  if (ibfvs::paraview::map_colours(mesh, colour_array, lut, t, colours.table)) {
+    mesh.scalars[ibfvs::kHostColour] = std::move(t);
+    double diffuse[3];
+    actor->GetProperty()->GetDiffuseColor(diffuse);
+    colours.nan =
+        ibfvs::paraview::nan_colour(lut).value_or(glm::vec3(diffuse[0], diffuse[1], diffuse[2]));
+  } else {
+    colours.table.clear();
   }
-  if (!in.colour_table.empty())
-    if (const std::optional<glm::vec3> nan = ibfvs::paraview::nan_colour(lut))
-      settings.surface_color = *nan;
-  settings.use_color = !in.colour_table.empty();
-  settings.color_table = in.colour_table;
-  settings.color_range = glm::vec2(0.0f, 1.0f);
-  if (in.settings_changed || settings.use_color != before.use_color ||
-      settings.color_table != before.color_table ||
-      settings.surface_color != before.surface_color) {
-    session->renderer().update_settings(settings);
-    in.settings_changed = false;
+  try {
+    in.flow.set_surface(std::move(mesh), "the input");
+    in.flow.set_colours(std::move(colours));
+  } catch (const std::exception& e) {
+    in.problem = e.what();
   }
-
-  const ibfvs::ViewState view = ibfvs::paraview::view_of(ren, actor);
-  // dt: the fastest vector of the whole surface moves StepPixels pixels
-  // at the focal point (every vector does, normalised in image space).
-  const double world_per_pixel = ibfvs::paraview::world_per_pixel(ren, width, height);
-  float dt = 0.0f;
-  if (in.scene.step > 0.0f && all.speed > 0.0f)
-    dt = in.scene.image_normalize ? 1.0f
-                                  : static_cast<float>(in.scene.step * world_per_pixel / all.speed);
-  session->set_dt(dt);
-  session->renderer().defer_statistics(deferred);
-  return view;
 }
 
 void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor) {
@@ -459,6 +345,15 @@ void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor) {
       in.vectors != in.input_vectors || cells_apart != in.cells_apart) {
     this->TakeSurface(input, input_time, cells_apart);
   }
+  // ---- its colours: again for a new surface, array, table or mode
+  vtkScalarsToColors* lut = this->GetLookupTable();
+  const std::string colour_key = std::string(colour_array ? colour_array : "") + "|" +
+                                 std::to_string(lut ? lut->GetMTime() : 0) + "|" +
+                                 std::to_string(this->GetScalarMode());
+  if (colour_key != in.colour_key) {
+    in.colour_key = colour_key;
+    this->GiveSurface(actor, colour_array);
+  }
   if (in.problem.empty() && epoxy_gl_version() < 45) {
     in.problem = "needs OpenGL 4.5 (this context has " + std::to_string(epoxy_gl_version() / 10) +
                  "." + std::to_string(epoxy_gl_version() % 10) + ")";
@@ -472,13 +367,7 @@ void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor) {
   // ---- the ranks agree: all draw the texture or none, all take a change alike
   ibfvs::paraview::Agreement mine;
   mine.bad = !in.problem.empty();
-  mine.restart = in.restart || (in.mesh && !in.session);
-  mine.resize = width != in.width || height != in.height;
-  mine.regrid = in.regrid;
-  mine.changed = in.data_changed;
-  mine.moved = in.points_moved;
-  mine.speed = in.speed;
-  if (in.mesh) mine.bounds = {in.lower, in.upper};
+  mine.changes = in.flow.pending(width, height);
   const ibfvs::paraview::Agreement all = ibfvs::paraview::agree(mine, controller);
   if (all.bad) {
     const std::string problem =
@@ -491,7 +380,7 @@ void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor) {
       in.warned = problem;
     }
     in.last_problem = problem;
-    in.session.reset();
+    in.flow.release();
     this->Superclass::Render(ren, actor);
     return;
   }
@@ -521,40 +410,45 @@ void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor) {
         ibfvs::paraview::gather_pieces(controller, in.mesh ? &piece : nullptr));
   }
 
-  // ---- the session: made, or taking on a new size, noise grid or data
-  // (the texture goes on from where it is; only a restart starts afresh).
-  // The texture frames of this render: one, and at a change of the data the
-  // frames the renders of the last data fell short of Frames Per Step
-  // (ibfvs::FramePacer: Save Animation gives each step all of them at its
-  // own data, Play and Sequence mode one a render), all of them where the
-  // points moved under a texture they do not carry (field_frame absolute).
-  const int frames = in.pacer.next(
-      all.changed || all.restart, all.restart,
-      all.moved && !ibfvs::carries_surface(in.scene.advect_view, in.scene.field_frame));
-  this->UpdateSession(all, width, height);
-
-  ibfvs::Session* session = in.session.get();
-  ibfvs::ViewState view;
-  if (session) {
-    view = this->ApplySettings(ren, actor, colour_array, all, width, height, ranks > 1);
-  }
+  // ---- the session made, or taking on a new size, noise grid or data as
+  // agreed (the texture goes on from where it is; only a restart starts
+  // afresh), and its settings, colours and dt. The texture frames of this
+  // render: one, and at a change of the data the frames the renders of the
+  // last data fell short of Frames Per Step (ibfvs::FramePacer: Save
+  // Animation gives each step all of them at its own data, Play and
+  // Sequence mode one a render), all of them where the points moved under
+  // a texture they do not carry (field_frame absolute).
+  ibfvs::HostRender r;
+  r.width = width;
+  r.height = height;
+  r.view = ibfvs::paraview::view_of(ren, actor);
+  r.world_per_pixel = ibfvs::paraview::world_per_pixel(ren, width, height);
+  double diffuse[3];
+  actor->GetProperty()->GetDiffuseColor(diffuse);
+  r.surface_color = glm::vec3(diffuse[0], diffuse[1], diffuse[2]);
+  r.defer_statistics = ranks > 1;  // they wait for the composite
+  const int frames = in.flow.begin(r, all.changes);
+  // This rank still takes part in the compositing (as an empty piece); the
+  // next frame's agreement turns every rank plain.
+  if (!in.flow.problem().empty()) in.problem = in.flow.problem();
 
   // ---- the frames, each composited under MPI (every rank renders alike)
+  const bool contrast = in.flow.scene().contrast > 0.0f;
   for (int k = 0; k < frames; ++k) {
-    if (session) session->render(view);
+    const bool statistics =
+        contrast && in.flow.renderer_frame() % ibfvs::IbfvsRenderer::kStatsEvery == 0;
+    in.flow.frame(r.view);
     if (ranks > 1)
-      ibfvs::paraview::composite_frame(
-          controller, session, width, height,
-          in.scene.contrast > 0.0f && in.renderer_frame % ibfvs::IbfvsRenderer::kStatsEvery == 0);
-    ++in.frame;
-    ++in.renderer_frame;
+      ibfvs::paraview::composite_frame(controller, in.flow.session(), width, height, statistics);
   }
 
-  if (session) {
+  if (in.flow.session()) {
     GLint viewport[4] = {0, 0, 0, 0};
     glGetIntegerv(GL_VIEWPORT, viewport);
     in.origin = glm::ivec2(viewport[0], viewport[1]);
-    session->renderer().draw_to_host(in.origin);
+    in.width = width;
+    in.height = height;
+    in.flow.finish(in.origin);
     this->ObserveRenderer(ren);
     in.redraw = ranks == 1 && ren->GetUseFXAA();
     // Whatever the library's calls left (pixel store, bindings it restored),
@@ -578,7 +472,7 @@ bool vtkIBFVSMapper::TakePageLayer(vtkActor* actor, ibfvs::paraview::PageLayer& 
   }
   // The whole surface gathered from every process, or this one's.
   const ibfvs::TriMesh* whole = in.page_mesh ? in.page_mesh.get() : in.mesh.get();
-  if (!whole || whole->triangles.empty() || (!in.session && !in.page_mesh)) {
+  if (!whole || whole->triangles.empty() || (!in.flow.session() && !in.page_mesh)) {
     problem = "it has drawn no texture (render the view first)";
     return false;
   }
@@ -589,8 +483,8 @@ bool vtkIBFVSMapper::TakePageLayer(vtkActor* actor, ibfvs::paraview::PageLayer& 
   m.triangles = drawn.triangles;
   m.vectors = drawn.vectors;
   m.normals = drawn.normals;
-  layer.scene = in.scene;
-  layer.scene.frames_per_step = in.pacer.frames_per_step();
+  layer.scene = in.flow.scene();
+  layer.scene.frames_per_step = in.flow.frames_per_step();
   double colour[3];
   actor->GetProperty()->GetDiffuseColor(colour);
   layer.scene.surface_color = glm::vec3(colour[0], colour[1], colour[2]);

@@ -19,9 +19,8 @@
 #include <string>  // for TakePageLayer
 
 namespace ibfvs {
-struct HostView;
+struct Scene;
 namespace paraview {
-struct Agreement;
 struct PageLayer;
 }  // namespace paraview
 }  // namespace ibfvs
@@ -77,11 +76,9 @@ class IBFVSREPRESENTATIONS_EXPORT vtkIBFVSMapper : public vtkCompositePolyDataMa
   vtkIBFVSMapper(const vtkIBFVSMapper&) = delete;
   void operator=(const vtkIBFVSMapper&) = delete;
 
+  void SetScene(const ibfvs::Scene& scene);
   void TakeSurface(vtkDataObject* input, vtkMTimeType input_time, bool cells_apart);
-  void UpdateSession(const ibfvs::paraview::Agreement& all, int width, int height);
-  ibfvs::HostView ApplySettings(vtkRenderer* ren, vtkActor* actor, const char* colour_array,
-                                const ibfvs::paraview::Agreement& all, int width, int height,
-                                bool deferred);
+  void GiveSurface(vtkActor* actor, const char* colour_array);
   void ObserveRenderer(vtkRenderer* ren);
   void RedrawAfterFXAA();
 

@@ -98,7 +98,7 @@ class vtkIBFVSMapper::Internals {
   ~Internals() {
     this->StopObserving();
     // Without a window to make current, the objects go with its context.
-    if (this->window) {
+    if (this->flow.session() && this->window) {
       this->window->MakeCurrent();
       this->flow.release();
     }
@@ -118,9 +118,11 @@ void vtkIBFVSMapper::PrintSelf(ostream& os, vtkIndent indent) {
 }
 
 void vtkIBFVSMapper::ReleaseGraphicsResources(vtkWindow* window) {
-  if (auto* w = vtkOpenGLRenderWindow::SafeDownCast(window)) {
-    w->MakeCurrent();
-    this->Internal->flow.release();
+  if (this->Internal->flow.session()) {
+    if (auto* w = vtkOpenGLRenderWindow::SafeDownCast(window)) {
+      w->MakeCurrent();
+      this->Internal->flow.release();
+    }
   }
   this->Internal->flow.restart();
   this->Superclass::ReleaseGraphicsResources(window);

@@ -65,8 +65,11 @@ def test_the_widget_and_python_change_each_others_settings_in_jupyterlab(tmp_pat
             pytest.skip(f"{tool} is not installed")
     _notebook(tmp_path / "widget.ipynb")
     port, token = _free_port(), "ibfvs-test"
+    # Jupyter's own folders in the test's (not the user's: their kernels
+    # and settings); the venv's kernel and extensions are found in the venv.
     env = dict(os.environ, JUPYTER_RUNTIME_DIR=str(tmp_path / "runtime"),
                JUPYTER_CONFIG_DIR=str(tmp_path / "config"),
+               JUPYTER_DATA_DIR=str(tmp_path / "data"),
                JUPYTERLAB_SETTINGS_DIR=str(tmp_path / "settings"),
                JUPYTERLAB_WORKSPACES_DIR=str(tmp_path / "workspaces"))
     env.pop("VTK_DEFAULT_OPENGL_WINDOW", None)

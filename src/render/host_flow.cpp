@@ -5,6 +5,7 @@
 #include <exception>
 #include <utility>
 
+#include "ibfvs/core/geometry/displacement.h"
 #include "ibfvs/core/scene/render_settings.h"
 #include "ibfvs/core/scene/scene_prep.h"
 #include "ibfvs/core/support/error.h"
@@ -192,11 +193,10 @@ void HostFlow::apply_settings(const HostRender& r, const HostChanges& all) {
   }
   // dt: the fastest vector of the whole surface moves `step` pixels at the
   // focal point (every vector does, normalised in image space).
-  float dt = 0.0f;
-  if (scene_.step > 0.0f && all.speed > 0.0f)
-    dt = scene_.image_normalize ? 1.0f
-                                : static_cast<float>(scene_.step * r.world_per_pixel / all.speed);
-  session_->set_dt(dt);
+  // Normalised, any dt > 0 moves every point `step` pixels: 1 where anything moves.
+  const bool moves = scene_.step > 0.0f && all.speed > 0.0f;
+  session_->set_dt(scene_.image_normalize ? (moves ? 1.0f : 0.0f)
+                                          : dt_for_step(scene_.step, all.speed, r.world_per_pixel));
   renderer.defer_statistics(r.defer_statistics);
 }
 

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <string_view>
 
+#include "ibfvs/core/geometry/displacement.h"
 #include "ibfvs/core/support/error.h"
 
 namespace ibfvs::paraview {
@@ -84,11 +85,11 @@ ibfvs::PreparedScene page_scene(std::vector<std::vector<PageLayer>> steps, const
            m.vectors == first.vectors && m.scalars == first.scalars;
   };
   if (std::all_of(states.begin() + 1, states.end(), same)) states.resize(1);
-  // dt as the mapper's: the fastest vector of all times moves Step pixels
-  // at the focal point (normalised in image space: any dt > 0).
-  scene.dt = 0.0f;
-  if (!scene.image_normalize && scene.step > 0.0f && speed > 0.0f && view.world_per_pixel > 0.0)
-    scene.dt = static_cast<float>(scene.step * view.world_per_pixel / speed);
+  // dt as the mapper's (the one rule, dt_for_step): the fastest vector of
+  // all times moves Step pixels at the focal point (normalised in image
+  // space, the page's own fit from the step).
+  scene.dt =
+      scene.image_normalize ? 0.0f : ibfvs::dt_for_step(scene.step, speed, view.world_per_pixel);
 
   ibfvs::PreparedScene p = ibfvs::prepare_states(scene, std::move(states), name);
   p.settings.color_table = table;

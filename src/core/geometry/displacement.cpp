@@ -25,11 +25,22 @@ float max_pixel_speed(const std::vector<glm::vec3>& positions, const std::vector
   return best;
 }
 
+float dt_for_step(float step, float pixel_speed) {
+  if (!(step > 0.0f) || !(pixel_speed > 0.0f)) return 0.0f;
+  const float dt = step / pixel_speed;
+  return std::isfinite(dt) ? dt : 0.0f;
+}
+
+float dt_for_step(float step, float world_speed, double world_per_pixel) {
+  if (!(world_per_pixel > 0.0) || !std::isfinite(world_per_pixel)) return 0.0f;
+  // Pixels a unit of time at the focal point: world units over world units a pixel.
+  return dt_for_step(step, static_cast<float>(world_speed / world_per_pixel));
+}
+
 float dt_for_pixel_step(const std::vector<glm::vec3>& positions,
                         const std::vector<glm::vec3>& field, const glm::mat4& vp, int width,
                         int height, float pixels) {
-  const float speed = max_pixel_speed(positions, field, vp, width, height);
-  return speed > 0.0f ? pixels / speed : 0.0f;
+  return dt_for_step(pixels, max_pixel_speed(positions, field, vp, width, height));
 }
 
 }  // namespace ibfvs

@@ -231,7 +231,7 @@ float fit_to_image(PreparedScene& p, int width, int height) {
     speed = std::max(speed, max_pixel_speed(step_positions(d, *p.mesh), d.field,
                                             camera.view_projection(), width, height));
   }
-  p.dt = s.dt > 0.0f ? s.dt : (speed > 0.0f ? s.step / speed : 0.0f);
+  p.dt = s.dt > 0.0f ? s.dt : dt_for_step(s.step, speed);
   p.max_px = s.image_normalize && speed > 0.0f ? s.step : speed * p.dt;
   if (p.settings.object_noise) {
     p.settings.object_cell = p.settings.noise.scale * camera.world_per_pixel(height);

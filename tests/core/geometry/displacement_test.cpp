@@ -1,3 +1,5 @@
+#include <cmath>
+
 #include <gtest/gtest.h>
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -16,6 +18,21 @@ TEST(Displacement, OrthographicUniformFieldIsExact) {
   EXPECT_NEAR(max_pixel_speed(pos, {{0, 2, 0}, {0, 1, 0}}, vp, 200, 100), 100.0f, 1e-3f);
   EXPECT_NEAR(dt_for_pixel_step(pos, {{1, 0, 0}, {0, 0, 0}}, vp, 200, 100, 3.0f), 0.03f, 1e-6f);
   EXPECT_EQ(dt_for_pixel_step(pos, {{0, 0, 0}, {0, 0, 0}}, vp, 200, 100, 3.0f), 0.0f);
+}
+
+// The one rule for dt from the step (the command's fit, the viewer, both
+// VTK mappers and ParaView's page): in pixels per unit of time, or from a
+// host's world units a pixel; nothing for what does not move or is not a
+// number.
+TEST(Displacement, DtForStepIsTheOneRule) {
+  EXPECT_FLOAT_EQ(dt_for_step(1.5f, 300.0f), 0.005f);
+  EXPECT_FLOAT_EQ(dt_for_step(2.0f, 4.0f, 0.01), 0.005f);  // 4 world units: 400 px per unit
+  EXPECT_EQ(dt_for_step(1.5f, 0.0f), 0.0f);
+  EXPECT_EQ(dt_for_step(0.0f, 300.0f), 0.0f);
+  EXPECT_EQ(dt_for_step(1.5f, std::nanf("")), 0.0f);
+  EXPECT_EQ(dt_for_step(1.5f, 1e-45f), 0.0f);  // would be infinite
+  EXPECT_EQ(dt_for_step(1.5f, 4.0f, 0.0), 0.0f);
+  EXPECT_EQ(dt_for_step(1.5f, 4.0f, std::nan("")), 0.0f);
 }
 
 TEST(Displacement, PerspectiveStepMatchesFiniteDifference) {

@@ -15,6 +15,17 @@ namespace ibfvs {
 float max_pixel_speed(const std::vector<glm::vec3>& positions, const std::vector<glm::vec3>& field,
                       const glm::mat4& view_projection, int width, int height);
 
+/// The one rule for dt from the step: the time step that moves the fastest
+/// point `step` pixels a frame, from its speed in pixels per unit of time
+/// (max_pixel_speed). 0 where nothing moves, the step is not positive, or
+/// a value is not finite.
+[[nodiscard]] float dt_for_step(float step, float pixel_speed);
+
+/// The same for a host's camera (VTK's: ParaView's, PyVista's): from the
+/// fastest vector's length in world units and the world units a pixel spans
+/// at the focal point.
+[[nodiscard]] float dt_for_step(float step, float world_speed, double world_per_pixel);
+
 /// dt such that the largest displacement per frame is `pixels` (0 when the
 /// field is zero everywhere).
 float dt_for_pixel_step(const std::vector<glm::vec3>& positions,

@@ -38,9 +38,8 @@ std::string array_names(const ibfvs::TriMesh& mesh) {
 // The surface of this rank's piece with the chosen vectors; `problem` says
 // why there is none. An empty piece is no problem (null mesh).
 std::shared_ptr<ibfvs::TriMesh> take_surface(vtkDataObject* input, const std::string& vectors,
-                                             bool cells_apart, std::string& problem, float& speed) {
+                                             bool cells_apart, std::string& problem) {
   problem.clear();
-  speed = 0.0f;
   if (!input || input->GetNumberOfElements(vtkDataObject::POINT) == 0) {
     return nullptr;
   }
@@ -75,10 +74,6 @@ std::shared_ptr<ibfvs::TriMesh> take_surface(vtkDataObject* input, const std::st
       return nullptr;
     }
     mesh->vectors = it->second;
-    for (const glm::vec3& v : mesh->vectors) {
-      const float s = glm::length(v);
-      if (std::isfinite(s)) speed = std::max(speed, s);
-    }
     // Normals from the data where it has them (ParaView's geometry filter,
     // or a filter that computed them with ghost cells): pieces then shade
     // alike along their boundaries.

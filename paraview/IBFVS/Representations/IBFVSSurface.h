@@ -22,9 +22,9 @@ namespace ibfvs::paraview {
 /// cell data; `cells_apart`: triangles apart, for colouring by a cell
 /// array), normals from the data where it has them. Null with `problem`
 /// saying why when it cannot be drawn; null without a problem for an empty
-/// piece. `speed`: its fastest vector.
+/// piece. (Its fastest vector is HostFlow's, from the surface it is given.)
 std::shared_ptr<ibfvs::TriMesh> take_surface(vtkDataObject* input, const std::string& vectors,
-                                             bool cells_apart, std::string& problem, float& speed);
+                                             bool cells_apart, std::string& problem);
 
 /// Whether the Surface representation would colour by a cell array (what
 /// ParaView's ColorBy(("CELLS", name)) sets).

@@ -281,8 +281,7 @@ void vtkIBFVSMapper::TakeSurface(vtkDataObject* input, vtkMTimeType input_time, 
   in.input_vectors = in.vectors;
   in.cells_apart = cells_apart;
   in.problem.clear();
-  float speed = 0.0f;
-  in.mesh = ibfvs::paraview::take_surface(input, in.vectors, cells_apart, in.problem, speed);
+  in.mesh = ibfvs::paraview::take_surface(input, in.vectors, cells_apart, in.problem);
   in.colour_key.clear();
 }
 

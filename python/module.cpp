@@ -136,7 +136,8 @@ class Animation {
     for (const auto& [key, text] : options) settings.push_back({key, text, ""});
     apply_settings(desc, settings);
     const Current current(*this);
-    if (!session_->set(desc)) session_ = std::make_unique<Session>(prepare(desc));
+    if (session_->set(desc) == SetResult::kPrepare)
+      session_ = std::make_unique<Session>(prepare(desc));
     desc_ = desc;
   }
 
@@ -157,18 +158,18 @@ class Animation {
   // The texture from noise again, the data and settings as they are.
   void restart() {
     const Current current(*this);
-    session_->rebuild(true);
+    session_->restart();
   }
 
   void lock() {
     const Current current(*this);
-    session_->renderer().lock();
+    session_->lock();
   }
   void unlock() {
     const Current current(*this);
-    session_->renderer().unlock();
+    session_->unlock();
   }
-  [[nodiscard]] bool locked() const { return session_->renderer().locked(); }
+  [[nodiscard]] bool locked() const { return session_->locked(); }
 
   // Renders `frames` more frames into a video file (any of the command's
   // containers); returns the path.

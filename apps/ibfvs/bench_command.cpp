@@ -180,7 +180,7 @@ int run_bench(const BenchOptions& o) {
       const PreparedScene prepared = prepare_scene(scene);
       for (const auto& [w, h] : sizes) {
         Session session(resized(prepared, w, h));
-        IbfvsRenderer& renderer = session.renderer();
+        const IbfvsRenderer& renderer = session.renderer();
         const TriMesh& mesh = *session.scene().mesh;
         for (const bool dynamic : {false, true}) {
           Camera camera(mesh_bounds(mesh), session.scene().camera,
@@ -190,7 +190,7 @@ int run_bench(const BenchOptions& o) {
             session.render(camera);
             renderer.finish();
           };
-          renderer.reset();
+          session.restart();
           for (int k = 0; k < o.warmup; ++k) frame();
           BenchCell cell{look, level, mesh.triangle_count(), w, h, dynamic, 0.0, {}};
           for (int r = 0; r < o.repeats; ++r) {

@@ -279,7 +279,7 @@ int run_render(const Scene& o, const std::string& scene_file) {
   // ---- render
   gl::HeadlessContext context;
   Session session(std::move(prepared));
-  IbfvsRenderer& renderer = session.renderer();
+  const IbfvsRenderer& renderer = session.renderer();
   const TriMesh& mesh = *session.scene().mesh;
   std::unique_ptr<VideoWriter> video;
   if (kind == OutputKind::Video)

@@ -79,7 +79,7 @@ void ViewerPanel::draw(ViewerSession& viewer, bool& show, bool& show_help, doubl
   ImGui::Checkbox("pause", &viewer.paused);
   if (ImGui::SmallButton("reset view")) viewer.camera().reset();
   ImGui::SameLine();
-  if (ImGui::SmallButton("restart")) viewer.renderer().reset();
+  if (ImGui::SmallButton("restart")) viewer.restart();
   ImGui::SameLine();
   if (ImGui::SmallButton("help")) show_help = !show_help;
   if (viewer.scene().step_count > 1) {

@@ -8,7 +8,6 @@
 #include <glm/matrix.hpp>
 #include <glm/trigonometric.hpp>
 
-#include "ibfvs/core/geometry/displacement.h"
 #include "ibfvs/core/image/image.h"
 #include "ibfvs/core/support/error.h"
 #include "ibfvs/core/support/file_names.h"
@@ -42,7 +41,7 @@ void ViewerSession::frame() {
   session_->render(camera_.camera());
   if (video_) {
     ImageU8 image = video_->spare();
-    renderer().read_output(image);
+    session_->renderer().read_output(image);
     video_->write(std::move(image));
   }
 }
@@ -96,23 +95,26 @@ void ViewerSession::set(const std::string& key, const std::string& value) {
 }
 
 void ViewerSession::apply_live(const Scene& desc) {
-  // The session's rules (Session::set, key_effect); the viewer keeps its own
-  // camera, dt (it follows the zoom) and window size.
-  const std::vector<std::string_view> keys = changed_keys(desc_, desc);
-  const auto any = [&](std::initializer_list<KeyEffect> effects) {
-    return std::any_of(keys.begin(), keys.end(), [&](std::string_view k) {
-      return std::find(effects.begin(), effects.end(), key_effect(k)) != effects.end();
-    });
-  };
+  // The session's rules (Session::set): the viewer keeps only its own
+  // camera, made again where the view changed.
   const Camera view = camera_.camera();
-  if (!any({KeyEffect::kSize}) && session_->set(desc, &view)) {
-    if (any({KeyEffect::kCamera}))
+  switch (session_->set(desc, &view)) {
+    case SetResult::kPrepare:
+      if (!reload(desc)) throw InputError(message);
+      return;
+    case SetResult::kNewView:
       camera_ = ViewerCamera(mesh_bounds(*scene().mesh), scene().camera, aspect_of(scene()));
-    desc_ = desc;
-    if (any({KeyEffect::kStep, KeyEffect::kTangent, KeyEffect::kCamera})) update_dt();
-    return;
+      update_dt();
+      break;
+    case SetResult::kApplied:
+      break;
   }
-  if (!reload(desc)) throw InputError(message);
+  desc_ = desc;
+}
+
+void ViewerSession::restart() {
+  session_->restart();
+  message = "restarted";
 }
 
 void ViewerSession::set_noise_scale(float scale) {
@@ -170,12 +172,11 @@ void ViewerSession::elements_changed() {
   }
   try {
     for (const FlowElement& e : spec.elements) e.validate();
-    session_->set_field(evaluate_field(*scene().mesh, spec, desc_.tangent));
+    session_->set_field(evaluate_field(*scene().mesh, spec, desc_.tangent));  // dt fits it
     // The typed scene follows, so that saving keeps the edited elements.
     desc_.field = spec;
     desc_.field->elements.clear();
     desc_.elements = spec.elements;
-    update_dt();
   } catch (const std::exception& e) {
     message = std::string("error: ") + e.what();
   }
@@ -185,13 +186,12 @@ void ViewerSession::elements_changed() {
 
 void ViewerSession::begin_drag() {
   dragging_ = true;
-  if (drag_mode == DragMode::Freeze && !renderer().locked()) {
-    renderer().lock();
+  if (drag_mode == DragMode::Freeze && !session_->locked()) {
+    session_->lock();
     locked_by_drag_ = true;
   }
-  RenderSettings s = renderer().settings();
-  s.advect_view = drag_mode == DragMode::Previous ? AdvectView::Previous : AdvectView::Current;
-  renderer().update_settings(s);
+  session_->override_advect_view(drag_mode == DragMode::Previous ? AdvectView::Previous
+                                                                 : AdvectView::Current);
 }
 
 void ViewerSession::drag_by(glm::vec2 pixels, bool pan) {
@@ -200,18 +200,16 @@ void ViewerSession::drag_by(glm::vec2 pixels, bool pan) {
   else
     camera_.rotate(pixels);
   // The paper's option (b): move F_t and G with the pointer (exact for a pan).
-  if (drag_mode == DragMode::Translate) renderer().shift_image(pixels);
+  if (drag_mode == DragMode::Translate) session_->shift_image(pixels);
 }
 
 void ViewerSession::end_drag() {
   dragging_ = false;
   if (locked_by_drag_) {
-    renderer().unlock();
+    session_->unlock();
     locked_by_drag_ = false;
   }
-  RenderSettings s = renderer().settings();
-  s.advect_view = scene().settings.advect_view;
-  renderer().update_settings(s);
+  session_->override_advect_view(std::nullopt);
 }
 
 void ViewerSession::zoom(float steps) {
@@ -228,7 +226,7 @@ std::optional<glm::vec3> ViewerSession::surface_point(glm::vec2 pixel) {
   const int px = static_cast<int>(std::floor(pixel.x));
   const int py = h - 1 - static_cast<int>(std::floor(pixel.y));
   if (px < 0 || py < 0 || px >= w || py >= h) return std::nullopt;
-  const ImageF depth = renderer().read_depth();
+  const ImageF depth = session_->renderer().read_depth();
   const float z = depth.pixels[static_cast<std::size_t>(py) * w + px];
   if (z >= 1.0f) return std::nullopt;  // background
   const Camera c = camera_.camera();
@@ -239,34 +237,27 @@ std::optional<glm::vec3> ViewerSession::surface_point(glm::vec2 pixel) {
 }
 
 // The fastest motion back to `step` pixels a frame, after a zoom (which
-// would stretch it) or a new field (as render sets dt).
+// would stretch it): the session's rule for the viewer's camera.
 void ViewerSession::update_dt() {
-  if (desc_.dt > 0.0f) return;  // the user's own dt stays
-  const float dt = dt_for(camera_.camera(), scene().width, scene().height);
-  if (dt > 0.0f) session_->set_dt(dt);
-}
-
-float ViewerSession::dt_for(const Camera& c, int width, int height) const {
-  return dt_for_pixel_step(session_->scene().mesh->positions, session_->scene().field,
-                           c.view_projection(), width, height, desc_.step);
+  session_->fit_dt(camera_.camera());
 }
 
 // ------------------------------------------------------------ texture and outputs
 
 void ViewerSession::toggle_lock() {
-  if (renderer().locked())
-    renderer().unlock();
+  if (session_->locked())
+    session_->unlock();
   else
-    renderer().lock();
+    session_->lock();
 }
 
 void ViewerSession::screenshot(const std::filesystem::path& file) {
-  write_png(renderer().read_output(), file);
+  write_png(session_->read_output(), file);
   std::printf("ibfvs: wrote %s\n", file.c_str());
 }
 
 void ViewerSession::write_texture(const std::filesystem::path& file) {
-  write_png16(renderer().read_texture().select_channels(0, 3), file);
+  write_png16(session_->renderer().read_texture().select_channels(0, 3), file);
 }
 
 void ViewerSession::toggle_recording() {
@@ -288,13 +279,11 @@ void ViewerSession::toggle_recording() {
 void ViewerSession::snapshot(int width, int height, const std::filesystem::path& file, int frames) {
   if (width < 1 || height < 1 || width > 16384 || height > 16384)
     throw InputError("snapshot: the size must be within 1..16384 pixels");
-  PreparedScene big = scene();
-  big.settings = renderer().settings();  // with the live changes
-  Session offscreen(resized(big, width, height));
+  Session offscreen(resized(scene(), width, height));  // the live changes are the scene's
   ViewerCamera cam = camera_;
   cam.set_aspect(static_cast<float>(width) / static_cast<float>(height));
   const Camera c = cam.camera();
-  offscreen.set_dt(dt_for(c, width, height));  // the same pixels per frame as the window
+  offscreen.fit_dt(c);  // the same pixels per frame as the window
   offscreen.seek(time);
   for (int k = 0; k < frames; ++k) offscreen.render(c);
   write_png(offscreen.read_output(), file);

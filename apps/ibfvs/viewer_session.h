@@ -40,7 +40,8 @@ class ViewerSession {
   // ---- what is in force
   [[nodiscard]] const Scene& desc() const { return desc_; }
   [[nodiscard]] PreparedScene& scene() { return session_->scene(); }
-  [[nodiscard]] IbfvsRenderer& renderer() { return session_->renderer(); }
+  /// The renderer, read-only: changes go through the session.
+  [[nodiscard]] const IbfvsRenderer& renderer() const { return session_->renderer(); }
   [[nodiscard]] Session& session() { return *session_; }
   [[nodiscard]] ViewerCamera& camera() { return camera_; }
   DragMode drag_mode = DragMode::Previous;
@@ -66,6 +67,8 @@ class ViewerSession {
   void set(const std::string& key, const std::string& value);
   /// The same for a scene with any keys changed (the panel's).
   void apply_live(const Scene& desc);
+  /// The texture from the scene's initial state (Session::restart).
+  void restart();
   /// A new noise grid; the texture goes on.
   void set_noise_scale(float scale);
   /// The field evaluated again with `mode`; the texture goes on.
@@ -104,7 +107,6 @@ class ViewerSession {
 
  private:
   void update_dt();
-  [[nodiscard]] float dt_for(const Camera& camera, int width, int height) const;
 
   Scene desc_;  // the scene in force, typed: panel, script and loads edit it; save writes it
   std::unique_ptr<Session> session_;

@@ -34,24 +34,14 @@ void HostFlow::set_scene(const Scene& next) {
     apply_texture_settings(s, check);
     check.validate();
   }
-  bool restart = false, regrid = false, live = false;
-  for (const std::string_view key : changed_keys(scene_, s)) {
-    switch (change_effect(key, s, false)) {
-      case KeyEffect::kLive:
-      case KeyEffect::kStep:
-        live = true;
-        break;
-      case KeyEffect::kNoise:
-        (key == "scale" ? regrid : restart) = true;
-        break;
-      default:
-        restart = true;  // a key the texture cannot take on: it starts afresh
-    }
-  }
+  // The session's rule (plan_change): what it cannot take on needs the
+  // scene prepared again, and the texture starts afresh.
+  const ChangePlan plan = plan_change(scene_, s, false);
   scene_ = std::move(s);
-  restart_ = restart_ || restart;
-  regrid_ = regrid_ || regrid;
-  settings_changed_ = settings_changed_ || live;
+  prepare_ = prepare_ || plan.prepare;
+  restart_ = restart_ || plan.prepare || plan.reseed;
+  regrid_ = regrid_ || plan.regrid;
+  keys_changed_ = keys_changed_ || plan.any();
 }
 
 void HostFlow::set_frames_per_step(int frames) {
@@ -79,13 +69,10 @@ void HostFlow::set_surface(TriMesh mesh, const std::string& name) {
   bounds_ = {b.min, b.max};
   data_changed_ = true;
   points_moved_ = points_moved_ || moved;
-  colours_changed_ = true;
 }
 
 void HostFlow::set_colours(HostColours colours) {
-  if (colours == colours_) return;
   colours_ = std::move(colours);
-  colours_changed_ = true;
 }
 
 void HostFlow::clear_surface() {
@@ -120,31 +107,36 @@ HostChanges HostFlow::pending(int width, int height) const {
   return c;
 }
 
-// The session made (a restart, the first surface), dropped (no surface), or
-// taking on a new size, noise grid or data, as agreed: the texture goes on
-// from where it is, only a restart starts it afresh.
+// The session made (the first surface, a key that needs preparing),
+// dropped (no surface), or taking on a restart, a new size, the keys or new
+// data, as agreed: the texture goes on from where it is, only a restart
+// starts it afresh.
 void HostFlow::update_session(int width, int height, const HostChanges& all) {
-  const bool new_renderer = all.restart || all.resize || all.regrid;
   try {
-    if (all.restart || (!mesh_ && session_)) {
+    if (!mesh_) {
+      if (session_ || all.restart) frame_ = 0;
+      session_.reset();
+    } else if (!session_ || prepare_) {
       session_.reset();
       frame_ = 0;
-      if (mesh_) {
-        Scene s = scene_;
-        s.width = width;
-        s.height = height;
-        session_ = std::make_unique<Session>(prepare_scene(s, *mesh_, name_));
-        made_in_ = gl::current_context();
-      }
-    } else if (session_) {
+      Scene s = scene_;
+      s.width = width;
+      s.height = height;
+      session_ = std::make_unique<Session>(prepare_scene(s, *mesh_, name_));
+      made_in_ = gl::current_context();
+    } else {
       if (all.resize) session_->resize(width, height);
-      if (all.regrid) {
-        session_->scene().scene.scale = scene_.scale;
-        session_->scene().settings.noise.scale = scene_.scale;
-        session_->rebuild(false);
+      if (keys_changed_) {
+        Scene s = scene_;
+        s.width = session_->scene().width;
+        s.height = session_->scene().height;
+        static_cast<void>(session_->set(s));  // prepare_ took what it cannot
       }
-      if (data_changed_ && mesh_)
-        session_->change_data(prepare_change(session_->scene(), *mesh_, name_));
+      if (data_changed_) session_->change_data(prepare_change(session_->scene(), *mesh_, name_));
+      // Every process starts afresh where one does (a first surface, a new
+      // seed): their frame counts stay alike. A new seed has already.
+      if (all.restart && session_->frame() > 0) session_->restart();
+      if (all.restart) frame_ = 0;
     }
   } catch (const std::exception& e) {
     // No texture from this surface: the host's other processes go on (this
@@ -153,51 +145,23 @@ void HostFlow::update_session(int width, int height, const HostChanges& all) {
     problem_ = e.what();
     session_.reset();
   }
-  if (new_renderer || all.changed) {
-    settings_changed_ = true;  // a new renderer, or new data: the settings and colours again
-    colours_changed_ = true;
-  }
-  if (new_renderer) renderer_frame_ = 0;
+  if (all.restart || all.resize || all.regrid) renderer_frame_ = 0;
   width_ = width;
   height_ = height;
-  restart_ = regrid_ = data_changed_ = points_moved_ = false;
+  restart_ = regrid_ = prepare_ = keys_changed_ = data_changed_ = points_moved_ = false;
 }
 
-// The texture settings, the host's colours and dt for this render.
-void HostFlow::apply_settings(const HostRender& r, const HostChanges& all) {
-  IbfvsRenderer& renderer = session_->renderer();
-  if (settings_changed_) {
-    // The probe for the surface's motion, from the bounds of every piece:
-    // once for a new renderer, size or surface, not at every render.
-    const float diagonal = all.diagonal();
-    if (diagonal > 0.0f && std::isfinite(diagonal)) renderer.set_probe_length(1e-3f * diagonal);
-  }
-  RenderSettings settings = renderer.settings();
-  const RenderSettings before = settings;
-  apply_texture_settings(scene_, settings);
-  settings.surface_color = r.surface_color;
-  const auto& prepared = session_->scene().mesh->scalars;
-  const auto t = prepared.find(kHostColour);
-  const bool coloured = !colours_.table.empty() && t != prepared.end();
-  if (coloured && colours_changed_) renderer.set_scalars(t->second, {});
-  colours_changed_ = false;
-  if (coloured) settings.surface_color = colours_.nan;  // what NaN positions show
-  settings.use_color = coloured;
-  settings.color_table = coloured ? colours_.table : std::vector<glm::vec3>{};
-  settings.color_range = glm::vec2(0.0f, 1.0f);
-  if (settings_changed_ || settings.use_color != before.use_color ||
-      settings.color_table != before.color_table ||
-      settings.surface_color != before.surface_color) {
-    renderer.update_settings(settings);
-    settings_changed_ = false;
-  }
+// The host's view and colours for this render, through the session's door.
+void HostFlow::apply_host(const HostRender& r, const HostChanges& all) {
+  // The probe for the surface's motion, from the bounds of every piece.
+  session_->set_probe_length(1e-3f * all.diagonal());
+  HostColours colours = colours_;
+  colours.surface = r.surface_color;
+  session_->set_host_colours(colours);
   // dt: the fastest vector of the whole surface moves `step` pixels at the
-  // focal point (every vector does, normalised in image space).
-  // Normalised, any dt > 0 moves every point `step` pixels: 1 where anything moves.
-  const bool moves = scene_.step > 0.0f && all.speed > 0.0f;
-  session_->set_dt(scene_.image_normalize ? (moves ? 1.0f : 0.0f)
-                                          : dt_for_step(scene_.step, all.speed, r.world_per_pixel));
-  renderer.defer_statistics(r.defer_statistics);
+  // focal point.
+  session_->follow_host(r.world_per_pixel, all.speed);
+  session_->defer_statistics(r.defer_statistics);
 }
 
 int HostFlow::begin(const HostRender& r, const HostChanges& all) {
@@ -207,7 +171,7 @@ int HostFlow::begin(const HostRender& r, const HostChanges& all) {
       pacer_.next(all.changed || all.restart, all.restart,
                   all.moved && !carries_surface(scene_.advect_view, scene_.field_frame));
   update_session(std::max(r.width, 1), std::max(r.height, 1), all);
-  if (session_) apply_settings(r, all);
+  if (session_) apply_host(r, all);
   return frames;
 }
 

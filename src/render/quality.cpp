@@ -32,8 +32,8 @@ QualityReport measure_quality(PreparedScene scene, int warmup, bool shown) {
   report.height = scene.height;
   report.warmup = warmup;
   Session session(std::move(scene));
-  IbfvsRenderer& renderer = session.renderer();
-  renderer.record_flow(true);
+  const IbfvsRenderer& renderer = session.renderer();
+  session.record_flow(true);
   for (int k = 0; k < warmup; ++k) session.advance();
 
   constexpr int kMeasured = 17;

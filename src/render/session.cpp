@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <set>
 #include <utility>
 
 #include "ibfvs/core/fields/vector_field.h"
+#include "ibfvs/core/geometry/displacement.h"
 #include "ibfvs/core/geometry/rigid_motion.h"
 #include "ibfvs/core/support/error.h"
 #include "ibfvs/gl/objects.h"
@@ -135,12 +135,17 @@ void Session::load() {
   player_.reset();
   renderer_ = std::make_unique<IbfvsRenderer>(scene_.settings);
   renderer_->set_mesh(*scene_.mesh, scene_.field);
+  if (probe_) renderer_->set_probe_length(*probe_);
+  renderer_->defer_statistics(defer_statistics_);
+  renderer_->record_flow(record_flow_);
   set_scene_scalars(scene_, *renderer_, scene_.color_scalar, scene_.beta_scalar);
+  apply_host(true);
   if (!scene_.surface_image.pixels.empty())
     renderer_->set_surface_image(scene_.surface_image, mesh_bounds(*scene_.mesh).centre());
   if (scene_.scene.init == InitMode::RandomCells)
     renderer_->fill_texture_with_cell_colors(scene_.scene.seed);
   player_ = std::make_unique<StepPlayer>(scene_, *renderer_);
+  if (scene_.step_count > 1) player_->seek(time_, *renderer_);
 }
 
 void Session::rebuild(bool restart) {
@@ -155,17 +160,54 @@ void Session::rebuild(bool restart) {
   const ImageF raw = drawn ? renderer_->read_texture_raw() : ImageF();
   const ViewState view = renderer_->last_view();
   load();
-  if (scene_.step_count > 1) player_->seek(time_, *renderer_);
   if (drawn) renderer_->take_texture(raw, view);
+}
+
+void Session::restart() {
+  rebuild(true);
 }
 
 void Session::resize(int width, int height) {
   if (width == scene_.width && height == scene_.height) return;
   scene_ = resized(scene_, width, height);
-  dt_ = scene_.dt;
   camera_.set_aspect(aspect_of(scene_));
   if (lock_camera_) lock_camera_->set_aspect(aspect_of(scene_));
   rebuild(false);
+  refit_dt();
+}
+
+void Session::fit_dt(const Camera& camera) {
+  host_camera_ = camera;
+  host_scale_.reset();
+  refit_dt();
+}
+
+void Session::follow_host(double world_per_pixel, float speed) {
+  host_scale_.emplace(world_per_pixel, speed);
+  host_camera_.reset();
+  refit_dt();
+}
+
+void Session::refit_dt() {
+  const Scene& s = scene_.scene;
+  if (s.dt > 0.0f) {
+    dt_ = s.dt;
+  } else if (host_scale_) {
+    // Normalised in image space, any dt > 0 moves every point `step` pixels.
+    const auto [world_per_pixel, speed] = *host_scale_;
+    dt_ = s.image_normalize ? (s.step > 0.0f && speed > 0.0f ? 1.0f : 0.0f)
+                            : dt_for_step(s.step, speed, world_per_pixel);
+  } else if (const float d = host_camera_ ? dt_for_pixel_step(scene_.mesh->positions, scene_.field,
+                                                              host_camera_->view_projection(),
+                                                              scene_.width, scene_.height, s.step)
+                                          : 0.0f;
+             d > 0.0f) {
+    dt_ = d;
+  } else {
+    // The scene's camera, as prepared (and a series' steps, where the
+    // first is at rest).
+    dt_ = resized(scene_, scene_.width, scene_.height).dt;
+  }
 }
 
 void Session::seek(double t) {
@@ -194,24 +236,19 @@ void Session::advance() {
   render(camera_);
 }
 
-bool Session::set(const Scene& next, const Camera* seen_by) {
+SetResult Session::set(const Scene& next, const Camera* seen_by) {
   const Scene& now = scene_.scene;
-  std::set<KeyEffect> effects;
-  for (const std::string_view key : changed_keys(now, next)) {
-    const KeyEffect effect = change_effect(key, next, scene_.step_count > 1);
-    if (effect == KeyEffect::kPrepare) return false;
-    effects.insert(effect);
-  }
-  const auto has = [&](KeyEffect e) { return effects.count(e) > 0; };
+  const ChangePlan plan = plan_change(now, next, scene_.step_count > 1);
+  if (!plan.takes()) return SetResult::kPrepare;
 
   // Everything checked before anything changes.
-  RenderSettings settings = renderer_->settings();
+  RenderSettings settings = scene_.settings;
   apply_texture_settings(next, settings);
   settings.noise.scale = next.scale;
   settings.noise.seed = next.seed;
-  if (settings.object_noise && !renderer_->settings().object_noise) {
+  if (settings.object_noise && !scene_.settings.object_noise) {
     // s pixels at the distance of the mesh centre, as prepare_scene does.
-    const Camera& c = seen_by ? *seen_by : camera_;
+    const Camera& c = seen_by ? *seen_by : host_camera_ ? *host_camera_ : camera_;
     settings.object_cell = settings.noise.scale * c.world_per_pixel(scene_.height);
   }
   {
@@ -221,35 +258,26 @@ bool Session::set(const Scene& next, const Camera* seen_by) {
     sized.validate();
   }
   std::vector<glm::vec3> field;
-  if (has(KeyEffect::kTangent))
-    field = evaluate_field(*scene_.mesh, scene_.field_spec, next.tangent);
+  if (plan.tangent) field = evaluate_field(*scene_.mesh, scene_.field_spec, next.tangent);
 
-  const float step_ratio = now.step > 0.0f ? next.step / now.step : 1.0f;
-  const bool reseeded = next.seed != now.seed;
   scene_.scene = next;
   scene_.settings = settings;
-  // A new view: dt (the step is in pixels) and the object-space cell for it.
-  const bool refit = has(KeyEffect::kCamera) && !has(KeyEffect::kSize);
-  if (has(KeyEffect::kCamera)) {
+  if (plan.camera) {
     CameraParams params = next.camera;
     params.up = scene_.camera.up;  // the prepared scene's up (a key of its own)
     scene_.camera = params;
     camera_ = Camera(mesh_bounds(*scene_.mesh), params, aspect_of(scene_));
-    if (refit) {
-      scene_ = resized(scene_, scene_.width, scene_.height);
-      dt_ = scene_.dt;
-    }
+    if (!plan.size) scene_ = resized(scene_, scene_.width, scene_.height);  // the object cell
   }
-  if (has(KeyEffect::kNoise))
-    rebuild(reseeded);
+  if (plan.camera || plan.size) host_camera_.reset();  // the caller's camera changes: fit_dt
+  if (plan.regrid || plan.reseed)
+    rebuild(plan.reseed);
   else
-    renderer_->update_settings(scene_.settings);
-  if (has(KeyEffect::kTangent)) set_field(std::move(field));
-  if (has(KeyEffect::kSize))
-    resize(next.width, next.height);  // dt from the new size, view and step
-  else if (has(KeyEffect::kStep) && !refit)
-    dt_ *= step_ratio;
-  return true;
+    apply_host(false);
+  if (plan.tangent) set_field(std::move(field));
+  if (plan.size) resize(next.width, next.height);
+  if (plan.step || plan.tangent || plan.camera || plan.size) refit_dt();
+  return plan.camera || plan.size ? SetResult::kNewView : SetResult::kApplied;
 }
 
 void Session::set_field(std::vector<glm::vec3> field) {
@@ -259,6 +287,73 @@ void Session::set_field(std::vector<glm::vec3> field) {
   scene_.field = std::move(field);
   const gl::SavedState saved;
   renderer_->set_field(scene_.field);
+  refit_dt();
+}
+
+void Session::apply_host(bool upload) {
+  RenderSettings s = scene_.settings;
+  if (advect_override_) s.advect_view = *advect_override_;
+  if (host_colours_) {
+    const HostColours& c = *host_colours_;
+    const auto& scalars = scene_.mesh->scalars;
+    const auto t = scalars.find(kHostColour);
+    const bool coloured = !c.table.empty() && t != scalars.end();
+    if (coloured && upload) renderer_->set_scalars(t->second, {});
+    s.use_color = coloured;
+    s.color_table = coloured ? c.table : std::vector<glm::vec3>{};
+    s.color_range = glm::vec2(0.0f, 1.0f);
+    s.surface_color = coloured ? c.nan : c.surface;  // NaN positions show the NaN colour
+  }
+  if (!(s == renderer_->settings())) renderer_->update_settings(s);
+}
+
+void Session::lock() {
+  renderer_->lock();
+}
+
+void Session::unlock() {
+  renderer_->unlock();
+}
+
+void Session::shift_image(glm::vec2 pixels) {
+  renderer_->shift_image(pixels);
+}
+
+void Session::override_advect_view(std::optional<AdvectView> view) {
+  advect_override_ = view;
+  apply_host(false);
+}
+
+void Session::set_host_colours(const HostColours& colours) {
+  if (host_colours_ && *host_colours_ == colours) return;
+  const bool table = !host_colours_ || host_colours_->table.empty() != colours.table.empty();
+  host_colours_ = colours;
+  apply_host(table);
+}
+
+void Session::set_probe_length(float world) {
+  if (!(world > 0.0f) || !std::isfinite(world) || probe_ == world) return;
+  probe_ = world;
+  renderer_->set_probe_length(world);
+}
+
+void Session::defer_statistics(bool on) {
+  defer_statistics_ = on;
+  renderer_->defer_statistics(on);
+}
+
+void Session::take_composited(const ImageF& texture, const ImageF* output) {
+  const gl::SavedState saved;
+  renderer_->write_texture_raw(texture);
+  if (output) {
+    renderer_->write_output_raw(*output);
+    renderer_->run_deferred_statistics();
+  }
+}
+
+void Session::record_flow(bool on) {
+  record_flow_ = on;
+  renderer_->record_flow(on);
 }
 
 void FramePacer::set_frames_per_step(int frames) {
@@ -312,6 +407,7 @@ void Session::change_data(PreparedScene next) {
   scene_.step_count = next.step_count;
   scene_.step_data = std::move(next.step_data);
   player_ = std::make_unique<StepPlayer>(scene_, *renderer_);
+  apply_host(true);  // the host's colour positions of the new data
 }
 
 }  // namespace ibfvs

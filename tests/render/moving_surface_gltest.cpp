@@ -369,7 +369,7 @@ TEST_F(RendererGLTest, AResizeCarriesTheTexture) {
     }
   const double carried = correlation(down, grey(small), down_mask, small_mask);
   // The control: the texture restarted at the new size.
-  session.rebuild(true);
+  session.restart();
   session.advance();
   std::vector<float> restarted(down.size());
   const ImageF again = session.renderer().read_texture();

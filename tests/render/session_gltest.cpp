@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "gl_fixture.h"
+#include "ibfvs/core/geometry/displacement.h"
 #include "ibfvs/core/scene/camera.h"
 #include "ibfvs/core/scene/scene.h"
 #include "ibfvs/core/scene/scene_prep.h"
@@ -133,42 +134,107 @@ TEST_F(SessionGLTest, SettingsChangeOnTheRunningAnimationByTheKeysRules) {
     return session.set(next);
   };
   // Texture settings: the next frame takes them; the texture is as it was.
-  ASSERT_TRUE(changed("alpha", "0.3"));
-  ASSERT_TRUE(changed("filter", "8"));
+  ASSERT_EQ(changed("alpha", "0.3"), SetResult::kApplied);
+  ASSERT_EQ(changed("filter", "8"), SetResult::kApplied);
   EXPECT_EQ(session.renderer().settings().alpha, 0.3f);
   EXPECT_EQ(session.renderer().settings().filter_length, 8.0f);
   EXPECT_EQ(session.renderer().read_texture().pixels, texture.pixels);
   EXPECT_EQ(session.frame(), 6);
   // The step: dt follows it.
   const float dt = session.dt();
-  ASSERT_TRUE(changed("step", std::to_string(2.0f * session.scene().scene.step).c_str()));
+  ASSERT_EQ(changed("step", std::to_string(2.0f * session.scene().scene.step).c_str()),
+            SetResult::kApplied);
   EXPECT_FLOAT_EQ(session.dt(), 2.0f * dt);
   // A new noise grid: the texture goes on.
-  ASSERT_TRUE(changed("scale", "3"));
+  ASSERT_EQ(changed("scale", "3"), SetResult::kApplied);
   EXPECT_EQ(session.renderer().settings().noise.scale, 3.0f);
   EXPECT_EQ(session.renderer().read_texture().pixels, texture.pixels);
   // The camera: the view moves, dt is the step's for it.
-  ASSERT_TRUE(changed("camera", "60,10,0"));
+  ASSERT_EQ(changed("camera", "60,10,0"), SetResult::kNewView);
   EXPECT_EQ(session.camera().params().azimuth_deg, 60.0f);
   EXPECT_GT(session.dt(), 0.0f);
   EXPECT_NE(session.dt(), 2.0f * dt);
   // A new size: the texture resampled to it.
-  ASSERT_TRUE(changed("size", "64x48"));
+  ASSERT_EQ(changed("size", "64x48"), SetResult::kNewView);
   EXPECT_EQ(session.renderer().read_texture().width, 64);
   EXPECT_EQ(session.renderer().read_texture().height, 48);
   EXPECT_EQ(session.frame(), 6);
   // A new seed: the texture starts afresh.
-  ASSERT_TRUE(changed("seed", "7"));
+  ASSERT_EQ(changed("seed", "7"), SetResult::kApplied);
   EXPECT_EQ(session.frame(), 0);
   // Keys that need the scene prepared again, and values that are not
   // valid: nothing changes.
-  EXPECT_FALSE(changed("color_by", "speed"));
+  EXPECT_EQ(changed("color_by", "speed"), SetResult::kPrepare);
   EXPECT_TRUE(session.scene().scene.color_by.empty());
   Scene bad = session.scene().scene;
   bad.alpha = 1.5f;
   EXPECT_THROW(session.set(bad), SettingError);
   EXPECT_EQ(session.renderer().settings().alpha, 0.3f);
   EXPECT_EQ(session.scene().scene.alpha, 0.3f);
+  // Keys read only by a front end change nothing on the texture.
+  EXPECT_EQ(changed("frames", "99"), SetResult::kApplied);
+}
+
+// The one restart (the viewer's button, Python's restart(), a host's):
+// the scene's initial state, frame 0, unlocked; the settings in force, the
+// time of a series and dt stay.
+TEST_F(SessionGLTest, OneRestartStartsFromTheScenesInitialState) {
+  Scene s = small_scene();
+  s.init = InitMode::RandomCells;
+  Session fresh(prepare_scene(s));
+  const ImageF initial = fresh.renderer().read_texture();
+  Session session(prepare_scene(s));
+  Scene next = session.scene().scene;
+  next.alpha = 0.2f;
+  ASSERT_EQ(session.set(next), SetResult::kApplied);
+  const float dt = session.dt();
+  for (int k = 0; k < 5; ++k) session.advance();
+  session.lock();
+  ASSERT_NE(session.renderer().read_texture().pixels, initial.pixels);
+  session.restart();
+  EXPECT_EQ(session.frame(), 0);
+  EXPECT_EQ(session.renderer().frame(), 0);
+  EXPECT_FALSE(session.locked());
+  EXPECT_EQ(session.renderer().read_texture().pixels, initial.pixels);  // the cells again
+  EXPECT_EQ(session.renderer().settings().alpha, 0.2f);
+  EXPECT_EQ(session.dt(), dt);
+}
+
+// dt by the one rule for the view it is drawn with: the scene's camera, a
+// host's camera (the viewer's zoom), a host's world units per pixel.
+TEST_F(SessionGLTest, DtFitsTheStepInTheViewItIsDrawnWith) {
+  Session session(prepare_scene(small_scene()));
+  const float own = session.dt();
+  ASSERT_GT(own, 0.0f);
+  const Bounds bounds = mesh_bounds(*session.scene().mesh);
+  CameraParams params = session.camera().params();
+  params.distance = 0.5f * session.camera().distance_world() / bounds.diagonal();
+  const Camera near_camera(bounds, params, 96.0f / 80.0f);
+  session.fit_dt(near_camera);  // nearer: the step spans less world
+  EXPECT_GT(session.dt(), 0.25f * own);
+  EXPECT_LT(session.dt(), 0.7f * own);
+  const float near = session.dt();
+  Scene next = session.scene().scene;
+  next.step = 2.0f * next.step;  // a new step keeps the host's camera
+  ASSERT_EQ(session.set(next), SetResult::kApplied);
+  EXPECT_FLOAT_EQ(session.dt(), 2.0f * near);
+  // A host's world units per pixel: normalised in image space (the
+  // default), any dt moves every point `step` pixels: 1 where anything
+  // moves.
+  ASSERT_TRUE(session.scene().scene.image_normalize);
+  session.follow_host(0.01, 2.0f);
+  EXPECT_EQ(session.dt(), 1.0f);
+  session.follow_host(0.01, 0.0f);
+  EXPECT_EQ(session.dt(), 0.0f);
+  // The scene's own dt wins over every view.
+  Scene own_dt = small_scene();
+  own_dt.image_normalize = false;
+  own_dt.dt = 0.125f;
+  Session fixed(prepare_scene(own_dt));
+  fixed.fit_dt(near_camera);
+  EXPECT_EQ(fixed.dt(), 0.125f);
+  fixed.follow_host(0.01, 2.0f);
+  EXPECT_EQ(fixed.dt(), 0.125f);
 }
 
 TEST_F(SessionGLTest, LeavesTheHostsGlStateAsItFoundIt) {

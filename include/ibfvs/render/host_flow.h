@@ -34,19 +34,6 @@
 
 namespace ibfvs {
 
-/// The scalar array of a host's surface that holds, per vertex, its
-/// position in the host's colour table (table_positions): the prepared mesh
-/// carries it in its own vertex order.
-inline constexpr const char* kHostColour = "ibfvs:colour";
-
-/// A host's colours: its table at evenly spaced positions 0..1 (empty: the
-/// plain surface colour) and the colour of values it cannot map (NaN).
-struct HostColours {
-  std::vector<glm::vec3> table;
-  glm::vec3 nan{0.5f, 0.5f, 0.5f};
-  bool operator==(const HostColours&) const = default;
-};
-
 /// One render of the host.
 struct HostRender {
   int width = 1, height = 1;   ///< its viewport, pixels
@@ -84,10 +71,11 @@ class HostFlow {
   HostFlow(const HostFlow&) = delete;
   HostFlow& operator=(const HostFlow&) = delete;
 
-  /// The texture keys of `scene` (alpha, beta, scale, step, seed, ...): by
-  /// each changed key's rule (change_effect) live on the running texture, a
-  /// new noise grid under it, or a new start (a new seed). Throws
-  /// SettingError for a value that is not valid, changing nothing.
+  /// The texture keys of `scene` (alpha, beta, scale, step, seed, ...), by
+  /// the session's rule (Session::set, plan_change): live on the running
+  /// texture, a new noise grid under it, a new start (a new seed), or the
+  /// scene prepared again. Throws SettingError for a value that is not
+  /// valid, changing nothing.
   void set_scene(const Scene& scene);
   [[nodiscard]] const Scene& scene() const { return scene_; }
   /// At least this many texture frames for each change of the surface
@@ -148,7 +136,7 @@ class HostFlow {
 
  private:
   void update_session(int width, int height, const HostChanges& agreed);
-  void apply_settings(const HostRender& r, const HostChanges& agreed);
+  void apply_host(const HostRender& r, const HostChanges& agreed);
 
   Scene scene_;
   FramePacer pacer_;
@@ -163,8 +151,8 @@ class HostFlow {
   const void* made_in_ = nullptr;  // the context the session's objects are in
   int width_ = 0, height_ = 0;
   int frame_ = 0, renderer_frame_ = 0;
-  bool restart_ = true, regrid_ = false, settings_changed_ = false;
-  bool data_changed_ = false, points_moved_ = false, colours_changed_ = true;
+  bool restart_ = true, regrid_ = false, prepare_ = false, keys_changed_ = false;
+  bool data_changed_ = false, points_moved_ = false;
 };
 
 }  // namespace ibfvs

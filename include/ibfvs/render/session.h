@@ -8,6 +8,13 @@
 // (change_data, a step of a series), of size (resize) or of the noise grid
 // (rebuild): only a restart starts it from noise again.
 //
+// It is the one door to a running animation: every front end (the viewer,
+// Python, both VTK mappers through HostFlow) changes it only here: keys by
+// one rule (set: plan_change), one restart, a host's view (the camera it
+// draws with or the world units a pixel spans: dt by the one rule,
+// dt_for_step), a host's colours and its compositing. The renderer is only
+// seen through it, read-only.
+//
 // It needs a current OpenGL 4.5 context for its whole life and never makes
 // one: ibfvs's own (gl::HeadlessContext, the viewer's window) or the host's
 // (ParaView's render window). It leaves the host's framebuffer binding and
@@ -15,6 +22,8 @@
 
 #include <memory>
 #include <optional>
+#include <utility>
+#include <vector>
 
 #include "ibfvs/core/image/image.h"
 #include "ibfvs/core/scene/camera.h"
@@ -22,6 +31,29 @@
 #include "ibfvs/render/ibfvs_renderer.h"
 
 namespace ibfvs {
+
+/// The scalar array of a host's surface that holds, per vertex, its
+/// position in the host's colour table (table_positions): the prepared mesh
+/// carries it in its own vertex order.
+inline constexpr const char* kHostColour = "ibfvs:colour";
+
+/// A host's colours: its table at evenly spaced positions 0..1 (empty: its
+/// surface colour), the colour of values it cannot map (NaN), and its
+/// surface's own colour.
+struct HostColours {
+  std::vector<glm::vec3> table;
+  glm::vec3 nan{0.5f, 0.5f, 0.5f};
+  glm::vec3 surface{1.0f};
+  bool operator==(const HostColours&) const = default;
+};
+
+/// What Session::set did with a changed scene (plan_change).
+enum class SetResult {
+  kPrepare,  ///< nothing: a key needs the scene prepared again (a new Session)
+  kApplied,  ///< taken on the running animation
+  kNewView,  ///< taken, and the camera or the image size changed: a caller
+             ///< with its own camera makes it again and tells fit_dt
+};
 
 /// Texture frames a host gives each change of its data (a time step) at
 /// least, where its renders since the last change fell short (ParaView's
@@ -101,13 +133,23 @@ class Session {
   [[nodiscard]] int frame() const { return frame_; }
   [[nodiscard]] const PreparedScene& scene() const { return scene_; }
   [[nodiscard]] PreparedScene& scene() { return scene_; }
-  [[nodiscard]] IbfvsRenderer& renderer() { return *renderer_; }
+  /// The renderer, to read its images and state (the changes go through the Session).
   [[nodiscard]] const IbfvsRenderer& renderer() const { return *renderer_; }
   /// The camera advance() uses (the scene's, orbiting; the lock camera once locked).
   [[nodiscard]] Camera& camera() { return camera_; }
-  /// World units per frame; the viewer changes it as the camera zooms.
+  /// World units per frame, by the one rule (dt_for_step): the scene's own
+  /// dt key where it has one; else the fastest point moves the scene's step
+  /// in pixels a frame, seen by the host's view where one was given
+  /// (fit_dt, follow_host), else by the scene's camera. A new step, field,
+  /// camera or size fits it again.
   [[nodiscard]] float dt() const { return dt_; }
-  void set_dt(float dt) { dt_ = dt; }
+  /// A host that draws with a camera of its own (the viewer, a snapshot):
+  /// dt fits the step in its pixels, now and at each later change.
+  void fit_dt(const Camera& camera);
+  /// A host that knows the world units a pixel spans at its focal point and
+  /// its fastest vector (VTK's mappers, through HostFlow): dt for them
+  /// (dt_for_step); with image_normalize 1 where anything moves.
+  void follow_host(double world_per_pixel, float speed);
 
   /// Takes `next`, the running scene with some keys changed, the way a
   /// running animation should (key_effect, one table for every front end):
@@ -117,12 +159,12 @@ class Session {
   /// size resamples the texture. The texture goes on through each of these.
   /// `seen_by`: the camera the frames are drawn with, where the caller has
   /// its own (the viewer): an object-space noise cell is sized for it.
-  /// Returns false, changing nothing, when a key needs the scene prepared
+  /// Returns kPrepare, changing nothing, when a key needs the scene prepared
   /// again (the mesh, the field, a scalar, a percentile range, ...): the
   /// caller makes a new Session from prepare_scene(next). Throws
   /// SettingError, changing nothing, for settings that are not valid.
-  bool set(const Scene& next, const Camera* seen_by = nullptr);
-  /// Replaces the field (same vertex count), keeping the texture.
+  SetResult set(const Scene& next, const Camera* seen_by = nullptr);
+  /// Replaces the field (same vertex count), keeping the texture; dt fits it.
   void set_field(std::vector<glm::vec3> field);
   /// Goes on with new data: a host's next time step, moved points, a changed
   /// array, another mesh; `next` is the scene prepared for it
@@ -135,10 +177,39 @@ class Session {
   void change_data(PreparedScene next);
   /// A new image size: the texture is resampled to it and goes on.
   void resize(int width, int height);
-  /// A new renderer with the scene's current settings (a new noise scale):
-  /// the texture carries over, or with `restart` starts afresh from the
-  /// scene's initial state (a new seed, or the user asking).
-  void rebuild(bool restart = false);
+  /// The one restart (the viewer's button, Python's restart(), a host's
+  /// restart or new seed): a new renderer with the settings in force, the
+  /// texture from the scene's initial state (noise, or its random cells),
+  /// frame 0, unlocked; the data, the time of a series, the camera, dt and
+  /// a host's colours stay.
+  void restart();
+
+  // ---- a host's own controls (the viewer's mouse, section 3.7)
+  /// Section 3.7: the texture stops and stays on the surface as seen now
+  /// (IbfvsRenderer::lock); unlock goes on from it.
+  void lock();
+  void unlock();
+  [[nodiscard]] bool locked() const { return renderer_->locked(); }
+  /// The next frame's F_t and the noise move by `pixels` (a drag).
+  void shift_image(glm::vec2 pixels);
+  /// While the host drags its camera the texture advects in `view`, not the
+  /// scene's advect key; nullopt: the scene's again.
+  void override_advect_view(std::optional<AdvectView> view);
+
+  // ---- a host's colours and its compositing (VTK's mappers)
+  /// The host's colours over the scene's colour keys from now on: a table
+  /// read at the surface's kHostColour positions, else its surface colour.
+  void set_host_colours(const HostColours& colours);
+  /// The probe step's world length (IbfvsRenderer::set_probe_length): the
+  /// whole surface's of a host of several processes.
+  void set_probe_length(float world);
+  /// The contrast statistics wait for take_composited (several processes).
+  void defer_statistics(bool on);
+  /// A distributed render's composited F_t, and F where the statistics were
+  /// due (then run): as read_texture_raw and read_output_raw give them.
+  void take_composited(const ImageF& texture, const ImageF* output);
+  /// Records each pixel's displacement (measurements: read_flow).
+  void record_flow(bool on);
 
   /// The displayed image F, RGBA, rows bottom-up.
   [[nodiscard]] ImageU8 read_output() const { return renderer_->read_output(); }
@@ -146,6 +217,14 @@ class Session {
  private:
   class StepPlayer;
   void load();
+  // A new renderer with the settings in force: the texture carries over, or
+  // with `restart` starts afresh (a new noise scale; a new seed).
+  void rebuild(bool restart);
+  // The scene's settings with the host's overrides (its colours, a drag's
+  // advect view) onto the renderer; `upload`: the colour positions too.
+  void apply_host(bool upload);
+  // dt by the rule in force (dt()).
+  void refit_dt();
 
   PreparedScene scene_;
   std::unique_ptr<IbfvsRenderer> renderer_;
@@ -154,6 +233,12 @@ class Session {
   Camera camera_;
   std::optional<Camera> lock_camera_;
   float dt_ = 0.0f;
+  std::optional<Camera> host_camera_;                   // fit_dt's
+  std::optional<std::pair<double, float>> host_scale_;  // follow_host's (world per pixel, speed)
+  std::optional<HostColours> host_colours_;
+  std::optional<AdvectView> advect_override_;
+  std::optional<float> probe_;
+  bool defer_statistics_ = false, record_flow_ = false;
   int frame_ = 0;
 };
 

@@ -100,13 +100,7 @@ void composite_frame(vtkMultiProcessController* controller, ibfvs::Session* sess
                           vtkCommunicator::SUM_OP);
   };
   ibfvs::composite_nearest(images, depth, group);
-  if (session) {
-    session->renderer().write_texture_raw(texture);
-    if (statistics) {
-      session->renderer().write_output_raw(output);
-      session->renderer().run_deferred_statistics();
-    }
-  }
+  if (session) session->take_composited(texture, statistics ? &output : nullptr);
 }
 
 ibfvs::TriMesh gather_pieces(vtkMultiProcessController* controller, const ibfvs::TriMesh* mine) {

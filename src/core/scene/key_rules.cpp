@@ -34,6 +34,38 @@ std::vector<std::string_view> changed_keys(const Scene& before, const Scene& aft
   return out;
 }
 
+ChangePlan plan_change(const Scene& now, const Scene& next, bool unsteady) {
+  ChangePlan plan;
+  for (const std::string_view key : changed_keys(now, next)) {
+    switch (change_effect(key, next, unsteady)) {
+      case KeyEffect::kLive:
+        plan.live = true;
+        break;
+      case KeyEffect::kStep:
+        plan.step = true;
+        break;
+      case KeyEffect::kNoise:
+        (key == "seed" ? plan.reseed : plan.regrid) = true;
+        break;
+      case KeyEffect::kTangent:
+        plan.tangent = true;
+        break;
+      case KeyEffect::kCamera:
+        plan.camera = true;
+        break;
+      case KeyEffect::kSize:
+        plan.size = true;
+        break;
+      case KeyEffect::kNone:
+        break;
+      case KeyEffect::kPrepare:
+        plan.prepare = true;
+        break;
+    }
+  }
+  return plan;
+}
+
 std::optional<KeyRange> key_range(std::string_view name) {
   const SceneKey* key = find_scene_key(name);
   return key ? key->range : std::nullopt;

@@ -253,15 +253,11 @@ PreparedScene resized(const PreparedScene& prepared, int width, int height) {
 std::optional<PreparedScene> restyled(const PreparedScene& prepared, Style style) {
   Scene s = prepared.scene;
   apply_style(s, style);
-  // The keys a restyle carries (key_effect): live ones, the noise grid and
-  // the step (dt is computed again below).
-  for (const std::string_view key : changed_keys(prepared.scene, s)) {
-    const KeyEffect effect = change_effect(key, s, prepared.step_count > 1);
-    if (effect == KeyEffect::kLive || effect == KeyEffect::kNoise || effect == KeyEffect::kStep ||
-        effect == KeyEffect::kNone)
-      continue;
-    return std::nullopt;
-  }
+  // The keys a restyle carries (plan_change): texture settings, the noise
+  // grid and the step (dt is computed again below), over the same field,
+  // camera and size.
+  const ChangePlan plan = plan_change(prepared.scene, s, prepared.step_count > 1);
+  if (plan.prepare || plan.tangent || plan.camera || plan.size) return std::nullopt;
   PreparedScene p = prepared;
   p.scene = s;
   apply_texture_settings(s, p.settings);

@@ -275,6 +275,28 @@ KeyEffect change_effect(std::string_view name, const Scene& next, bool unsteady)
 /// The keys whose values differ between two scenes, in table order.
 std::vector<std::string_view> changed_keys(const Scene& before, const Scene& after);
 
+/// What taking the scene `next` in place of `now` asks of a running
+/// animation: the union of its changed keys' effects (change_effect). The
+/// one rule every front end's change goes by (Session::set, HostFlow,
+/// restyled, the page's header).
+struct ChangePlan {
+  bool prepare = false;  ///< a key needs the scene prepared again
+  bool live = false;     ///< texture and display settings the next frame takes
+  bool step = false;     ///< dt follows a new step
+  bool regrid = false;   ///< a new noise scale: a new grid, the texture goes on
+  bool reseed = false;   ///< a new seed: the texture starts afresh
+  bool tangent = false;  ///< the field evaluated again
+  bool camera = false;   ///< the view moves
+  bool size = false;     ///< the image size
+  /// Whether anything but keys read only as the animation runs changed.
+  [[nodiscard]] bool any() const {
+    return prepare || live || step || regrid || reseed || tangent || camera || size;
+  }
+  /// Whether the running animation can take it (nothing needs preparing).
+  [[nodiscard]] bool takes() const { return !prepare; }
+};
+ChangePlan plan_change(const Scene& now, const Scene& next, bool unsteady);
+
 /// The range of number key `name`; nullopt for a key that has none.
 std::optional<KeyRange> key_range(std::string_view name);
 /// `value` clamped to the range of `name` (a key that has one).

@@ -5,6 +5,7 @@
 //                  enumeration's number; 1 or 0 for a flag)
 //   @KEY.range@    min="MIN" max="MAX" of a number key's span
 //   @KEY.entries@  an enumeration key's <Entry value="N" text="Name"/> lines, by number
+//   @KEY.label@    the key's label (SceneKey::label) in title case
 //   @page.triangles@  the most triangles a web page takes (WebPageLimits)
 // and repeats a block for each of several names, first:
 //   <!-- @each NAME NAME ... --> BLOCK <!-- @end -->  BLOCK once for each
@@ -48,6 +49,20 @@ std::string fill(const SceneKey& key, const std::string& part, const std::string
       text[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(text[0])));
       out += (out.empty() ? "" : "\n" + indent) + "<Entry value=\"" + std::to_string(c.value) +
              "\" text=\"" + text + "\"/>";
+    }
+    return out;
+  }
+  if (part == "label") {
+    // Title case, as ParaView's labels are: each word's first letter but
+    // the small words' and a unit's in brackets.
+    std::string text(key.label), word;
+    std::string out;
+    std::istringstream words(text);
+    for (bool first = true; words >> word; first = false) {
+      const bool small = word == "in" || word == "of" || word == "and";
+      if ((first || !small) && std::isalpha(static_cast<unsigned char>(word[0])))
+        word[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(word[0])));
+      out += (first ? "" : " ") + word;
     }
     return out;
   }

@@ -52,21 +52,23 @@ void ViewerPanel::draw(ViewerSession& viewer, bool& show, bool& show_help, doubl
   ImGui::PushItemWidth(130);
   Scene d = viewer.desc();
   bool changed = false;
-  // Each slider spans its key's range (scene.h, key_range).
-  const auto slider = [](const char* label, const char* key, float& value, const char* format) {
+  // Each slider spans its key's range and is named by its label (the keys'
+  // table: key_range, key_label).
+  const auto slider = [](const char* key, float& value, const char* format) {
     const KeyRange r = *key_range(key);
-    return ImGui::SliderFloat(label, &value, r.min, r.max, format);
+    return ImGui::SliderFloat(std::string(key_label(key)).c_str(), &value, r.min, r.max, format);
   };
-  changed |= slider("alpha", "alpha", d.alpha, "%.2f");
-  changed |= slider("beta", "beta", d.beta, "%.2f");
-  changed |= slider("v_g", "vg", d.vg, "%.3f");
+  changed |= slider("alpha", d.alpha, "%.2f");
+  changed |= slider("beta", d.beta, "%.2f");
+  changed |= slider("vg", d.vg, "%.3f");
   changed |= enum_combo("profile", d.profile);
   // The display stage and the warp (docs/quality.md).
-  changed |= slider("filter (px)", "filter", d.filter, "%.1f");
-  changed |= slider("contrast", "contrast", d.contrast, "%.2f");
+  changed |= slider("filter", d.filter, "%.1f");
+  changed |= slider("contrast", d.contrast, "%.2f");
   changed |= enum_combo("resample", d.resample);
   // A moving mesh's series: whether its motion carries the texture (docs/data.md).
-  if (viewer.scene().step_count > 1) changed |= enum_combo("field frame", d.field_frame);
+  if (viewer.scene().step_count > 1)
+    changed |= enum_combo(std::string(key_label("field_frame")).c_str(), d.field_frame);
   const ImGuiColorEditFlags swatch = ImGuiColorEditFlags_NoInputs;
   changed |= ImGui::ColorEdit3("bg", &d.background.x, swatch);
   ImGui::SameLine();
@@ -156,17 +158,18 @@ void ViewerPanel::draw_more_parameters(ViewerSession& viewer) {
   // Logarithmic: the keys' spans (key_range) reach 64 pixels, the common
   // values are a few.
   const KeyRange scale = *key_range("scale"), step = *key_range("step");
-  if (ImGui::SliderFloat("s (noise scale)", &d.scale, scale.min, scale.max, "%.2f",
-                         ImGuiSliderFlags_Logarithmic) &&
+  if (ImGui::SliderFloat(std::string(key_label("scale")).c_str(), &d.scale, scale.min, scale.max,
+                         "%.2f", ImGuiSliderFlags_Logarithmic) &&
       d.scale != viewer.desc().scale) {
     viewer.set_noise_scale(d.scale);  // a new grid: the texture goes on
     return;
   }
-  if (ImGui::SliderFloat("step (px/frame)", &d.step, step.min, step.max, "%.2f",
-                         ImGuiSliderFlags_Logarithmic) &&
+  if (ImGui::SliderFloat(std::string(key_label("step")).c_str(), &d.step, step.min, step.max,
+                         "%.2f", ImGuiSliderFlags_Logarithmic) &&
       d.step > 0.0f)
     viewer.set("step", format_number(d.step));
-  if (enum_combo("noise space", d.noise_space)) viewer.apply_live(d);
+  if (enum_combo(std::string(key_label("noise_space")).c_str(), d.noise_space))
+    viewer.apply_live(d);
   if (enum_combo("tangent", d.tangent)) {
     try {
       viewer.set_tangent(d.tangent);
@@ -176,7 +179,7 @@ void ViewerPanel::draw_more_parameters(ViewerSession& viewer) {
   }
   RenderSettings s = viewer.renderer().settings();
   if (s.use_color) {
-    bool changed = enum_combo("colour map", d.color_map);
+    bool changed = enum_combo(std::string(key_label("color_map")).c_str(), d.color_map);
     if (ImGui::DragFloat2("colour range", &s.color_range.x, 0.01f) &&
         s.color_range.y > s.color_range.x) {
       d.color_range = ScalarRange{false, s.color_range.x, s.color_range.y};

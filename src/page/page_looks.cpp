@@ -37,6 +37,50 @@ Json uniforms_json(const std::vector<shaders::UniformValue>& uniforms) {
   return out;
 }
 
+// The look's own controls, by the session's rules for a running texture
+// (plan_change): alpha and beta set their uniforms; the step sets the
+// image-space step where the look normalises, else the speed scales its
+// dt; the noise scale makes a coarser grid (the phases cover the look's
+// own and finer ones only). Each spans its key's range and is named by its
+// label (the keys' table).
+Json controls(const PreparedScene& q, const std::vector<shaders::UniformValue>& uniforms) {
+  const auto has = [&](std::string_view name) {
+    return std::any_of(uniforms.begin(), uniforms.end(),
+                       [&](const auto& u) { return u.name == name; });
+  };
+  const auto control = [](std::string_view key, std::string_view acts, double value, double min,
+                          double max, bool log) {
+    return Json{{"key", key},   {"label", key_label(key)},
+                {"acts", acts}, {"value", value},
+                {"min", min},   {"max", max},
+                {"log", log}};
+  };
+  Json out = Json::array();
+  for (const std::string_view key : {"alpha", "beta"})
+    if (has(std::string("u_") + std::string(key))) {
+      const KeyRange r = *key_range(key);
+      Json c = control(key, "uniform", key == "alpha" ? q.settings.alpha : q.settings.beta, r.min,
+                       r.max, false);
+      c["uniform"] = "u_" + std::string(key);
+      out.push_back(std::move(c));
+    }
+  const KeyRange step = *key_range("step");
+  if (has("u_image_step") && q.settings.image_step > 0.0f) {
+    Json c = control("step", "uniform", q.settings.image_step,
+                     std::max(step.min, step.max / 256.0f), step.max, true);
+    c["uniform"] = "u_image_step";
+    out.push_back(std::move(c));
+  } else {
+    Json c = control("speed", "dt", 1.0, 0.0, 4.0, false);
+    c["label"] = "speed";
+    out.push_back(std::move(c));
+  }
+  const float base = q.settings.noise.scale;
+  out.push_back(
+      control("scale", "grid", base, base, std::min(6.0f * base, key_range("scale")->max), false));
+  return out;
+}
+
 // One look of the page: what the pass is compiled with and set to for one
 // style over the same data. `finest`: the columns and rows of the page's
 // noise phases (a coarser grid takes the first of them).
@@ -56,6 +100,8 @@ Json look(const PreparedScene& q, std::string_view name, std::string_view descri
       {"u_spike_width", T::Float, {s.noise.spike_width}},
       {"u_seed", T::Uint, {static_cast<double>(s.noise.seed)}}};
   using shaders::Dialect;
+  const std::vector<shaders::UniformValue> uniforms =
+      shaders::settings_uniforms(s, f, phase_size, centre);
   return {{"name", name},
           {"description", description},
           {"background", vec3(s.background)},
@@ -74,7 +120,8 @@ Json look(const PreparedScene& q, std::string_view name, std::string_view descri
             {"display_fragment", shaders::tap_texture(f)
                                      ? shaders::display_fragment_source(f, Dialect::Es300)
                                      : std::string()}}},
-          {"uniforms", uniforms_json(shaders::settings_uniforms(s, f, phase_size, centre))},
+          {"uniforms", uniforms_json(uniforms)},
+          {"controls", controls(q, uniforms)},
           {"grid_uniforms", uniforms_json(grid_uniforms)}};
 }
 

@@ -264,6 +264,47 @@ TEST(WebPage, TheHeaderIsJsonAndTheBlockHoldsItsArrays) {
             p.header["phase_size"][0].get<int>() * p.header["phase_size"][1].get<int>());
 }
 
+// The page's sliders come from its header: each look's controls, by the
+// library's rules (the step is image-space where the look normalises, else
+// a speed on its dt), named and spanned by the keys' table.
+TEST(WebPage, EachLookCarriesItsControlsByTheKeysTable) {
+  if (!has_web_runtime()) GTEST_SKIP() << "built without the browser runtime";
+  const PageParts normalised = parts(web_page(torus_scene()));
+  Scene s;
+  s.mesh = "torus";
+  s.width = 64;
+  s.height = 48;
+  s.image_normalize = false;
+  const PageParts by_dt = parts(web_page(prepare_scene(s)));
+  const auto keys = [](const nlohmann::json& look) {
+    std::vector<std::string> out;
+    for (const auto& c : look["controls"]) {
+      out.push_back(c["key"]);
+      if (c["key"] == "speed") continue;  // a factor, not a key
+      const std::string key = c["key"];
+      EXPECT_EQ(c["label"], std::string(key_label(key))) << key;
+      EXPECT_GE(c["min"].get<float>(), key_range(key)->min) << key;
+      EXPECT_LE(c["max"].get<float>(), key_range(key)->max) << key;
+      EXPECT_GE(c["value"].get<float>(), c["min"].get<float>()) << key;
+      EXPECT_LE(c["value"].get<float>(), c["max"].get<float>()) << key;
+    }
+    return out;
+  };
+  const nlohmann::json& look = normalised.header["looks"][0];
+  EXPECT_EQ(keys(look), (std::vector<std::string>{"alpha", "beta", "step", "scale"}));
+  EXPECT_EQ(look["controls"][2]["acts"], "uniform");
+  EXPECT_EQ(look["controls"][2]["uniform"], "u_image_step");
+  EXPECT_EQ(look["controls"][2]["label"], "step (pixels)");
+  EXPECT_EQ(look["controls"][3]["acts"], "grid");
+  EXPECT_EQ(keys(by_dt.header["looks"][0]),
+            (std::vector<std::string>{"alpha", "beta", "speed", "scale"}));
+  EXPECT_EQ(by_dt.header["looks"][0]["controls"][2]["acts"], "dt");
+  // Every key has a label; a unit where its name alone would not say it.
+  for (const SceneKey& key : scene_keys()) EXPECT_FALSE(key.label.empty()) << key.name;
+  EXPECT_EQ(key_label("scale"), "noise scale (pixels)");
+  EXPECT_EQ(key_label("alpha"), "alpha");
+}
+
 TEST(WebPage, RefusesWhatIsTooBigAndNamesWithoutHtml) {
   const PreparedScene scene = torus_scene();
   if (!has_web_runtime()) GTEST_SKIP() << "built without the browser runtime";

@@ -38,7 +38,7 @@ function slider(panel: HTMLElement, label: string, min: number, max: number, val
   input.max = String(to(max));
   input.step = String((to(max) - to(min)) / 100);
   input.value = String(to(value));
-  input.dataset.name = label;
+  input.dataset.name = key ?? label;
   // The value as set: a range input holds only its steps' values.
   let current = value;
   input.addEventListener("input", () => {
@@ -195,35 +195,16 @@ function addPanel(root: HTMLElement, canvas: HTMLCanvasElement, scene: SceneHead
     sliders.replaceChildren();
     controls.remove(lookSettings);
     state.dtFactor = 1;
-    const uniform = (name: string) => renderer.look.uniforms.find((u) => u.name === name);
-    // Each slider spans its key's range (the scene keys' table, in the header).
-    const range = scene.ranges;
-    for (const [name, label] of [["u_alpha", "alpha"], ["u_beta", "beta"]] as const) {
-      const u = uniform(name);
-      if (!u) continue;
-      slider(sliders, label, range[label].min, range[label].max, u.values[0], (v) => {
-        u.values[0] = v;
-        renderer.applySettings([u]);
-      }, false, controls, label);
-    }
-    // The step: pixels per frame of every point (image-space normalisation),
-    // else a factor on the look's dt.
-    const imageStep = uniform("u_image_step");
-    if (imageStep && imageStep.values[0] > 0) {
-      const step = range.step;
-      slider(sliders, "step (px)", Math.max(step.min, step.max / 256), step.max, imageStep.values[0], (v) => {
-        imageStep.values[0] = v;
-        renderer.applySettings([imageStep]);
-      }, true, controls, "step");
-    } else {
-      slider(sliders, "speed", 0, 4, 1, (v) => (state.dtFactor = v), false, controls, "speed");
-    }
-    // The noise scale, from the look's own up (the phases cover finer grids only).
-    const noiseScale = uniform("u_noise_scale");
-    if (noiseScale) {
-      const base = noiseScale.values[0];
-      slider(sliders, "noise scale (px)", base, Math.min(6 * base, range.scale.max), base,
-             (v) => renderer.setNoiseScale(v), false, controls, "scale");
+    // The look's controls, as the library's rules say each acts (the header's
+    // look.controls): the page decides none of them.
+    for (const c of renderer.look.controls) {
+      const uniform = c.acts === "uniform" ? renderer.look.uniforms.find((u) => u.name === c.uniform) : undefined;
+      const act = c.acts === "dt" ? (v: number) => (state.dtFactor = v)
+        : c.acts === "grid" ? (v: number) => renderer.setNoiseScale(v)
+        : uniform ? (v: number) => { uniform.values[0] = v; renderer.applySettings([uniform]); }
+        : undefined;
+      // A uniform's slider starts where the look's uniform is (kept across looks).
+      if (act) slider(sliders, c.label, c.min, c.max, uniform ? uniform.values[0] : c.value, act, c.log, controls, c.key);
     }
   };
   if (scene.looks.length > 1) {

@@ -1,6 +1,6 @@
 // The scene keys' rules beyond parsing (scene.h): what a running animation
 // does when a key changes, and the number keys' ranges, each read from the
-// key's entry in the one table (scene_keys(), scene.cpp).
+// key's entry in the one table (scene_keys(), scene_keys.cpp).
 #include <algorithm>
 #include <optional>
 #include <string_view>
@@ -9,6 +9,11 @@
 #include "ibfvs/core/scene/scene.h"
 
 namespace ibfvs {
+
+std::string_view key_label(std::string_view name) {
+  const SceneKey* key = find_scene_key(name);
+  return key ? key->label : name;
+}
 
 KeyEffect key_effect(std::string_view name) {
   const SceneKey* key = find_scene_key(name);

@@ -258,6 +258,9 @@ struct SceneKey {
   std::optional<KeyRange> range = std::nullopt;
   /// An enumeration key's values, in its name table's order (else empty).
   std::vector<KeyChoice> choices = {};
+  /// What a control of it is called (the viewer's panel, the page's
+  /// sliders, ParaView's properties, title-cased): its name, with its unit.
+  std::string_view label = {};
 };
 
 /// Every key, in documentation order.
@@ -265,6 +268,9 @@ const std::vector<SceneKey>& scene_keys();
 /// The key named `name`, or nullptr.
 const SceneKey* find_scene_key(std::string_view name);
 
+/// Key `name`'s label (SceneKey::label; its name where the key has none,
+/// or for a name that is no key).
+std::string_view key_label(std::string_view name);
 /// The effect of changing key `name` (kPrepare for a name that is no key).
 KeyEffect key_effect(std::string_view name);
 /// The effect of a change of key `name` to its value in `next`: key_effect,

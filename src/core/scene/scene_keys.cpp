@@ -1,15 +1,14 @@
 #include "ibfvs/core/scene/scene.h"
 
-// Sections: the key table | settings | scene files | styles. The value
-// types (GridScalar, Displacement, ScalarRange, TimeRange): scene_values.cpp.
+// The scene keys' table (scene_keys(): every key's parsing, text form,
+// effect on a running animation, range, choices and label) and settings by
+// name. The scene files: scene_file.cpp; the styles: scene_styles.cpp; the
+// keys' rules: key_rules.cpp; the value types (GridScalar, Displacement,
+// ScalarRange, TimeRange): scene_values.cpp.
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <map>
-#include <sstream>
-
-#include <toml++/toml.h>
 
 #include "ibfvs/core/mesh/dataset_io.h"
 #include "ibfvs/core/support/data_paths.h"
@@ -53,12 +52,6 @@ glm::vec3 colour(std::string_view t) {
 }
 
 }  // namespace
-
-// A default Scene, for "is this value the default?".
-static const Scene& defaults() {
-  static const Scene d;
-  return d;
-}
 
 namespace {
 
@@ -411,8 +404,35 @@ std::vector<SceneKey> make_keys() {
 
 }  // namespace
 
+namespace {
+
+// The labels of the keys a control shows where the name alone would not
+// say what it is (its unit, the paper's symbol).
+std::vector<SceneKey> labelled(std::vector<SceneKey> keys) {
+  constexpr std::pair<std::string_view, std::string_view> kLabels[] = {
+      {"scale", "noise scale (pixels)"},
+      {"step", "step (pixels)"},
+      {"vg", "noise rate (v_g)"},
+      {"filter", "filter length (pixels)"},
+      {"field_frame", "field frame"},
+      {"noise_space", "noise space"},
+      {"profile", "time profile"},
+      {"color_map", "colour map"},
+      {"surface_color", "surface colour"},
+      {"image_normalize", "normalize in image space"},
+  };
+  for (SceneKey& key : keys) {
+    key.label = key.name;
+    for (const auto& [name, label] : kLabels)
+      if (key.name == name) key.label = label;
+  }
+  return keys;
+}
+
+}  // namespace
+
 const std::vector<SceneKey>& scene_keys() {
-  static const std::vector<SceneKey> keys = make_keys();
+  static const std::vector<SceneKey> keys = labelled(make_keys());
   return keys;
 }
 
@@ -452,344 +472,6 @@ void apply_settings(Scene& scene, const std::vector<Setting>& settings) {
   if (style) apply(*style);
   for (const Setting& s : settings)
     if (s.key != "style") apply(s);
-}
-
-// ------------------------------------------------------------ scene files
-namespace {
-
-// ${data}: the fetched-data folder; ${scene}: the scene file's folder.
-std::string expand(std::string s, const std::filesystem::path& scene) {
-  const auto replace = [&s](const std::string& token, const std::string& by) {
-    for (std::size_t p = s.find(token); p != std::string::npos; p = s.find(token, p + by.size()))
-      s.replace(p, token.size(), by);
-  };
-  replace("${data}", data_dir().string());
-  const std::filesystem::path folder = scene.parent_path();
-  replace("${scene}", folder.empty() ? std::string(".") : folder.string());
-  return s;
-}
-
-std::string number_text(const toml::node& n) {
-  if (n.is_integer()) return std::to_string(*n.value<std::int64_t>());
-  return format_number(*n.value<double>());
-}
-
-// Appends `value` to `list`, with `separator` between items.
-void append(std::string& list, const char* separator, const std::string& value) {
-  if (!list.empty()) list += separator;
-  list += value;
-}
-
-// A flow element written as a table {a, b, rotational, radial, tangential, core}.
-std::string element_text(const toml::table& t, const std::string& at) {
-  std::string text;
-  for (const char* end : {"a", "b"}) {
-    const toml::array* p = t[end].as_array();
-    if (!p || p->size() != 3) throw InputError(at + ": element '" + end + "' must be [x, y, z]");
-    for (const toml::node& c : *p) {
-      if (!c.is_number()) throw InputError(at + ": element '" + end + "' must be [x, y, z]");
-      append(text, ",", number_text(c));
-    }
-  }
-  for (const char* s : {"rotational", "radial", "tangential"}) {
-    const auto v = t[s];
-    if (v && !v.is_number())
-      throw InputError(at + ": element '" + std::string(s) + "' must be a number");
-    append(text, ",", v ? number_text(*v.node()) : std::string("0"));
-  }
-  if (const auto core = t["core"]) {
-    if (!core.is_number()) throw InputError(at + ": element 'core' must be a number");
-    append(text, ",", number_text(*core.node()));
-  }
-  for (const auto& [k, unused] : t) {
-    const std::string name(k.str());
-    if (name != "a" && name != "b" && name != "rotational" && name != "radial" &&
-        name != "tangential" && name != "core")
-      throw InputError(at + ": unknown element key '" + name + "'");
-  }
-  return text;
-}
-
-}  // namespace
-
-bool is_scene_path(std::string_view path) {
-  return path.size() > 5 && path.substr(path.size() - 5) == ".toml";
-}
-
-std::vector<Setting> read_scene_settings(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    throw InputError(path.string() + ": no such scene file");
-  toml::table table;
-  try {
-    table = toml::parse_file(path.string());
-  } catch (const toml::parse_error& e) {
-    throw InputError(path.string() + ":" + std::to_string(e.source().begin.line) + ": " +
-                     one_line(std::string(e.description())));
-  }
-  std::vector<Setting> out;
-  for (const auto& [key_node, value] : table) {
-    const std::string key(key_node.str());
-    const std::string where = path.string() + ":" + std::to_string(value.source().begin.line);
-    const SceneKey* k = find_scene_key(key);
-    if (!k) throw InputError(where + ": unknown key " + excerpt(key) + " (see docs/scenes.md)");
-    const auto wrong = [&](const char* expected) {
-      throw InputError(where + ": " + excerpt(key) + " must be " + expected);
-    };
-    const auto add = [&](const std::string& text) { out.push_back({key, text, where}); };
-    switch (k->kind) {
-      case KeyKind::String:
-        if (!value.is_string()) wrong("a string");
-        add(expand(*value.value<std::string>(), path));
-        break;
-      case KeyKind::Integer:
-        if (!value.is_integer()) wrong("an integer");
-        add(number_text(value));
-        break;
-      case KeyKind::Number:
-        if (!value.is_number()) wrong("a number");
-        add(number_text(value));
-        break;
-      case KeyKind::Time:
-        if (value.is_integer())
-          add(number_text(value));
-        else if (value.is_string())
-          add(*value.value<std::string>());
-        else
-          wrong("an integer or a string");
-        break;
-      case KeyKind::Flag:
-        if (!value.is_boolean()) wrong("true or false");
-        add(*value.value<bool>() ? "true" : "false");
-        break;
-      case KeyKind::Vector:
-      case KeyKind::Size: {
-        if (value.is_string()) {
-          add(*value.value<std::string>());
-          break;
-        }
-        const toml::array* a = value.as_array();
-        if (!a || a->empty()) wrong("an array of numbers or a string");
-        std::string joined;
-        for (const toml::node& n : *a) {
-          if (!n.is_number()) wrong("an array of numbers or a string");
-          append(joined, k->kind == KeyKind::Size ? "x" : ",", number_text(n));
-        }
-        add(joined);
-        break;
-      }
-      case KeyKind::StringList: {
-        if (value.is_string()) {
-          add(expand(*value.value<std::string>(), path));
-          break;
-        }
-        const toml::array* a = value.as_array();
-        if (!a) wrong("a string or an array of strings");
-        for (const toml::node& n : *a) {
-          if (!n.is_string()) wrong("a string or an array of strings");
-          add(expand(*n.value<std::string>(), path));
-        }
-        break;
-      }
-      case KeyKind::Elements: {
-        const toml::array* a = value.as_array();
-        if (!a) wrong("an array of tables {a, b, rotational, radial, tangential, core}");
-        for (const toml::node& n : *a) {
-          if (n.is_string()) {
-            add(*n.value<std::string>());
-            continue;
-          }
-          const toml::table* t = n.as_table();
-          if (!t) wrong("an array of tables {a, b, rotational, radial, tangential, core}");
-          add(element_text(*t, path.string() + ":" + std::to_string(n.source().begin.line)));
-        }
-        break;
-      }
-    }
-  }
-  return out;
-}
-
-Scene read_scene(const std::filesystem::path& path) {
-  Scene scene;
-  apply_settings(scene, read_scene_settings(path));
-  return scene;
-}
-
-std::string scene_toml(const Scene& scene) {
-  toml::table table;
-  for (const SceneKey& k : scene_keys()) {
-    const std::vector<std::string> texts = k.get(scene);
-    if (texts.empty() || texts == k.get(defaults())) continue;
-    const std::string key(k.name);
-    const std::string& text = texts.front();
-    switch (k.kind) {
-      case KeyKind::Integer:
-        table.insert_or_assign(
-            key, static_cast<std::int64_t>(parse_integer(text, INT64_MIN + 1, INT64_MAX)));
-        break;
-      case KeyKind::Number:
-        table.insert_or_assign(key, parse_number(text));
-        break;
-      case KeyKind::Flag:
-        table.insert_or_assign(key, text == "true");
-        break;
-      case KeyKind::Size:
-      case KeyKind::Vector: {
-        // Numbers as a TOML array; other forms (auto, percentiles) as text.
-        toml::array a;
-        try {
-          for (float v : parse_numbers(text)) a.push_back(static_cast<double>(v));
-        } catch (const InputError&) {
-          a.clear();
-        }
-        if (k.kind == KeyKind::Size) {
-          const std::size_t x = text.find('x');
-          a.clear();
-          a.push_back(
-              static_cast<std::int64_t>(parse_integer(text.substr(0, x), 1, kMaxImageSide)));
-          a.push_back(
-              static_cast<std::int64_t>(parse_integer(text.substr(x + 1), 1, kMaxImageSide)));
-        }
-        if (a.empty())
-          table.insert_or_assign(key, text);
-        else
-          table.insert_or_assign(key, std::move(a));
-        break;
-      }
-      case KeyKind::StringList:
-      case KeyKind::Elements: {
-        toml::array a;
-        for (const std::string& t : texts) a.push_back(t);
-        table.insert_or_assign(key, std::move(a));
-        break;
-      }
-      case KeyKind::Time:
-        if (text.find_first_not_of("0123456789-") == std::string::npos)
-          table.insert_or_assign(key,
-                                 static_cast<std::int64_t>(parse_integer(text, -1, INT64_MAX)));
-        else
-          table.insert_or_assign(key, text);
-        break;
-      case KeyKind::String:
-        table.insert_or_assign(key, text);
-        break;
-    }
-  }
-  std::ostringstream out;
-  out << "# an ibfvs scene (docs/scenes.md); render it with: ibfvs render THIS.toml\n"
-      << table << "\n";
-  return out.str();
-}
-
-// ------------------------------------------------------------ styles
-
-namespace {
-
-// The bronze and eroded looks: colour by a curvature (p5 to p95), texture
-// only where the surface is more concave than its median (to p98).
-void curvature_look(Scene& s, const char* field, const char* curvature, ColorMap map) {
-  s.default_field = FieldSpec::parse(field);
-  s.color_by = curvature;
-  s.color_map = map;
-  s.color_range = ScalarRange{true, 5.0f, 95.0f};
-  s.beta_by = std::string("-") + curvature;
-  s.beta_range = ScalarRange{true, 50.0f, 98.0f};
-  s.beta = 0.7f;
-}
-
-}  // namespace
-
-void apply_style(Scene& s, Style style) {
-  s.style = style;
-  switch (style) {
-    case Style::Flow:
-      // Figures 1, 5: dense moving texture, beta 0.5, grey background.
-      s.beta = 0.5f;
-      s.background = glm::vec3(0.5f);
-      break;
-    case Style::Crisp:
-      // docs/quality.md: longer unbroken lines than the defaults at about
-      // 1.3 times their cost per pixel.
-      s.filter = 24.0f;  // the defaults' 16 -> 24
-      break;
-    case Style::Paper:
-      // Section 5's look, and Table 1's cost: 4-pixel noise cells, the
-      // square profile at v_g 0.02, the flow's own speed, no display stage.
-      s.scale = 4.0f;
-      s.profile = NoiseProfile::Square;
-      s.vg = 0.02f;
-      s.beta = 0.5f;
-      s.step = 3.0f;
-      s.resample = Resample::Linear;
-      s.image_normalize = false;
-      s.filter = 0.0f;
-      s.sharpen = 0.0f;
-      s.contrast = 0.0f;
-      break;
-    case Style::Particles:
-      // Figure 8a: short spikes so that few grid values are bright, added
-      // rather than blended, along kappa_min where the mesh has no field.
-      s.profile = NoiseProfile::Spike;
-      s.spike_width = 0.04f;
-      s.scale = 4.0f;  // one particle per 4 x 4 pixels, as the paper's
-      s.inject = InjectMode::Add;
-      s.contrast = 0.0f;  // sparse bright spikes on the dark: no stretch to mean 0.5
-      s.filter = 0.0f;    // the comet tails as they are
-      s.sharpen = 0.0f;
-      s.image_normalize = false;  // faster particles where the flow is faster
-      s.step = 3.0f;
-      s.resample = Resample::Linear;
-      s.alpha = 0.08f;
-      s.background = {0.05f, 0.05f, 0.08f};
-      s.beta = 0.7f;
-      s.default_field = FieldSpec::parse("principal:min:smooth=10");
-      break;
-    case Style::Principal:
-      // Figure 8b: dense texture along the principal directions, signed along
-      // +Y (section 4.2's sign rule), smoothed over about three edges so that
-      // scanned meshes give coherent strokes.
-      s.default_field = FieldSpec::parse("principal:min:0,1,0:smooth=10");
-      s.beta = 0.6f;
-      break;
-    case Style::Bronze:
-      // Figure 9, "a dirty surface has superficially been cleaned": colour by
-      // kappa_max (patina in the hollows, metal on the ridges) and the dirt
-      // texture only in the more concave half (-kappa_max from its median to
-      // its 98th percentile), so the rest shows clean metal.
-      curvature_look(s, "principal:min:smooth=10", "kmax", ColorMap::Bronze);
-      break;
-    case Style::Eroded:
-      // Eroded stone (section 4.2): the same, parametrised by kappa_min.
-      curvature_look(s, "principal:max:smooth=10", "kmin", ColorMap::Grey);
-      break;
-    case Style::Topology:
-      // Figure 7: alpha 0, random colours per noise cell, flow downhill along
-      // the mesh's own height axis, seen from straight above it; locked once
-      // the colours have had time to travel from the summits to the basin
-      // borders, then seen obliquely.
-      s.alpha = 0.0f;
-      s.init = InitMode::RandomCells;
-      s.scale = 4.0f;     // the colour cells of the figure
-      s.contrast = 0.0f;  // colours, not a grey texture
-      s.filter = 0.0f;
-      s.sharpen = 0.0f;
-      s.image_normalize = false;
-      s.resample = Resample::Linear;
-      s.step = 3.0f;
-      s.default_field = FieldSpec::parse("gradient:down:normalize");
-      s.up_auto = true;
-      s.up.reset();
-      s.camera.azimuth_deg = 0.0f;
-      s.camera.elevation_deg = 90.0f;
-      s.camera.distance = 0.0f;
-      s.lock_at = Scene::kLockAuto;
-      s.lock_camera = glm::vec3(20.0f, 35.0f, 0.0f);
-      s.frames = 0;
-      s.beta = 0.85f;
-      s.scale = 6.0f;
-      break;
-  }
 }
 
 }  // namespace ibfvs

@@ -33,97 +33,8 @@ std::string lower(std::string s) {
   return s;
 }
 
-// Counts the file declares, where the format declares them (OFF, PLY).
-struct DeclaredCounts {
-  std::optional<std::size_t> vertices;
-  std::optional<std::size_t> faces;
-  bool ascii = true;
-};
-
 [[noreturn]] void fail(const fs::path& path, const std::string& problem) {
   throw InputError(path.string() + ": " + problem);
-}
-
-std::size_t parse_count(const fs::path& path, const std::string& token, const char* what) {
-  if (token.empty() || !std::all_of(token.begin(), token.end(),
-                                    [](unsigned char c) { return std::isdigit(c) != 0; }))
-    fail(path, std::string("bad ") + what + " count '" + token + "' in the header");
-  try {
-    return std::stoull(token);
-  } catch (const std::exception&) {
-    fail(path, std::string("bad ") + what + " count '" + token + "' in the header");
-  }
-}
-
-DeclaredCounts off_header(const fs::path& path, std::istream& in) {
-  DeclaredCounts counts;
-  std::string magic;
-  in >> magic;
-  if (magic.find("OFF") == std::string::npos)
-    fail(path, "not an OFF file (the first word is not OFF)");
-  if (magic.find('4') != std::string::npos || magic.find('n') == 0)
-    return counts;  // 4D or n-dimensional variants: leave the checks to the reader
-  std::string rest;
-  std::getline(in, rest);
-  if (rest.find("BINARY") != std::string::npos) {
-    counts.ascii = false;
-    return counts;
-  }
-  std::vector<std::string> tokens;
-  std::istringstream head(rest);
-  for (std::string t; head >> t;) tokens.push_back(t);
-  // The counts may be on the magic line or on the next non-comment line.
-  while (tokens.size() < 2) {
-    std::string line;
-    if (!std::getline(in, line)) fail(path, "truncated OFF header (no vertex and face counts)");
-    if (line.empty() || line[0] == '#') continue;
-    std::istringstream ls(line);
-    for (std::string t; ls >> t;) tokens.push_back(t);
-  }
-  counts.vertices = parse_count(path, tokens[0], "vertex");
-  counts.faces = parse_count(path, tokens[1], "face");
-  // OpenMesh reads one vertex, then one face, per line, and makes up what a
-  // missing line would hold (garbage, differing from build to build): fewer
-  // data lines than that is a truncated file.
-  std::size_t data_lines = 0;
-  for (std::string line; std::getline(in, line);) {
-    const std::size_t first = line.find_first_not_of(" \t\r");
-    if (first != std::string::npos && line[first] != '#') ++data_lines;
-  }
-  if (data_lines < *counts.vertices + *counts.faces)
-    fail(path, "truncated: the header declares " + std::to_string(*counts.vertices) +
-                   " vertices and " + std::to_string(*counts.faces) + " faces but only " +
-                   std::to_string(data_lines) + " lines of data follow");
-  return counts;
-}
-
-DeclaredCounts ply_header(const fs::path& path, std::istream& in) {
-  DeclaredCounts counts;
-  std::string line;
-  std::getline(in, line);
-  if (lower(line).rfind("ply", 0) != 0) fail(path, "not a PLY file (the first line is not 'ply')");
-  bool ended = false;
-  while (std::getline(in, line)) {
-    std::istringstream ls(line);
-    std::string key;
-    ls >> key;
-    if (key == "format") {
-      std::string fmt;
-      ls >> fmt;
-      counts.ascii = fmt == "ascii";
-    } else if (key == "element") {
-      std::string name, n;
-      ls >> name >> n;
-      if (name == "vertex") counts.vertices = parse_count(path, n, "vertex");
-      if (name == "face") counts.faces = parse_count(path, n, "face");
-    } else if (key == "end_header") {
-      ended = true;
-      break;
-    }
-  }
-  if (!ended) fail(path, "truncated PLY header (no end_header)");
-  if (!counts.vertices) fail(path, "the PLY header declares no vertex element");
-  return counts;
 }
 
 bool is_non_finite_token(std::string t) {
@@ -132,34 +43,24 @@ bool is_non_finite_token(std::string t) {
   return t.rfind("nan", 0) == 0 || t == "inf" || t == "infinity";
 }
 
-// iostream extraction stops at a "nan" token and the readers then misparse the
-// rest; scan the numbers of ASCII files first so the error says what is wrong.
-void reject_non_finite_text(const fs::path& path) {
-  std::ifstream in(path);
-  std::size_t line_no = 0;
-  for (std::string line; std::getline(in, line);) {
-    ++line_no;
-    if (line.empty() || line[0] == '#') continue;
-    std::istringstream ls(line);
-    for (std::string t; ls >> t;)
-      if (is_non_finite_token(t))
-        fail(path, "line " + std::to_string(line_no) + " holds a non-finite number '" + t + "'");
-  }
-}
-
-bool stl_is_ascii(const fs::path& path, std::uintmax_t size) {
-  std::ifstream in(path, std::ios::binary);
-  char head[5] = {};
-  in.read(head, 5);
-  if (std::string(head, 5) != "solid") return false;
-  // Binary STLs may start with "solid" too; their size is 84 + 50 * count.
-  if (size >= 84) {
-    in.seekg(80);
-    std::uint32_t n = 0;
-    in.read(reinterpret_cast<char*>(&n), 4);
-    if (84 + 50 * static_cast<std::uintmax_t>(n) == size) return false;
-  }
-  return true;
+// Where OpenMesh's reader stopped in `text` (its stream failed there): the
+// line, and the word it could not take, for the message. Nothing is parsed
+// but that word: the reader's own state says the file is bad.
+std::string stopped_at(const std::string& text, std::size_t at, bool ended) {
+  at = std::min(at, text.size());
+  const auto line =
+      1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n');
+  if (ended)
+    return "truncated, or not the format its name says: OpenMesh's reader ran out of data at "
+           "line " +
+           std::to_string(line) + ", before the vertices and faces its header declares";
+  std::istringstream rest(text.substr(at, 64));
+  std::string word;
+  rest >> word;
+  if (is_non_finite_token(word))
+    return "line " + std::to_string(line) + " holds a non-finite number '" + word + "'";
+  return "malformed: OpenMesh's reader stopped at line " + std::to_string(line) +
+         (word.empty() ? std::string() : " ('" + word + "')");
 }
 
 // Copies a scalar vertex property of OpenMesh vertices `kept` (in that order).
@@ -219,11 +120,24 @@ std::size_t merge_nonmanifold_copies(PolyMesh& pm, std::vector<std::size_t>& kep
   return copies;
 }
 
-// OpenMesh's OFF reader does not skip comments; strip them (from '#' to the
-// end of the line) so that commented files from other tools read.
-std::string off_without_comments(const fs::path& path) {
+// The bytes of an OFF or PLY file as OpenMesh's reader is given them, a
+// line end after the last line: reading past the end then means the file
+// ended before what its header declares. An ASCII OFF file goes without its
+// comments (from '#' to the end of a line), which that reader does not
+// skip, so that commented files from other tools read; a binary one (its
+// first line says BINARY) as it is.
+std::string reader_text(const fs::path& path, bool off) {
   std::ifstream in(path, std::ios::binary);
   std::string out;
+  if (!off || !std::getline(in, out) || out.find("BINARY") != std::string::npos) {
+    in.clear();
+    in.seekg(0);
+    std::ostringstream all;
+    all << in.rdbuf();
+    return all.str() + '\n';
+  }
+  in.seekg(0);
+  out.clear();
   for (std::string line; std::getline(in, line);) {
     const std::size_t hash = line.find('#');
     if (hash != std::string::npos) line.erase(hash);
@@ -234,32 +148,27 @@ std::string off_without_comments(const fs::path& path) {
 }
 
 // What OpenMesh makes of the file, with our checks of its answer: runs in
-// the reading child (read_mesh).
-TriMesh read_here(const fs::path& path, std::uintmax_t size, MeshReadReport& report) {
+// the reading child (read_mesh). OpenMesh reads first, and nothing parses
+// in front of it: OFF and PLY from a stream that refuses to be read past its
+// end (a file cut short, or counts larger than the file) and whose state
+// after the read tells a word the reader could not take (a good file leaves
+// it good); the other formats by name. The counts and values are then
+// checked on what it read.
+TriMesh read_here(const fs::path& path, MeshReadReport& report) {
   const std::string ext = lower_extension(path);
-  DeclaredCounts declared;
-  {
-    std::ifstream in(path, std::ios::binary);
-    if (ext == ".off") {
-      declared = off_header(path, in);
-    } else if (ext == ".ply") {
-      declared = ply_header(path, in);
-    } else if (ext == ".stl") {
-      declared.ascii = stl_is_ascii(path, size);
-      if (!declared.ascii && (size < 84 || (size - 84) % 50 != 0))
-        fail(path, "truncated or malformed binary STL (size is not 84 + 50 * triangles)");
-    }
-  }
-  // A count larger than the bytes that could hold it is a corrupt header; refuse
-  // it before the reader tries to allocate it.
-  if ((declared.vertices && *declared.vertices > size) ||
-      (declared.faces && *declared.faces > size))
-    fail(path, "the header declares " + std::to_string(declared.vertices.value_or(0)) +
-                   " vertices and " + std::to_string(declared.faces.value_or(0)) +
-                   " faces, more than a file of " + std::to_string(size) + " bytes can hold");
-  if (declared.ascii) reject_non_finite_text(path);
-  const std::string off_text = ext == ".off" && declared.ascii ? off_without_comments(path) : "";
-
+  const bool streamed = ext == ".off" || ext == ".ply";
+  const std::string text = streamed ? reader_text(path, ext == ".off") : std::string();
+  std::istringstream stream(text);
+  stream.exceptions(std::ios::eofbit | std::ios::badbit);
+  // Where the stream stopped, if it did: the problem with the file.
+  const auto stream_problem = [&]() -> std::string {
+    if (!streamed || !stream.fail()) return {};
+    const bool ended = stream.eof();
+    stream.exceptions(std::ios::goodbit);
+    stream.clear();
+    const std::streamoff at = stream.tellg();
+    return stopped_at(text, at < 0 ? text.size() : static_cast<std::size_t>(at), ended);
+  };
   PolyMesh pm;
   pm.request_vertex_normals();
   pm.request_vertex_status();
@@ -267,22 +176,21 @@ TriMesh read_here(const fs::path& path, std::uintmax_t size, MeshReadReport& rep
   opt += OpenMesh::IO::Options::VertexNormal;
   std::vector<std::string> messages;
   bool ok = false;
+  std::string problem;
   {
     OmErrCapture capture;
     try {
-      if (ext == ".off" && declared.ascii) {
-        std::istringstream text(off_text);
-        ok = OpenMesh::IO::read_mesh(pm, text, ".off", opt);
-      } else {
-        ok = OpenMesh::IO::read_mesh(pm, path.string(), opt);
-      }
+      ok = streamed ? OpenMesh::IO::read_mesh(pm, stream, ext, opt)
+                    : OpenMesh::IO::read_mesh(pm, path.string(), opt);
     } catch (const std::bad_alloc&) {
-      fail(path, "malformed file (the reader ran out of memory on its counts)");
+      problem = "malformed file (the reader ran out of memory on its counts)";
     } catch (const std::exception& e) {
-      fail(path, std::string("malformed file: ") + e.what());
+      problem = std::string("malformed file: ") + e.what();
     }
+    if (const std::string stopped = stream_problem(); !stopped.empty()) problem = stopped;
     messages = capture.lines();
   }
+  if (!problem.empty()) fail(path, problem);
   const auto has = [&](const char* needle) {
     return std::any_of(messages.begin(), messages.end(),
                        [&](const std::string& m) { return m.find(needle) != std::string::npos; });
@@ -295,13 +203,6 @@ TriMesh read_here(const fs::path& path, std::uintmax_t size, MeshReadReport& rep
   }
   for (const std::string& m : messages)
     if (m.find("equal vertices") != std::string::npos) ++report.faces_skipped;
-
-  if (declared.vertices && pm.n_vertices() < *declared.vertices)
-    fail(path, "truncated or malformed: the header declares " + std::to_string(*declared.vertices) +
-                   " vertices but " + std::to_string(pm.n_vertices()) + " were read");
-  if (declared.faces && pm.n_faces() + report.faces_skipped < *declared.faces)
-    fail(path, "truncated or malformed: the header declares " + std::to_string(*declared.faces) +
-                   " faces but " + std::to_string(pm.n_faces()) + " were read");
   if (pm.n_faces() == 0) fail(path, "no faces could be read: not a surface mesh");
 
   std::vector<std::size_t> kept;
@@ -432,7 +333,7 @@ TriMesh read_mesh(const fs::path& path, MeshReadReport* report_out) {
   const IsolatedBytes bytes =
       run_isolated(path.string(), "OpenMesh's reader", [&](ByteWriter& out) {
         MeshReadReport report;
-        const TriMesh mesh = read_here(path, size, report);
+        const TriMesh mesh = read_here(path, report);
         put_mesh(out, mesh);
         put_report(out, report);
       });

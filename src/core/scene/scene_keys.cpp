@@ -410,16 +410,11 @@ namespace {
 // say what it is (its unit, the paper's symbol).
 std::vector<SceneKey> labelled(std::vector<SceneKey> keys) {
   constexpr std::pair<std::string_view, std::string_view> kLabels[] = {
-      {"scale", "noise scale (pixels)"},
-      {"step", "step (pixels)"},
-      {"vg", "noise rate (v_g)"},
-      {"filter", "filter length (pixels)"},
-      {"field_frame", "field frame"},
-      {"noise_space", "noise space"},
-      {"profile", "time profile"},
-      {"color_map", "colour map"},
-      {"surface_color", "surface colour"},
-      {"image_normalize", "normalize in image space"},
+      {"scale", "noise scale (pixels)"},   {"step", "step (pixels)"},
+      {"vg", "noise rate (v_g)"},          {"filter", "filter length (pixels)"},
+      {"field_frame", "field frame"},      {"noise_space", "noise space"},
+      {"profile", "time profile"},         {"color_map", "colour map"},
+      {"surface_color", "surface colour"}, {"image_normalize", "normalize in image space"},
   };
   for (SceneKey& key : keys) {
     key.label = key.name;

@@ -92,8 +92,9 @@ TEST(MeshIo, MergesDuplicateStlVertices) {
   EXPECT_EQ(b.vertex_count(), 4u);
   EXPECT_EQ(b.triangle_count(), 2u);
 
+  // Cut short: OpenMesh takes it for ASCII STL, which has no facets.
   write_file(dir / "cut.stl", bin.substr(0, bin.size() - 7));
-  expect_read_error(dir / "cut.stl", "binary STL");
+  expect_read_error(dir / "cut.stl", "no faces could be read");
 }
 
 TEST(MeshIo, PlyVectorsAndScalarsAsciiAndBinary) {
@@ -155,15 +156,19 @@ TEST(MeshIo, RejectsMalformedOff) {
   TempDir dir;
   expect_read_error(write_file(dir / "trunc.off", "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n"),
                     "truncated");
-  expect_read_error(write_file(dir / "count.off", "OFF\nfour 4 0\n0 0 0\n"), "bad vertex count");
-  expect_read_error(write_file(dir / "huge.off", "OFF\n999999999 1 0\n0 0 0\n"), "declares");
+  // What OpenMesh's reader made of each, from its own state (nothing of
+  // ours parses in front of it): where it stopped, and why.
+  expect_read_error(write_file(dir / "count.off", "OFF\nfour 4 0\n0 0 0\n"),
+                    "stopped at line 2 ('four')");
+  expect_read_error(write_file(dir / "huge.off", "OFF\n999999999 1 0\n0 0 0\n"), "ran out of");
   expect_read_error(write_file(dir / "index.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n"),
                     "out of range");
   expect_read_error(write_file(dir / "nan.off", "OFF\n3 1 0\n0 0 0\nnan 0 0\n0 1 0\n3 0 1 2\n"),
                     "non-finite");
   expect_read_error(write_file(dir / "inf.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 -inf 0\n3 0 1 2\n"),
                     "non-finite");
-  expect_read_error(write_file(dir / "text.off", "hello, this is not a mesh\n"), "not an OFF file");
+  expect_read_error(write_file(dir / "text.off", "hello, this is not a mesh\n"),
+                    "not the format its name says");
   expect_read_error(write_file(dir / "nofaces.off", "OFF\n3 0 0\n0 0 0\n1 0 0\n0 1 0\n"),
                     "no faces");
 }
@@ -171,9 +176,9 @@ TEST(MeshIo, RejectsMalformedOff) {
 TEST(MeshIo, RejectsMalformedPlyObjAndBinaryJunk) {
   TempDir dir;
   expect_read_error(write_file(dir / "png.ply", std::string("\x89PNG\r\n\x1a\n\0\0\0\rIHDR", 16)),
-                    "not a PLY file");
+                    "Unable to parse header");
   expect_read_error(write_file(dir / "noend.ply", "ply\nformat ascii 1.0\nelement vertex 3\n"),
-                    "end_header");
+                    "ran out of data at line");
   // A binary PLY cut short in its vertex data.
   TriMesh sq = make_square(1.0f, 4);
   write_ply(sq, dir / "full.ply", true);
@@ -206,7 +211,7 @@ TEST(MeshIo, FuzzerFindingsEndCleanly) {
       write_file(dir / "hang.off", "OFF 0\n1 2 0\n0 1 00\n 0 777777777735\n3 0 203\n"),
       "OpenMesh's reader ran for more than 3 s");
   expect_read_error(write_file(dir / "empty-face.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n0\n"),
-                    "the header declares 1 faces but 0 were read");
+                    "no faces could be read");
   // A PLY format line with junk in its version (OpenMesh printed errors forever).
   expect_read_error(write_file(dir / "format.ply",
                                "ply\nformat ascii HHHH1.0\nelement vertex 1\nproperty float x\n"
@@ -267,9 +272,9 @@ TEST(MeshIo, BrokenBinaryPlyAndOffAreCleanErrors) {
     return write_file(dir / name, bytes);
   };
   EXPECT_EQ(read_mesh(ply("good.ply", 3, 2, false)).triangle_count(), 1u);
-  expect_read_error(ply("index.ply", 3, 7, false), "the header declares 1 faces but 0 were read");
-  expect_read_error(ply("short.ply", 3, 2, true), "Unexpected end of file");
-  expect_read_error(ply("two.ply", 2, 2, false), "the header declares 1 faces but 0 were read");
+  expect_read_error(ply("index.ply", 3, 7, false), "no faces could be read");
+  expect_read_error(ply("short.ply", 3, 2, true), "truncated");
+  expect_read_error(ply("two.ply", 2, 2, false), "no faces could be read");
   // Binary OFF: big-endian counts, coordinates, faces.
   const auto be = [](std::uint32_t v) {
     const char b[4] = {static_cast<char>(v >> 24), static_cast<char>(v >> 16),

@@ -73,85 +73,113 @@ const std::vector<glm::vec3>& file_vectors(const TriMesh& mesh, const std::strin
   throw InputError("file:" + name + ": no such array (arrays: " + describe_arrays(mesh) + ")");
 }
 
-FieldSpec FieldSpec::parse(std::string_view text) {
-  FieldSpec spec;
-  const std::string s(text);
-  if (s == "file" || s.rfind("file:", 0) == 0) {
-    spec.kind = FieldKind::File;
-    if (s.size() > 5) spec.array = s.substr(5);
-    return spec;
+namespace {
+
+using Parts = std::vector<std::string>;
+
+void parse_file(FieldSpec& spec, const Parts&, const std::string& s) {
+  if (s.size() > 5) spec.array = s.substr(5);  // after "file:", colons and all
+}
+
+void parse_sample(FieldSpec& spec, const Parts& parts, const std::string& s) {
+  if (parts.size() < 3 || parts.size() > 4 || parts[1].empty() || parts[2].empty())
+    throw InputError("expected sample:FILE:NAME[:OFFSET], got '" + s + "'");
+  spec.path = parts[1];
+  spec.array = parts[2];
+  if (parts.size() == 4) {
+    const double offset = parse_number(parts[3]);
+    if (!std::isfinite(offset)) throw InputError("the offset in '" + s + "' must be finite");
+    spec.offset = static_cast<float>(offset);
   }
-  const std::vector<std::string> parts = split_colons(s);
-  if (parts[0] == "sample") {
-    spec.kind = FieldKind::Sample;
-    if (parts.size() < 3 || parts.size() > 4 || parts[1].empty() || parts[2].empty())
-      throw InputError("expected sample:FILE:NAME[:OFFSET], got '" + s + "'");
-    spec.path = parts[1];
-    spec.array = parts[2];
-    if (parts.size() == 4) {
-      const double offset = parse_number(parts[3]);
-      if (!std::isfinite(offset)) throw InputError("the offset in '" + s + "' must be finite");
-      spec.offset = static_cast<float>(offset);
+}
+
+void parse_elements(FieldSpec& spec, const Parts& parts, const std::string& s) {
+  spec.value = parts.size() > 1 ? parse_vec3(parts[1]) : glm::vec3(0.0f);
+  if (parts.size() > 2) throw InputError("expected elements[:X,Y,Z], got '" + s + "'");
+}
+
+void parse_principal(FieldSpec& spec, const Parts& parts, const std::string& s) {
+  if (parts.size() < 2 || (parts[1] != "min" && parts[1] != "max"))
+    throw InputError("expected principal:min or principal:max, got '" + s + "'");
+  spec.use_max = parts[1] == "max";
+  spec.value = glm::vec3(0, 1, 0);
+  Parts rest;
+  for (const std::string& part : parts) {
+    if (part.rfind("smooth=", 0) != 0) {
+      rest.push_back(part);
+      continue;
     }
-    return spec;
-  }
-  if (parts[0] == "elements") {
-    spec.kind = FieldKind::Elements;
-    spec.value = parts.size() > 1 ? parse_vec3(parts[1]) : glm::vec3(0.0f);
-    if (parts.size() > 2) throw InputError("expected elements[:X,Y,Z], got '" + s + "'");
-    return spec;
-  }
-  if (parts[0] == "principal") {
-    spec.kind = FieldKind::Principal;
-    if (parts.size() < 2 || (parts[1] != "min" && parts[1] != "max"))
-      throw InputError("expected principal:min or principal:max, got '" + s + "'");
-    spec.use_max = parts[1] == "max";
-    spec.value = glm::vec3(0, 1, 0);
-    std::vector<std::string> rest;
-    for (const std::string& part : parts) {
-      if (part.rfind("smooth=", 0) != 0) {
-        rest.push_back(part);
-        continue;
-      }
-      try {
-        spec.smooth = static_cast<int>(parse_integer(std::string_view(part).substr(7), 0, 1000));
-      } catch (const InputError& e) {
-        throw InputError("smooth in '" + s + "': " + e.what());
-      }
+    try {
+      spec.smooth = static_cast<int>(parse_integer(std::string_view(part).substr(7), 0, 1000));
+    } catch (const InputError& e) {
+      throw InputError("smooth in '" + s + "': " + e.what());
     }
-    parse_options(s, rest, "rot90", spec.rotate90, spec.value, spec.vector_given);
-    return spec;
   }
-  if (parts[0] == "wind") {
-    spec.kind = FieldKind::Wind;
-    if (parts.size() != 2 && parts.size() != 4)
-      throw InputError("expected wind:FILE or wind:FILE:UVAR:VVAR, got '" + s + "'");
-    spec.path = parts[1];
-    if (parts.size() == 4) spec.east = parts[2], spec.north = parts[3];
-    if (spec.path.empty() || spec.east.empty() || spec.north.empty())
-      throw InputError("empty file or variable name in '" + s + "'");
-    return spec;
-  }
-  if (parts[0] == "gradient") {
-    spec.kind = FieldKind::Gradient;
-    if (parts.size() < 2 || (parts[1] != "down" && parts[1] != "up"))
-      throw InputError("expected gradient:down or gradient:up, got '" + s + "'");
-    spec.downhill = parts[1] == "down";
-    spec.value = glm::vec3(0, 1, 0);
-    parse_options(s, parts, "normalize", spec.normalize, spec.value, spec.vector_given);
-    return spec;
-  }
+  parse_options(s, rest, "rot90", spec.rotate90, spec.value, spec.vector_given);
+}
+
+void parse_wind(FieldSpec& spec, const Parts& parts, const std::string& s) {
+  if (parts.size() != 2 && parts.size() != 4)
+    throw InputError("expected wind:FILE or wind:FILE:UVAR:VVAR, got '" + s + "'");
+  spec.path = parts[1];
+  if (parts.size() == 4) spec.east = parts[2], spec.north = parts[3];
+  if (spec.path.empty() || spec.east.empty() || spec.north.empty())
+    throw InputError("empty file or variable name in '" + s + "'");
+}
+
+void parse_gradient(FieldSpec& spec, const Parts& parts, const std::string& s) {
+  if (parts.size() < 2 || (parts[1] != "down" && parts[1] != "up"))
+    throw InputError("expected gradient:down or gradient:up, got '" + s + "'");
+  spec.downhill = parts[1] == "down";
+  spec.value = glm::vec3(0, 1, 0);
+  parse_options(s, parts, "normalize", spec.normalize, spec.value, spec.vector_given);
+}
+
+// uniform:X,Y,Z and rotate:X,Y,Z.
+void parse_vector(FieldSpec& spec, const Parts&, const std::string& s) {
   const std::size_t colon = s.find(':');
-  const std::string name = s.substr(0, colon);
-  if (colon == std::string::npos || (name != "uniform" && name != "rotate"))
-    throw InputError("unknown field '" + s +
-                     "' (expected file[:NAME], uniform:X,Y,Z, rotate:X,Y,Z, elements, "
-                     "principal:min|max, gradient:down|up, wind:FILE or sample:FILE:NAME)");
-  spec.kind = name == "uniform" ? FieldKind::Uniform : FieldKind::Rotate;
+  if (colon == std::string::npos) throw InputError("expected " + s + ":X,Y,Z, got '" + s + "'");
   spec.value = parse_vec3(std::string_view(s).substr(colon + 1));
   if (spec.kind == FieldKind::Rotate && glm::length(spec.value) == 0.0f)
     throw InputError("the rotation axis must not be zero");
-  return spec;
+}
+
+// The fields by the name before their first colon, and how each is written.
+struct FieldForm {
+  std::string_view name;
+  FieldKind kind;
+  std::string_view form;
+  void (*parse)(FieldSpec& spec, const Parts& parts, const std::string& text);
+};
+constexpr FieldForm kForms[] = {
+    {"file", FieldKind::File, "file[:NAME]", parse_file},
+    {"uniform", FieldKind::Uniform, "uniform:X,Y,Z", parse_vector},
+    {"rotate", FieldKind::Rotate, "rotate:X,Y,Z", parse_vector},
+    {"elements", FieldKind::Elements, "elements", parse_elements},
+    {"principal", FieldKind::Principal, "principal:min|max", parse_principal},
+    {"gradient", FieldKind::Gradient, "gradient:down|up", parse_gradient},
+    {"wind", FieldKind::Wind, "wind:FILE", parse_wind},
+    {"sample", FieldKind::Sample, "sample:FILE:NAME", parse_sample},
+};
+
+}  // namespace
+
+FieldSpec FieldSpec::parse(std::string_view text) {
+  const std::string s(text);
+  const std::string name = s.substr(0, s.find(':'));
+  for (const FieldForm& f : kForms) {
+    if (f.name != name) continue;
+    FieldSpec spec;
+    spec.kind = f.kind;
+    f.parse(spec, split_colons(s), s);
+    return spec;
+  }
+  std::string forms;
+  for (const FieldForm& f : kForms) {
+    if (!forms.empty()) forms += ", ";
+    forms += f.form;
+  }
+  throw InputError("unknown field '" + s + "' (expected " + forms + ")");
 }
 
 std::string FieldSpec::text() const {

@@ -160,6 +160,13 @@ TriMesh make_torus_spec(const std::string& spec) {
   return make_torus(radii[0], radii[1], 160, 64);
 }
 
+// globe[:LEVEL]: the unit sphere, an icosahedron subdivided LEVEL times (default 6).
+TriMesh make_globe_spec(const std::string& spec) {
+  const std::size_t colon = spec.find(':');
+  if (spec.substr(0, colon) != "globe") bad_spec(spec, "expected globe[:LEVEL]");
+  return make_globe(colon == std::string::npos ? 6 : parse_int(spec.substr(colon + 1), spec, 0, 8));
+}
+
 // cylinder[:RADIUS,LENGTH[,COUNT]]: COUNT open cylinders (default one, radius
 // 0.3, length 3) with their axes along X, stacked along Y three radii apart.
 TriMesh make_cylinders_spec(const std::string& spec) {
@@ -293,6 +300,29 @@ TriMesh read_any_mesh(const std::string& path, const std::vector<std::string>& b
   return mesh;
 }
 
+namespace {
+
+// The generated surfaces, by the prefix that names one (a file of that name
+// wins): each checks the rest of its text.
+struct Generator {
+  std::string_view prefix;
+  TriMesh (*make)(const std::string& spec);
+  bool landscape;  // a height field: its default field runs downhill
+};
+constexpr Generator kGenerators[] = {
+    {"globe", make_globe_spec, false},   {"relief:", make_relief, true},
+    {"torus", make_torus_spec, false},   {"cylinder", make_cylinders_spec, false},
+    {"landscape", make_landscape, true},
+};
+
+const Generator* generator_for(const std::string& path) {
+  for (const Generator& g : kGenerators)
+    if (path.rfind(g.prefix, 0) == 0) return &g;
+  return nullptr;
+}
+
+}  // namespace
+
 LoadedMesh load_mesh(const std::string& path, int subdivide, bool gpu_order,
                      const std::vector<std::string>& blocks) {
   LoadedMesh out;
@@ -310,27 +340,10 @@ LoadedMesh load_mesh(const std::string& path, int subdivide, bool gpu_order,
       out.mesh = make_torus(1.0f, 0.4f, 160, 64);
       out.name = "procedural torus";
     }
-  } else if (path.rfind("globe", 0) == 0 && !fs::exists(path)) {
-    const std::size_t colon = path.find(':');
-    if (path.substr(0, colon) != "globe") bad_spec(path, "expected globe[:LEVEL]");
-    const int level =
-        colon == std::string::npos ? 6 : parse_int(path.substr(colon + 1), path, 0, 8);
-    out.mesh = make_globe(level);
+  } else if (const Generator* g = generator_for(path); g && !fs::exists(path)) {
+    out.mesh = g->make(path);
     out.name = path;
-  } else if (path.rfind("relief:", 0) == 0 && !fs::exists(path)) {
-    out.mesh = make_relief(path);
-    out.name = path;
-    out.generated_landscape = true;
-  } else if (path.rfind("torus", 0) == 0 && !fs::exists(path)) {
-    out.mesh = make_torus_spec(path);
-    out.name = path;
-  } else if (path.rfind("cylinder", 0) == 0 && !fs::exists(path)) {
-    out.mesh = make_cylinders_spec(path);
-    out.name = path;
-  } else if (path.rfind("landscape", 0) == 0 && !fs::exists(path)) {
-    out.mesh = make_landscape(path);
-    out.name = path;
-    out.generated_landscape = true;
+    out.generated_landscape = g->landscape;
   } else if (path.find('*') != std::string::npos && !fs::exists(path)) {
     // A numbered series: the first file's mesh, every file's arrays a step.
     const std::vector<std::string> files = series_files(path);

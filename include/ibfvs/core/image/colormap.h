@@ -46,15 +46,6 @@ glm::vec3 color_map(ColorMap map, float t);
 std::vector<float> table_positions(const std::vector<float>& values, double lo, double hi,
                                    bool log);
 
-/// A per-vertex scalar by name: a property of the mesh (PLY scalar, kmin and
-/// kmax after `ibfvs geometry`, a landscape's height), or one derived here:
-/// `speed` (|v| of `field`), `kmin`/`kmax` (computed when absent), `x`, `y`,
-/// `z` (coordinates), the magnitude of a named vector array (wallShearStress,
-/// U). A leading '-' negates (`-kmax`: concavity). Throws
-/// InputError listing the names available.
-std::vector<float> vertex_scalar(const TriMesh& mesh, const std::vector<glm::vec3>& field,
-                                 std::string_view name);
-
 /// The range from the `lo` to the `hi` quantile of the finite values
 /// (1st and 99th percentile by default), widened when it is empty.
 glm::vec2 quantile_range(const std::vector<float>& values, float lo = 0.01f, float hi = 0.99f);

@@ -20,5 +20,4 @@ namespace ibfvs {
 std::vector<float> vertex_scalar(const TriMesh& mesh, const std::vector<glm::vec3>& field,
                                  std::string_view name);
 
-
 }  // namespace ibfvs

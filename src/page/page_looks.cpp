@@ -6,6 +6,7 @@
 
 #include "ibfvs/core/support/error.h"
 #include "ibfvs/core/texture/noise.h"
+#include "ibfvs/render/frame_plan.h"
 #include "ibfvs/render/pass_settings.h"
 #include "ibfvs/render/shaders.h"
 #include "page_json.h"
@@ -35,6 +36,12 @@ Json uniforms_json(const std::vector<shaders::UniformValue>& uniforms) {
     out.push_back(std::move(j));
   }
   return out;
+}
+
+// What the plan's `when` reads of a look (frame_plan.h: pass_runs); the
+// page never splits the IBFVS pass.
+Json facts_json(const PassFacts& facts) {
+  return {{"image_noise", facts.image_noise}, {"taps", facts.taps}, {"contrast", facts.contrast}};
 }
 
 // The look's own controls, by the session's rules for a running texture
@@ -110,6 +117,7 @@ Json look(const PreparedScene& q, std::string_view name, std::string_view descri
           {"colour_texture", colour_texture},
           {"texture_channels", shaders::texture_channels(f)},
           {"tap_texture", shaders::tap_texture(f)},
+          {"facts", facts_json(pass_facts(f, false, 0))},
           {"advect_previous", s.advect_view == AdvectView::Previous},
           {"carry_surface", carries_surface(s.advect_view, s.field_frame)},
           {"phase_size", {phase_size.x, phase_size.y}},

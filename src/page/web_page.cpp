@@ -18,7 +18,6 @@ extern "C" {
 #include "ibfvs/core/texture/display.h"
 #include "ibfvs/core/texture/noise.h"
 #include "ibfvs/render/frame_plan.h"
-#include "ibfvs/render/ibfvs_renderer.h"
 #include "ibfvs/render/pass_settings.h"
 #include "ibfvs/render/shaders.h"
 #include "page_json.h"
@@ -199,8 +198,8 @@ WebPageParts web_page_parts(const PreparedScene& p, WebPageReport* report,
       {"name", name.empty() ? "ibfvs" : name},
       {"width", p.width},
       {"height", p.height},
-      {"no_depth", IbfvsRenderer::kNoDepth},
-      {"any_depth", IbfvsRenderer::kAnyDepth},
+      {"no_depth", frame::kNoDepth},
+      {"any_depth", frame::kAnyDepth},
       {"lock", std::move(lock)},
       {"orbit", std::move(orbit)},
       {"target", page::vec3(centre + p.camera.target)},
@@ -208,8 +207,8 @@ WebPageParts web_page_parts(const PreparedScene& p, WebPageReport* report,
       {"cull", closed_orientation(mesh)},
       {"stats",
        {{"size", display_stats_size(p.width, p.height)},
-        {"every", IbfvsRenderer::kStatsEvery},
-        {"weight", IbfvsRenderer::kStatsWeight}}},
+        {"every", frame::kStatsEvery},
+        {"weight", frame::kStatsWeight}}},
       {"view", page::matrix(camera.view())},
       {"projection", page::matrix(camera.projection())},
       {"centre", page::vec3(centre)},

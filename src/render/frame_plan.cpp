@@ -42,15 +42,25 @@ constexpr PlannedRead kHostReads[] = {{"u_output", kOutput, "output"},
                                       {"u_depth", kDepth, "depth"}};
 
 constexpr PlannedPass kPlan[] = {
-    {"grid", "", kGridReads},
-    {"ibfvs", "", kIbfvsReads},
-    {"resolve", "deferred", kResolveReads},
-    {"display", "taps", kDisplayReads},
-    {"stats", "contrast", kStatsReads},
-    {"host", "host", kHostReads},
+    {"grid", "image_noise", kGridReads},    {"ibfvs", "", kIbfvsReads},
+    {"resolve", "deferred", kResolveReads}, {"display", "taps", kDisplayReads},
+    {"stats", "contrast", kStatsReads},     {"host", "host", kHostReads},
 };
 
 }  // namespace
+
+PassFacts pass_facts(const shaders::ShaderFeatures& f, bool deferred, int frame) {
+  return {!f.object_noise, deferred, shaders::tap_texture(f), f.contrast, frame};
+}
+
+bool pass_runs(std::string_view when, const PassFacts& f) {
+  if (when.empty()) return true;
+  if (when == "image_noise") return f.image_noise;
+  if (when == "deferred") return f.deferred;
+  if (when == "taps") return f.taps;
+  if (when == "contrast") return f.contrast && f.frame % frame::kStatsEvery == 0;
+  return false;  // host: after the frame
+}
 
 std::span<const PlannedPass> frame_plan() {
   return kPlan;

@@ -226,28 +226,28 @@ void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
   if (index_count_ > 0) {
     const float noise_time = settings_.noise.rate * static_cast<float>(frame_);
     const IbfvsPrograms& v = current_variant().programs;
-    // The frame's passes, in the plan's order (frame_plan.h).
+    // The frame's passes, in the plan's order, each where its `when` says
+    // (frame_plan.h: pass_runs, which the page follows too). The statistics
+    // change slowly: every kStatsEvery frames is enough, and on llvmpipe
+    // each extra pass ends the frame's scene early.
+    const PassFacts facts = pass_facts(features(), static_cast<bool>(v.resolve()), frame_);
     for (const PlannedPass& pass : frame_plan()) {
+      if (!pass_runs(pass.when, facts)) continue;
       if (pass.name == "grid") {  // G_ij of this frame
-        if (settings_.object_noise) continue;
         bind_reads(pass, next, current_);
         grid_pass_.run(noise_time, grid_box());
       } else if (pass.name == "ibfvs") {
         ibfvs_pass(v, view, dt, noise_time);
       } else if (pass.name == "resolve") {
-        if (v.resolve()) resolve_pass(v, resolve_framebuffer_[next]);
+        resolve_pass(v, resolve_framebuffer_[next]);
       } else if (pass.name == "display") {
-        if (v.display()) display_pass(v);
+        display_pass(v);
       } else if (pass.name == "stats") {
-        // The statistics change slowly: every kStatsEvery frames is enough,
-        // and on llvmpipe each extra pass ends the frame's scene early.
-        if (settings_.contrast > 0.0f && frame_ % kStatsEvery == 0) {
-          if (defer_statistics_)
-            statistics_due_ = true;
-          else
-            statistics_pass(next, frame_);
-        }
-      }  // host: draw_to_host, after the frame
+        if (defer_statistics_)
+          statistics_due_ = true;
+        else
+          statistics_pass(next, frame_);
+      }
     }
   }
   displayed_ = next;

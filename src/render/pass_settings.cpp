@@ -32,18 +32,6 @@ ShaderFeatures features_for(const RenderSettings& settings, bool colour_texture,
   return f;
 }
 
-int texture_channels(const ShaderFeatures& f) {
-  return !f.mono_texture || (f.filter_taps > 0 && !tap_texture(f)) ? 4 : 2;
-}
-
-bool tap_texture(const ShaderFeatures& f) {
-  return f.mono_texture && f.filter_taps > 0 && f.sharpen;
-}
-
-bool deferred_pass(const ShaderFeatures& f) {
-  return tap_texture(f) && !f.object_noise && !f.surface_image;
-}
-
 std::vector<UniformValue> settings_uniforms(const RenderSettings& s, const ShaderFeatures& f,
                                             glm::ivec2 phase_size, glm::vec3 image_centre) {
   using T = UniformValue::Type;

@@ -7,7 +7,6 @@
 
 #include "glsl_sources.h"
 #include "ibfvs/core/texture/display.h"
-#include "ibfvs/render/pass_settings.h"
 #include "ibfvs/render/texture_units.h"
 
 namespace ibfvs::shaders {
@@ -37,22 +36,10 @@ std::string with_defines(const ShaderFeatures& features, const std::string& body
   const auto define = [&](bool on, const char* name) {
     if (on) source += std::string("#define ") + name + "\n";
   };
-  define(features.object_noise, "IBFVS_OBJECT_NOISE");
-  define(features.surface_image, "IBFVS_SURFACE_IMAGE");
-  define(features.color_scalar, "IBFVS_COLOR_SCALAR");
-  define(features.beta_scalar, "IBFVS_BETA_SCALAR");
-  define(features.image_step, "IBFVS_IMAGE_STEP");
-  define(features.inject_add, "IBFVS_INJECT_ADD");
-  define(features.mono_texture, "IBFVS_MONO_TEXTURE");
-  define(features.cubic, "IBFVS_CUBIC");
-  define(features.compensate, "IBFVS_COMPENSATE");
+  for (const FeatureFlag& flag : kFlags) define(features.*flag.member, flag.define);
   if (features.filter_taps > 0)
     source += "#define IBFVS_FILTER " + std::to_string(features.filter_taps) + "\n";
-  define(features.contrast, "IBFVS_CONTRAST");
-  define(features.record_flow, "IBFVS_RECORD_FLOW");
   define(tap_texture(features), "IBFVS_TAP_TEXTURE");
-  define(features.sharpen, "IBFVS_SHARPEN");
-  define(features.moving, "IBFVS_MOVING");
   if (features.sharpen || features.compensate)
     source += "#define IBFVS_SHARPEN_REACH " + std::to_string(ibfvs::kSharpenReach) + "\n";
   // The display's work that follows the streaks' direction (the flow's own).
@@ -77,15 +64,6 @@ std::string ibfvs_fragment_body() {
 }
 
 }  // namespace
-
-unsigned ShaderFeatures::key() const {
-  return (object_noise ? 1u : 0u) | (surface_image ? 2u : 0u) | (color_scalar ? 4u : 0u) |
-         (beta_scalar ? 8u : 0u) | (image_step ? 16u : 0u) | (inject_add ? 32u : 0u) |
-         (mono_texture ? 64u : 0u) | (cubic ? 128u : 0u) | (contrast ? 256u : 0u) |
-         (record_flow ? 512u : 0u) | (sharpen ? 1024u : 0u) |
-         (static_cast<unsigned>(filter_taps) << 11u) | (compensate ? 1u << 16u : 0u) |
-         (moving ? 1u << 17u : 0u);
-}
 
 std::string ibfvs_vertex_source(const ShaderFeatures& features, Dialect dialect) {
   return with_defines(features, std::string(glsl::contrast) + glsl::ibfvs_vertex, false, dialect);

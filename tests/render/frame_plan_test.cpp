@@ -108,5 +108,38 @@ TEST(FramePlan, PassesRunInTheOrderOfTheFrame) {
   EXPECT_THROW((void)planned_pass("nothing"), std::out_of_range);
 }
 
+// When a pass runs is one rule over the look's facts (the renderer's frame
+// and the page's runtime both follow it): which passes a frame runs for the
+// default look, the solid noise, a look without the display filter, and the
+// contrast statistics' frames.
+TEST(FramePlan, APassRunsWhereItsWhenHoldsForTheLook) {
+  const auto runs = [](const PassFacts& facts) {
+    std::vector<std::string_view> out;
+    for (const PlannedPass& p : frame_plan())
+      if (pass_runs(p.when, facts)) out.push_back(p.name);
+    return out;
+  };
+  RenderSettings settings;  // grey, the display filter and sharpening on: a tap texture
+  settings.filter_length = 6.0f;
+  settings.sharpen = 0.5f;
+  settings.contrast = 0.2f;
+  const shaders::ShaderFeatures look = shaders::features_for(settings, false, false, false);
+  ASSERT_TRUE(shaders::tap_texture(look));
+  EXPECT_EQ(runs(pass_facts(look, true, 8)),
+            (std::vector<std::string_view>{"grid", "ibfvs", "resolve", "display", "stats"}));
+  EXPECT_EQ(runs(pass_facts(look, false, 9)),
+            (std::vector<std::string_view>{"grid", "ibfvs", "display"}));
+  settings.object_noise = true;
+  settings.filter_length = 0.0f;
+  settings.contrast = 0.0f;
+  EXPECT_EQ(runs(pass_facts(shaders::features_for(settings, false, false, false), false, 8)),
+            (std::vector<std::string_view>{"ibfvs"}));
+  // No condition the plan names is unknown to the rule (an unknown one never runs).
+  for (const PlannedPass& p : frame_plan())
+    EXPECT_TRUE(p.when.empty() || p.when == "image_noise" || p.when == "deferred" ||
+                p.when == "taps" || p.when == "contrast" || p.when == "host")
+        << p.when;
+}
+
 }  // namespace
 }  // namespace ibfvs

@@ -251,13 +251,15 @@ export class PageRenderer {
     const vp = mat4.multiply(mat4.create(), projection, view);
     const next = 1 - this.current;
     gl.disable(gl.BLEND);
-    // The frame's passes in the plan's order (render/frame_plan.h, in the header).
+    // The frame's passes in the plan's order (render/frame_plan.h, in the header),
+    // each where its `when` says.
     for (const pass of s.plan) {
+      if (!this.runs(pass.when)) continue;
       switch (pass.name) {
         case "grid": this.gridPass(pass, next); break;
         case "ibfvs": this.ibfvsPass(pass, next, view, projection, vp, dt); break;
-        case "display": if (this.display) this.displayPass(pass, next); break;
-        case "stats": if (this.frame % s.stats.every === 0) this.statsPass(pass, next); break;
+        case "display": this.displayPass(pass, next); break;
+        case "stats": this.statsPass(pass, next); break;
         default: throw new Error(`the page's plan has a pass this runtime does not run: ${pass.name}`);
       }
     }
@@ -268,6 +270,19 @@ export class PageRenderer {
       this.surfaces.drawnFrame(this.fieldMix);
     }
     ++this.frame;
+  }
+
+  /// Whether this frame runs a pass of the plan: its `when` over the look's facts,
+  /// the rule of pass_runs in render/frame_plan.cpp.
+  private runs(when: string): boolean {
+    const f = this.look.facts;
+    switch (when) {
+      case "": return true;
+      case "image_noise": return f.image_noise;
+      case "taps": return f.taps;
+      case "contrast": return f.contrast && this.frame % this.scene.stats.every === 0;
+      default: throw new Error(`the page's plan has a condition this runtime does not know: ${when}`);
+    }
   }
 
   /// The image of the plan named `name` in a frame that draws F_t into

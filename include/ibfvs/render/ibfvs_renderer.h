@@ -70,13 +70,11 @@ using ViewState = HostView;
 /// The IBFVS engine. Needs a current OpenGL 4.5 context for its whole life.
 class IbfvsRenderer {
  public:
-  static constexpr int kStatsEvery = 4;         ///< frames between statistics passes
-  static constexpr float kStatsWeight = 0.25f;  ///< of each pass in the running average
-  /// The depth F_t stores where no surface was drawn.
-  static constexpr float kNoDepth = -65504.0f;
-  /// The depth of a texture put in from outside (fill_texture_with_cell_colors):
-  /// taken as on whatever surface the next frame finds there.
-  static constexpr float kAnyDepth = 65504.0f;
+  // The frame's constants (frame_plan.h).
+  static constexpr int kStatsEvery = frame::kStatsEvery;
+  static constexpr float kStatsWeight = frame::kStatsWeight;
+  static constexpr float kNoDepth = frame::kNoDepth;
+  static constexpr float kAnyDepth = frame::kAnyDepth;
 
   explicit IbfvsRenderer(const RenderSettings& settings);
 

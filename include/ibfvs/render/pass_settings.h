@@ -11,7 +11,7 @@
 #include <glm/vec3.hpp>
 
 #include "ibfvs/core/scene/render_settings.h"
-#include "ibfvs/render/shaders.h"
+#include "ibfvs/render/shader_features.h"
 
 namespace ibfvs::shaders {
 
@@ -30,28 +30,6 @@ namespace ibfvs::shaders {
 /// displacement is written for measurements.
 [[nodiscard]] ShaderFeatures features_for(const RenderSettings& settings, bool colour_texture,
                                           bool surface_image, bool record_flow);
-
-/// Channels of F_t: a colour F_t holds RGB and the eye depth; a grey one the
-/// value and the depth, plus each pixel's displacement when the display
-/// filter follows it without a tap texture (2 channels are cheaper to read
-/// on llvmpipe).
-[[nodiscard]] int texture_channels(const ShaderFeatures& features);
-
-/// Whether the pass keeps a second image beside a grey F_t for the display
-/// filter's taps, (sharpened value, depth, displacement) in RGBA16F: when
-/// the filter and sharpening are both on, so that each pixel sharpens once
-/// and each tap reads one texel (the fragment shader's IBFVS_TAP_TEXTURE).
-[[nodiscard]] bool tap_texture(const ShaderFeatures& features);
-
-/// Whether the desktop renderer splits the IBFVS pass in two (the default
-/// look's features): the triangles leave only what the pass needs of the
-/// surface per pixel (gbuffer_fragment_source), and a pass over the surface's
-/// pixels does the rest once each (resolve_fragment_source). On llvmpipe a
-/// fragment of a small triangle shades a whole block of pixels, and hidden
-/// ones shade too: on the motorbike the single pass was most of a frame. Not
-/// with the solid noise or a surface image (they read object positions and
-/// their derivatives per fragment); the browser page keeps the single pass.
-[[nodiscard]] bool deferred_pass(const ShaderFeatures& features);
 
 /// One uniform's value: 1-4 components of a float, int or uint uniform, or
 /// (array) a float array.

@@ -5,31 +5,9 @@
 
 #include <string>
 
-namespace ibfvs::shaders {
+#include "ibfvs/render/shader_features.h"
 
-/// Optional parts of the IBFVS pass. Each program is compiled with only the
-/// parts it uses: llvmpipe executes both sides of a branch, so a feature
-/// switched off by a uniform would still cost its full price per pixel.
-struct ShaderFeatures {
-  bool object_noise = false;   ///< G on a 3D lattice (else the image-space grid)
-  bool surface_image = false;  ///< an equirectangular image as the surface colour
-  bool color_scalar = false;   ///< colour by the per-vertex colour scalar
-  bool beta_scalar = false;    ///< beta modulated by the per-vertex beta scalar
-  bool image_step = false;     ///< image-space normalisation of the step
-  bool inject_add = false;     ///< add noise (particles) instead of blending (eq. 10)
-  bool mono_texture = false;   ///< F_t is grey, stored in one channel (and its depth)
-  bool cubic = false;          ///< F_t(t(x)) by Catmull-Rom instead of bilinear interpolation
-  bool compensate = false;     ///< bilinear F_t(t(x)), its blur across the flow taken back
-  int filter_taps = 0;         ///< taps per side of the display filter along the flow, 0..16
-  bool contrast = false;       ///< the display's contrast stage
-  bool record_flow = false;    ///< write each pixel's displacement (measurements)
-  bool sharpen = false;        ///< display taps sharpened across the flow
-  /// The surface moves: positions and normals per time step, and the
-  /// advection from where the last frame drew each vertex
-  bool moving = false;
-  /// A distinct number per combination.
-  [[nodiscard]] unsigned key() const;
-};
+namespace ibfvs::shaders {
 
 /// The shading language a source is emitted in. The bodies are the same;
 /// only the prelude differs (the version, ES's precisions, and sampler units:

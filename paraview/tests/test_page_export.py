@@ -13,10 +13,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from test_plugin import (IBFVS, MPIEXEC, PLUGIN, ROOT, alignment, grown,  # noqa: F401
+from test_plugin import (IBFVS, MPIEXEC, PLUGIN, ROOT, grown,  # noqa: F401
                          hue_difference, image, local_contrast, mask_of, on_display, pytestmark,
-                         run, sphere, swirl_series, true_direction, turning_series, why,
-                         write_pieces, write_vtp, xvfb)
+                         run, sphere, why, write_pieces, write_vtp, xvfb)
+from test_plugin_series import alignment, swirl_series, true_direction, turning_series
 
 NODE = shutil.which("node")
 SHOOT = ROOT / "web" / "test" / "shoot.mjs"

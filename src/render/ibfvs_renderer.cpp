@@ -129,7 +129,7 @@ void IbfvsRenderer::use_colour_texture() {
 shaders::ShaderFeatures IbfvsRenderer::features() const {
   shaders::ShaderFeatures f = shaders::features_for(
       settings_, colour_texture_, static_cast<bool>(surface_image_), record_flow_);
-  f.moving = moving_;
+  f.moving = surface_.moving();
   return f;
 }
 
@@ -223,7 +223,7 @@ void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
   gl::prepare_own_draw();  // a host's scissor box, masks or stencil test must not apply here
   clear_targets(fb);
   surface_box_ = screen_box(vp);
-  if (index_count_ > 0) {
+  if (!surface_.empty()) {
     const float noise_time = settings_.noise.rate * static_cast<float>(frame_);
     const IbfvsPrograms& v = current_variant().programs;
     // The frame's passes, in the plan's order, each where its `when` says
@@ -257,12 +257,7 @@ void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
     previous_view_projection_ = vp;
     last_view_ = view;
     // This frame's surface is the one the next frame's texture comes from.
-    drawn_ = gl::Buffer();
-    drawn_next_ = gl::Buffer();
-    drawn_motion_ = gl::Buffer();
-    drawn_elsewhere_ = false;
-    drawn_mix_ = field_mix_;
-    drawn_this_mesh_ = true;
+    surface_.frame_drawn(field_mix_);
   }
   has_previous_ = true;
   ++frame_;
@@ -286,9 +281,10 @@ void IbfvsRenderer::ibfvs_pass(const IbfvsPrograms& v, const ViewState& view, fl
   // A moving surface: where the last frame drew each vertex (the pair of
   // steps it drew and its mix; the current ones where no motion enters).
   float drawn_mix = field_mix_;
-  if (moving_) {
+  if (surface_.moving()) {
     point_drawn_attributes();
-    if (carries_surface() && has_previous_ && !locked_ && drawn_this_mesh_) drawn_mix = drawn_mix_;
+    if (carries_surface() && has_previous_ && !locked_ && surface_.drawn_this_mesh())
+      drawn_mix = surface_.drawn_mix();
   }
   IbfvsFrame frame;
   frame.view = view.view;
@@ -308,8 +304,7 @@ void IbfvsRenderer::ibfvs_pass(const IbfvsPrograms& v, const ViewState& view, fl
   frame.last_tap_depth = tap_depth_[current_];
   v.set_frame(frame);
   bind_reads(planned_pass("ibfvs"), next, current_);
-  vao_.bind();
-  gl::draw_triangles(index_count_, true);
+  surface_.draw();
 }
 
 const gl::Texture2D* IbfvsRenderer::image(std::string_view name, int now, int last) const {
@@ -371,9 +366,9 @@ glm::ivec4 IbfvsRenderer::screen_box(const glm::mat4& view_projection) const {
   const glm::ivec4 all(0, 0, settings_.width, settings_.height);
   glm::vec2 lo(1e30f), hi(-1e30f);
   for (int c = 0; c < 8; ++c) {
-    const glm::vec3 corner((c & 1) ? bounds_.max.x : bounds_.min.x,
-                           (c & 2) ? bounds_.max.y : bounds_.min.y,
-                           (c & 4) ? bounds_.max.z : bounds_.min.z);
+    const glm::vec3 corner((c & 1) ? surface_.bounds().max.x : surface_.bounds().min.x,
+                           (c & 2) ? surface_.bounds().max.y : surface_.bounds().min.y,
+                           (c & 4) ? surface_.bounds().max.z : surface_.bounds().min.z);
     const glm::vec4 clip = view_projection * glm::vec4(corner, 1.0f);
     if (!(clip.w > 1e-6f)) return all;
     const glm::vec2 ndc = glm::vec2(clip) / clip.w;

@@ -61,6 +61,7 @@
 #include "ibfvs/render/frame_plan.h"
 #include "ibfvs/render/passes.h"
 #include "ibfvs/render/shaders.h"
+#include "ibfvs/render/surface_buffers.h"
 
 namespace ibfvs {
 
@@ -100,7 +101,7 @@ class IbfvsRenderer {
                          std::span<const glm::vec3> next_positions,
                          std::span<const glm::vec3> next_normals, const SurfaceMotion& motion = {});
   /// Whether set_surface_steps made the surface move (until set_mesh or replace_mesh).
-  [[nodiscard]] bool moving() const { return moving_; }
+  [[nodiscard]] bool moving() const { return surface_.moving(); }
   /// Replaces the field (same vertex count); keeps the texture.
   void set_field(std::span<const glm::vec3> field);
   /// An unsteady field: two time steps, interpolated linearly on the GPU with
@@ -260,7 +261,6 @@ class IbfvsRenderer {
   // and the sharpening's, with bilinear footprints), in grid cells; the
   // whole grid where they wrap around its edges.
   [[nodiscard]] glm::ivec4 grid_box() const;
-  Bounds bounds_;
   // screen_box of the last frame: the grid (grid_box), display and host passes
   // draw inside it.
   glm::ivec4 surface_box_{0};
@@ -318,24 +318,9 @@ class IbfvsRenderer {
   gl::Framebuffer framebuffer_[2];
   // [i]: texture_[i], output_, taps_[i] (, flow_): the deferred pass's second half
   gl::Framebuffer resolve_framebuffer_[2];
-  // The mesh's positions and normals, interleaved: at the current time step,
-  // and at the next where the surface moves (set_surface_steps).
-  gl::Buffer vertices_;
-  gl::Buffer vertices_next_;
-  // Where the surface moves: each vertex's screw between the two steps
-  // (omega, lever interleaved; zeros: chords).
-  gl::Buffer motion_;
-  bool moving_ = false;
-  // The pair of steps the last frame drew, where set_surface_steps replaced
-  // it since (drawn_next_ empty: the one static buffer), its screws and its mix.
-  gl::Buffer drawn_;
-  gl::Buffer drawn_next_;
-  gl::Buffer drawn_motion_;
-  bool drawn_elsewhere_ = false;
-  float drawn_mix_ = 0.0f;
-  // The last frame drew this mesh (not one that set_mesh or replace_mesh
-  // replaced since): only then does its surface's motion enter the advection.
-  bool drawn_this_mesh_ = false;
+  // The surface: its points (two steps where it moves), the pair the last
+  // frame drew, the field, the scalars, the triangles (surface_buffers.h).
+  SurfaceBuffers surface_;
   void upload_mesh(const TriMesh& mesh, std::span<const glm::vec3> field);
   void point_drawn_attributes();  // attributes 7, 8, 11, 12 at the pair the last frame drew
   // Whether a moving surface's own motion carries the texture: advecting in
@@ -343,15 +328,8 @@ class IbfvsRenderer {
   [[nodiscard]] bool carries_surface() const {
     return ibfvs::carries_surface(settings_.advect_view, settings_.field_frame);
   }
-  gl::Buffer field_;
-  gl::Buffer field_next_;
-  gl::Buffer scalars_;       // (colour, beta) per vertex
   gl::Texture2D color_map_;  // 256 x 1 RGBA float
   gl::Texture2D surface_image_;
-  gl::Buffer indices_;
-  gl::VertexArray vao_;
-  std::size_t index_count_ = 0;
-  std::size_t vertex_count_ = 0;
   float probe_ = 1e-3f;            // 1/1000 of the mesh's bounding-box diagonal
   int cull_ = 0;                   // closed_orientation of the mesh: its back faces are never seen
   glm::vec2 texture_shift_{0.0f};  // pixels, for the next frame only

@@ -149,17 +149,18 @@ std::string reader_text(const fs::path& path, bool off) {
 
 // What OpenMesh makes of the file, with our checks of its answer: runs in
 // the reading child (read_mesh). OpenMesh reads first, and nothing parses
-// in front of it: OFF and PLY from a stream that refuses to be read past its
-// end (a file cut short, or counts larger than the file) and whose state
-// after the read tells a word the reader could not take (a good file leaves
-// it good); the other formats by name. The counts and values are then
-// checked on what it read.
+// in front of it: OFF and PLY from a stream that stops its reader at once
+// where it reads past the end (a file cut short, or counts larger than the
+// file) or cannot take a word (nan, text where a count belongs; a good file
+// never fails a read of these readers, which would otherwise go on over
+// garbage counts until the time limit), and says where; the other formats
+// by name. The counts and values are then checked on what it read.
 TriMesh read_here(const fs::path& path, MeshReadReport& report) {
   const std::string ext = lower_extension(path);
   const bool streamed = ext == ".off" || ext == ".ply";
   const std::string text = streamed ? reader_text(path, ext == ".off") : std::string();
   std::istringstream stream(text);
-  stream.exceptions(std::ios::eofbit | std::ios::badbit);
+  stream.exceptions(std::ios::eofbit | std::ios::failbit | std::ios::badbit);
   // Where the stream stopped, if it did: the problem with the file.
   const auto stream_problem = [&]() -> std::string {
     if (!streamed || !stream.fail()) return {};

@@ -180,7 +180,6 @@ int run_bench(const BenchOptions& o) {
       const PreparedScene prepared = prepare_scene(scene);
       for (const auto& [w, h] : sizes) {
         Session session(resized(prepared, w, h));
-        const IbfvsRenderer& renderer = session.renderer();
         const TriMesh& mesh = *session.scene().mesh;
         for (const bool dynamic : {false, true}) {
           Camera camera(mesh_bounds(mesh), session.scene().camera,
@@ -188,7 +187,7 @@ int run_bench(const BenchOptions& o) {
           const auto frame = [&] {
             if (dynamic) camera.orbit(o.orbit);
             session.render(camera);
-            renderer.finish();
+            session.renderer().finish();  // the renderer in force (a restart makes a new one)
           };
           session.restart();
           for (int k = 0; k < o.warmup; ++k) frame();

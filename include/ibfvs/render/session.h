@@ -133,7 +133,9 @@ class Session {
   [[nodiscard]] int frame() const { return frame_; }
   [[nodiscard]] const PreparedScene& scene() const { return scene_; }
   [[nodiscard]] PreparedScene& scene() { return scene_; }
-  /// The renderer, to read its images and state (the changes go through the Session).
+  /// The renderer, to read its images and state (the changes go through the
+  /// Session). A restart, a new size or a new noise grid makes a new one: a
+  /// reference held across them is left dangling.
   [[nodiscard]] const IbfvsRenderer& renderer() const { return *renderer_; }
   /// The camera advance() uses (the scene's, orbiting; the lock camera once locked).
   [[nodiscard]] Camera& camera() { return camera_; }

@@ -160,7 +160,9 @@ TEST(MeshIo, RejectsMalformedOff) {
   // ours parses in front of it): where it stopped, and why.
   expect_read_error(write_file(dir / "count.off", "OFF\nfour 4 0\n0 0 0\n"),
                     "stopped at line 2 ('four')");
-  expect_read_error(write_file(dir / "huge.off", "OFF\n999999999 1 0\n0 0 0\n"), "ran out of");
+  // A count no file of this size holds: OpenMesh's reservation fails in the
+  // reading child (bad_alloc; under AddressSanitizer the child ends).
+  expect_read_error(write_file(dir / "huge.off", "OFF\n999999999 1 0\n0 0 0\n"), "out of memory");
   expect_read_error(write_file(dir / "index.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n"),
                     "out of range");
   expect_read_error(write_file(dir / "nan.off", "OFF\n3 1 0\n0 0 0\nnan 0 0\n0 1 0\n3 0 1 2\n"),

@@ -33,16 +33,10 @@ const RenderSettings& checked(const RenderSettings& settings) {
 
 IbfvsRenderer::IbfvsRenderer(const RenderSettings& settings)
     : settings_(checked(settings)),
-      grid_pass_(NoiseGrid(settings_.width, settings_.height, settings_.noise)) {
+      grid_pass_(NoiseGrid(settings_.width, settings_.height, settings_.noise)),
+      targets_(glm::ivec2(settings_.width, settings_.height)) {
   color_map_ = gl::Texture2D(256, 1, gl::Format::RGBA32F, true);
-  const int w = settings_.width, h = settings_.height;
-  output_ = gl::Texture2D(w, h, gl::Format::RGBA8, false);
-  depth_ = gl::Texture2D(w, h, gl::Format::Depth24, false);
-  output_framebuffer_ = gl::Framebuffer::create();
-  output_framebuffer_.attach_color(0, output_);
-  output_framebuffer_.attach_depth(depth_);
-  output_framebuffer_.finish(1);
-  allocate_texture(shaders::colour_background(settings_));
+  relayout();
   phase_size_ = grid_pass_.size();
   empty_vao_ = gl::VertexArray::create();
   apply_settings();
@@ -50,85 +44,29 @@ IbfvsRenderer::IbfvsRenderer(const RenderSettings& settings)
   reset();
 }
 
-IbfvsRenderer::TextureLayout IbfvsRenderer::texture_layout(bool colour) const {
-  const shaders::ShaderFeatures f = shaders::features_for(settings_, colour, false, false);
-  return {shaders::texture_channels(f), shaders::tap_texture(f)};
-}
-
-void IbfvsRenderer::allocate_texture(bool colour) {
-  colour_texture_ = colour;
-  // Grey: value and depth, and the displacement when the display filter
-  // follows it (the paper's look, without the filter, reads and writes half
-  // the bytes); with sharpening the direction goes with the taps' image, 8
-  // bits a channel (core/texture/display.h).
-  texture_layout_ = texture_layout(colour);
-  const gl::Format format = texture_layout_.channels == 4 ? gl::Format::RGBA16F : gl::Format::RG16F;
-  for (int i = 0; i < 2; ++i) {
-    texture_[i] = gl::Texture2D(settings_.width, settings_.height, format, true);
-    taps_[i] = texture_layout_.taps
-                   ? gl::Texture2D(settings_.width, settings_.height, gl::Format::RGBA8, true)
-                   : gl::Texture2D();
-  }
-  const auto own = [&](gl::Format f) {
-    return texture_layout_.taps ? gl::Texture2D(settings_.width, settings_.height, f, false)
-                                : gl::Texture2D();
-  };
-  base_ = own(gl::Format::RGBA8);
-  seed_ = own(gl::Format::RGBA16F);
-  build_framebuffers();
-}
-
-void IbfvsRenderer::build_framebuffers() {
-  for (int i = 0; i < 2; ++i) {
-    framebuffer_[i] = gl::Framebuffer::create();
-    framebuffer_[i].attach_color(0, texture_[i]);
-    framebuffer_[i].attach_color(1, taps_[i] ? base_ : output_);
-    if (taps_[i]) {
-      framebuffer_[i].attach_color(2, taps_[i]);
-      framebuffer_[i].attach_color(3, seed_);
-    }
-    if (record_flow_) framebuffer_[i].attach_color(flow_attachment(), flow_);
-    framebuffer_[i].attach_depth(depth_);
-    framebuffer_[i].finish(record_flow_ ? flow_attachment() + 1 : flow_attachment());
-    // The deferred pass's second half writes F itself, without the seed.
-    resolve_framebuffer_[i] = gl::Framebuffer();
-    if (taps_[i]) {
-      gl::Framebuffer& r = resolve_framebuffer_[i];
-      r = gl::Framebuffer::create();
-      r.attach_color(0, texture_[i]);
-      r.attach_color(1, output_);
-      r.attach_color(2, taps_[i]);
-      if (record_flow_) r.attach_color(3, flow_);
-      r.attach_depth(depth_);
-      r.finish(record_flow_ ? 4 : 3);
-    }
-  }
+void IbfvsRenderer::relayout() {
+  // Colour once the settings ask for it (a grey texture turns colour and
+  // stays so until reset()), else the grey layout of these settings.
+  const bool colour = feedback_.size().x > 0 && feedback_.layout().colour;
+  const FeedbackImages::Layout layout =
+      FeedbackImages::layout_for(settings_, colour || shaders::colour_background(settings_));
+  if (feedback_.size().x == 0)
+    feedback_.allocate(glm::ivec2(settings_.width, settings_.height), layout);
+  else if (layout == feedback_.layout())
+    return;
+  else
+    feedback_.convert(layout, settings_.sharpen);
+  targets_.attach(feedback_);
 }
 
 void IbfvsRenderer::record_flow(bool on) {
-  if (on == record_flow_) return;
-  record_flow_ = on;
-  if (on && !flow_)
-    flow_ = gl::Texture2D(settings_.width, settings_.height, gl::Format::RG16F, false);
-  build_framebuffers();
-  if (on) framebuffer_[current_].clear_color(flow_attachment(), glm::vec4(0.0f));
-}
-
-void IbfvsRenderer::use_colour_texture() {
-  if (colour_texture_) return;
-  const ImageF raw = read_texture_raw();  // value, depth, displacement, tap value
-  ImageF rgb(raw.width, raw.height, kRawChannels, 0.0f);
-  for (std::size_t i = 0; i < raw.pixels.size(); i += kRawChannels) {
-    rgb.pixels[i] = rgb.pixels[i + 1] = rgb.pixels[i + 2] = raw.pixels[i];
-    rgb.pixels[i + 3] = raw.pixels[i + 1];
-  }
-  allocate_texture(true);
-  upload_raw(rgb);
+  targets_.record_flow(on, feedback_);
 }
 
 shaders::ShaderFeatures IbfvsRenderer::features() const {
-  shaders::ShaderFeatures f = shaders::features_for(
-      settings_, colour_texture_, static_cast<bool>(surface_image_), record_flow_);
+  shaders::ShaderFeatures f =
+      shaders::features_for(settings_, feedback_.layout().colour, static_cast<bool>(surface_image_),
+                            targets_.records_flow());
   f.moving = surface_.moving();
   return f;
 }
@@ -140,15 +78,7 @@ IbfvsRenderer::Variant& IbfvsRenderer::current_variant() {
   auto it = variants_.find(key);
   if (it == variants_.end()) {  // made on first use
     it = variants_.emplace(key, Variant{IbfvsPrograms(f, deferred)}).first;
-    if (deferred && !gbuffer_framebuffer_) {
-      gbuffer_framebuffer_ = gl::Framebuffer::create();
-      for (int i = 0; i < 2; ++i) {
-        gbuffer_[i] = gl::Texture2D(settings_.width, settings_.height, gl::Format::RGBA32F, false);
-        gbuffer_framebuffer_.attach_color(i, gbuffer_[i]);
-      }
-      gbuffer_framebuffer_.attach_depth(depth_);
-      gbuffer_framebuffer_.finish(2);
-    }
+    if (deferred) targets_.make_gbuffer();
   }
   Variant& v = it->second;
   if (v.applied != settings_version_) {  // the settings changed since it was last used
@@ -177,24 +107,22 @@ void IbfvsRenderer::update_settings(const RenderSettings& settings) {
       settings.noise.scale != settings_.noise.scale || settings.noise.seed != settings_.noise.seed)
     throw InputError("renderer: size, noise scale and seed need a new renderer");
   settings_ = settings;
-  if (shaders::colour_background(settings_))
-    use_colour_texture();  // a grey texture stays until reset()
-  if (!colour_texture_ && texture_layout_ != texture_layout(false)) {
-    const ImageF raw = read_texture_raw();  // F_t carries over into the other format
-    allocate_texture(false);
-    upload_raw(raw);
-  }
+  relayout();  // F_t carries over into another layout
   apply_settings();
 }
 
 void IbfvsRenderer::reset() {
   gl::prepare_own_draw();
-  if (colour_texture_ != shaders::colour_background(settings_) ||
-      texture_layout_ != texture_layout(colour_texture_))
-    allocate_texture(shaders::colour_background(settings_));
-  for (auto& fb : framebuffer_) clear_targets(fb);
+  // The layout of these settings, grey where they allow it again.
+  const FeedbackImages::Layout layout =
+      FeedbackImages::layout_for(settings_, shaders::colour_background(settings_));
+  if (layout != feedback_.layout()) {
+    feedback_.allocate(glm::ivec2(settings_.width, settings_.height), layout);
+    targets_.attach(feedback_);
+  }
+  for (int i = 0; i < 2; ++i) targets_.clear(i, feedback_, settings_.background);
   stats_pass_.clear();  // no statistics before the first frame
-  current_ = 0;
+  feedback_.rewind();
   displayed_ = 0;
   frame_ = 0;
   has_previous_ = false;
@@ -213,15 +141,14 @@ void IbfvsRenderer::present(int window_width, int window_height, int left) const
   const int w = static_cast<int>(std::lround(settings_.width * scale));
   const int h = static_cast<int>(std::lround(settings_.height * scale));
   const int x0 = left + (area - w) / 2, y0 = (window_height - h) / 2;
-  output_framebuffer_.blit_to_default(0, settings_.width, settings_.height, x0, y0, x0 + w, y0 + h);
+  targets_.display().blit_to_default(0, settings_.width, settings_.height, x0, y0, x0 + w, y0 + h);
 }
 
 void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
   const glm::mat4 vp = view.projection * view.view;
-  const int next = 1 - current_;
-  gl::Framebuffer& fb = framebuffer_[next];
+  const int next = feedback_.now(), last = feedback_.last();
   gl::prepare_own_draw();  // a host's scissor box, masks or stencil test must not apply here
-  clear_targets(fb);
+  targets_.clear(next, feedback_, settings_.background);
   surface_box_ = screen_box(vp);
   if (!surface_.empty()) {
     const float noise_time = settings_.noise.rate * static_cast<float>(frame_);
@@ -234,12 +161,12 @@ void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
     for (const PlannedPass& pass : frame_plan()) {
       if (!pass_runs(pass.when, facts)) continue;
       if (pass.name == "grid") {  // G_ij of this frame
-        bind_reads(pass, next, current_);
+        bind_reads(pass, next, last);
         grid_pass_.run(noise_time, grid_box());
       } else if (pass.name == "ibfvs") {
         ibfvs_pass(v, view, dt, noise_time);
       } else if (pass.name == "resolve") {
-        resolve_pass(v, resolve_framebuffer_[next]);
+        resolve_pass(v);
       } else if (pass.name == "display") {
         display_pass(v);
       } else if (pass.name == "stats") {
@@ -253,7 +180,7 @@ void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
   displayed_ = next;
   texture_shift_ = glm::vec2(0.0f);
   if (!locked_) {  // a locked F_t stays where it is; the output is shared
-    current_ = next;
+    feedback_.advance();
     previous_view_projection_ = vp;
     last_view_ = view;
     // This frame's surface is the one the next frame's texture comes from.
@@ -267,17 +194,17 @@ void IbfvsRenderer::ibfvs_pass(const IbfvsPrograms& v, const ViewState& view, fl
                                float noise_time) {
   const glm::mat4 vp = view.projection * view.view;
   const bool use_previous = settings_.advect_view == AdvectView::Previous && has_previous_;
-  const int next = 1 - current_;
-  framebuffer_[next].bind();
+  const int next = feedback_.now(), last = feedback_.last();
+  targets_.ibfvs(next).bind();
   gl::set_viewport(settings_.width, settings_.height);
   gl::set_running_average(0.0f);  // no blending (a host's may be on)
   gl::enable_depth_test(true);
   // A closed mesh hides its back faces behind its front ones: culling them
   // halves llvmpipe's triangle setup and changes no pixel.
   gl::set_face_culling(cull_);
-  if (v.resolve()) gbuffer_framebuffer_.bind();  // the first half of the deferred pass
+  if (v.resolve()) targets_.gbuffer().bind();  // the first half of the deferred pass
   v.mesh().use();
-  tap_depth_[next] = tap_depth_map(view.projection);
+  feedback_.set_tap_depth(next, tap_depth_map(view.projection));
   // A moving surface: where the last frame drew each vertex (the pair of
   // steps it drew and its mix; the current ones where no motion enters).
   float drawn_mix = field_mix_;
@@ -300,10 +227,10 @@ void IbfvsRenderer::ibfvs_pass(const IbfvsPrograms& v, const ViewState& view, fl
   frame.texture_shift = texture_shift_;
   frame.noise_shift = noise_shift_;
   frame.locked = locked_;
-  frame.tap_depth = tap_depth_[next];
-  frame.last_tap_depth = tap_depth_[current_];
+  frame.tap_depth = feedback_.tap_depth(next);
+  frame.last_tap_depth = feedback_.tap_depth(last);
   v.set_frame(frame);
-  bind_reads(planned_pass("ibfvs"), next, current_);
+  bind_reads(planned_pass("ibfvs"), next, last);
   surface_.draw();
 }
 
@@ -312,19 +239,23 @@ const gl::Texture2D* IbfvsRenderer::image(std::string_view name, int now, int la
       images = {
           {"phases", [](const IbfvsRenderer& r, int, int) { return &r.grid_pass_.phases(); }},
           {"grid", [](const IbfvsRenderer& r, int, int) { return &r.grid_pass_.values(); }},
-          {"texture.last", [](const IbfvsRenderer& r, int, int l) { return &r.texture_[l]; }},
-          {"texture.now", [](const IbfvsRenderer& r, int n, int) { return &r.texture_[n]; }},
-          {"taps.last", [](const IbfvsRenderer& r, int, int l) { return &r.taps_[l]; }},
-          {"taps.now", [](const IbfvsRenderer& r, int n, int) { return &r.taps_[n]; }},
+          {"texture.last",
+           [](const IbfvsRenderer& r, int, int l) { return &r.feedback_.texture(l); }},
+          {"texture.now",
+           [](const IbfvsRenderer& r, int n, int) { return &r.feedback_.texture(n); }},
+          {"taps.last", [](const IbfvsRenderer& r, int, int l) { return &r.feedback_.taps(l); }},
+          {"taps.now", [](const IbfvsRenderer& r, int n, int) { return &r.feedback_.taps(n); }},
           {"color_map", [](const IbfvsRenderer& r, int, int) { return &r.color_map_; }},
           {"surface_image", [](const IbfvsRenderer& r, int, int) { return &r.surface_image_; }},
           {"stats", [](const IbfvsRenderer& r, int, int) { return &r.stats_pass_.result(); }},
-          {"gbuffer0", [](const IbfvsRenderer& r, int, int) { return &r.gbuffer_[0]; }},
-          {"gbuffer1", [](const IbfvsRenderer& r, int, int) { return &r.gbuffer_[1]; }},
-          {"seed", [](const IbfvsRenderer& r, int, int) { return &r.seed_; }},
-          {"base", [](const IbfvsRenderer& r, int, int) { return &r.base_; }},
-          {"output", [](const IbfvsRenderer& r, int, int) { return &r.output_; }},
-          {"depth", [](const IbfvsRenderer& r, int, int) { return &r.depth_; }},
+          {"gbuffer0",
+           [](const IbfvsRenderer& r, int, int) { return &r.targets_.gbuffer_image(0); }},
+          {"gbuffer1",
+           [](const IbfvsRenderer& r, int, int) { return &r.targets_.gbuffer_image(1); }},
+          {"seed", [](const IbfvsRenderer& r, int, int) { return &r.targets_.seed(); }},
+          {"base", [](const IbfvsRenderer& r, int, int) { return &r.targets_.base(); }},
+          {"output", [](const IbfvsRenderer& r, int, int) { return &r.targets_.output(); }},
+          {"depth", [](const IbfvsRenderer& r, int, int) { return &r.targets_.depth(); }},
       };
   const auto it = images.find(name);
   if (it == images.end())
@@ -338,25 +269,25 @@ void IbfvsRenderer::bind_reads(const PlannedPass& pass, int now, int last) const
     if (const gl::Texture2D* t = image(read.image, now, last); *t) t->bind(read.unit);
 }
 
-void IbfvsRenderer::resolve_pass(const IbfvsPrograms& v, gl::Framebuffer& fb) {
-  fb.bind();
+void IbfvsRenderer::resolve_pass(const IbfvsPrograms& v) {
+  targets_.resolve(feedback_.now()).bind();
   gl::set_face_culling(0);
   gl::test_depth_behind_surface(true);  // the surface's pixels, each once
   gl::scissor(true, surface_box_);
   v.resolve().use();
-  bind_reads(planned_pass("resolve"), 1 - current_, current_);
+  bind_reads(planned_pass("resolve"), feedback_.now(), feedback_.last());
   gl::draw_attributeless_triangle(empty_vao_);
   gl::scissor(false);
   gl::test_depth_behind_surface(false);
 }
 
 void IbfvsRenderer::display_pass(const IbfvsPrograms& v) {
-  output_framebuffer_.bind();
+  targets_.display().bind();
   gl::set_face_culling(0);
   gl::test_depth_behind_surface(true);
   gl::scissor(true, surface_box_);  // the depth test rejects the rest, but per pixel
   v.display().use();                // its frame's uniforms: set with the IBFVS pass's
-  bind_reads(planned_pass("display"), 1 - current_, current_);
+  bind_reads(planned_pass("display"), feedback_.now(), feedback_.last());
   gl::draw_attributeless_triangle(empty_vao_);
   gl::scissor(false);
   gl::test_depth_behind_surface(false);
@@ -408,15 +339,6 @@ glm::ivec4 IbfvsRenderer::grid_box() const {
   return x.x < 0 || y.x < 0 ? all : glm::ivec4(x.x, y.x, x.y, y.y);
 }
 
-void IbfvsRenderer::clear_targets(gl::Framebuffer& fb) {
-  const glm::vec3& b = settings_.background;
-  fb.clear_color(0, colour_texture_ ? glm::vec4(b, kNoDepth) : glm::vec4(b.r, kNoDepth, 0, 0));
-  output_framebuffer_.clear_color(0, glm::vec4(b, 1.0f));
-  if (taps_[0]) fb.clear_color(2, glm::vec4(0.5f, 0.0f, 0.5f, 0.5f));  // no depth, no direction
-  if (record_flow_) fb.clear_color(flow_attachment(), glm::vec4(0.0f));
-  fb.clear_depth();  // the depth buffer is shared by both framebuffers
-}
-
 void IbfvsRenderer::run_deferred_statistics() {
   if (!statistics_due_) return;
   statistics_due_ = false;
@@ -427,7 +349,7 @@ void IbfvsRenderer::run_deferred_statistics() {
 
 void IbfvsRenderer::statistics_pass(int texture_index, int frame) {
   bind_reads(planned_pass("stats"), texture_index, 1 - texture_index);
-  stats_pass_.run(!colour_texture_, glm::ivec2(settings_.width, settings_.height), frame,
+  stats_pass_.run(!feedback_.layout().colour, glm::ivec2(settings_.width, settings_.height), frame,
                   kStatsWeight);
 }
 
@@ -442,7 +364,10 @@ void IbfvsRenderer::unlock() {
 }
 
 void IbfvsRenderer::fill_texture_with_cell_colors(std::uint32_t seed) {
-  use_colour_texture();
+  if (!feedback_.layout().colour) {  // colours need a colour texture (until reset())
+    feedback_.convert(FeedbackImages::layout_for(settings_, true), settings_.sharpen);
+    targets_.attach(feedback_);
+  }
   const int w = settings_.width, h = settings_.height;
   const float s = settings_.noise.scale;
   const int columns = static_cast<int>(std::ceil(static_cast<float>(w) / s)) + 1;
@@ -457,7 +382,7 @@ void IbfvsRenderer::fill_texture_with_cell_colors(std::uint32_t seed) {
         p[c] = hash_uniform(seed, 3 * cell + static_cast<std::uint64_t>(c));
       p[3] = kAnyDepth;
     }
-  texture_[current_].upload_float(rgba, 4);
+  feedback_.upload_colours(rgba);
 }
 
 ImageU8 IbfvsRenderer::read_output() const {
@@ -467,73 +392,11 @@ ImageU8 IbfvsRenderer::read_output() const {
 }
 
 void IbfvsRenderer::read_output(ImageU8& image) const {
-  image.width = settings_.width;
-  image.height = settings_.height;
-  image.channels = 4;
-  image.pixels.resize(static_cast<std::size_t>(image.width) * image.height * 4);
-  output_framebuffer_.read_rgba8(0, image.width, image.height, image.pixels);
-  // The alpha channel holds the contrast stage's statistics input: F is opaque.
-  for (std::size_t i = 3; i < image.pixels.size(); i += 4) image.pixels[i] = 255;
+  targets_.read_output(image);
 }
 
 ImageF IbfvsRenderer::read_texture_raw() const {
-  const int w = settings_.width, h = settings_.height;
-  ImageF stored(w, h, 4);
-  texture_[current_].read_float(stored.pixels, 4);
-  ImageF taps;
-  if (taps_[current_]) {
-    taps = ImageF(w, h, 4);
-    taps_[current_].read_float(taps.pixels, 4);
-  }
-  const float scale = tap_value_scale(settings_.sharpen);
-  const int channels = texture_layout_.channels;  // of two, GL reads (0, 1) after them
-  ImageF raw(w, h, kRawChannels, 0.0f);
-  for (std::size_t i = 0; i < static_cast<std::size_t>(w) * h; ++i) {
-    const float* s = &stored.pixels[4 * i];
-    float* r = &raw.pixels[kRawChannels * i];
-    std::copy_n(s, channels, r);
-    r[5] = -1.0f;
-    if (colour_texture_) continue;
-    if (taps.pixels.empty()) {
-      r[4] = s[0];
-      continue;
-    }
-    const float* t = &taps.pixels[4 * i];
-    r[2] = 2.0f * t[2] - 1.0f, r[3] = 2.0f * t[3] - 1.0f;  // the unit direction
-    r[4] = decode_tap_value(t[0], scale);
-    r[5] = t[1];
-  }
-  return raw;
-}
-
-void IbfvsRenderer::upload_raw(const ImageF& raw) {
-  const std::size_t n = static_cast<std::size_t>(raw.width) * raw.height;
-  const int channels = texture_layout_.channels;
-  const float scale = tap_value_scale(settings_.sharpen);
-  const glm::vec2 map = tap_depth_[current_];
-  std::vector<float> stored(n * static_cast<std::size_t>(channels));
-  std::vector<float> taps(taps_[current_] ? n * 4 : 0);
-  for (std::size_t i = 0; i < n; ++i) {
-    const float* r = &raw.pixels[kRawChannels * i];
-    std::copy_n(r, channels, &stored[channels * i]);
-    if (!taps.empty()) {
-      // As read_texture_raw gives them, the stored tap depth and direction
-      // come back unchanged (a stored direction is unit within 8 bits); a
-      // displacement in pixels becomes its direction.
-      const bool surface = r[1] > -255.0f;
-      const glm::vec2 m(r[2], r[3]);
-      const float length = std::sqrt(glm::dot(m, m));
-      const glm::vec2 d = !surface                           ? glm::vec2(0.5f)
-                          : length > 0.95f && length < 1.05f ? 0.5f + 0.5f * m
-                                                             : encode_tap_direction(m);
-      float* t = &taps[4 * i];
-      t[0] = surface ? encode_tap_value(r[4], scale) : 0.5f;
-      t[1] = !surface ? 0.0f : r[5] >= 0.0f ? r[5] : encode_tap_depth(r[1], map);
-      t[2] = d.x, t[3] = d.y;
-    }
-  }
-  texture_[current_].upload_float(stored, channels);
-  if (!taps.empty()) taps_[current_].upload_float(taps, 4);
+  return feedback_.read_raw(settings_.sharpen);
 }
 
 ImageF IbfvsRenderer::read_texture() const {
@@ -542,7 +405,7 @@ ImageF IbfvsRenderer::read_texture() const {
   for (std::size_t i = 0; i < image.pixels.size() / 4; ++i) {
     float* p = &image.pixels[4 * i];
     const float* r = &raw.pixels[kRawChannels * i];
-    if (colour_texture_)
+    if (feedback_.layout().colour)
       std::copy_n(r, 3, p);
     else
       p[0] = p[1] = p[2] = r[0];
@@ -552,16 +415,11 @@ ImageF IbfvsRenderer::read_texture() const {
 }
 
 ImageF IbfvsRenderer::read_flow() const {
-  if (!record_flow_) throw InputError("renderer: read_flow needs record_flow(true) first");
-  ImageF image(settings_.width, settings_.height, 2);
-  flow_.read_float(image.pixels, 2);
-  return image;
+  return targets_.read_flow();
 }
 
 ImageF IbfvsRenderer::read_depth() const {
-  ImageF image(settings_.width, settings_.height, 1);
-  framebuffer_[current_].read_depth(image.width, image.height, image.pixels);
-  return image;
+  return targets_.read_depth();
 }
 
 std::vector<std::uint8_t> IbfvsRenderer::read_coverage() const {
@@ -574,17 +432,12 @@ std::vector<std::uint8_t> IbfvsRenderer::read_coverage() const {
 void IbfvsRenderer::draw_to_host(glm::ivec2 origin, bool interior) const {
   const gl::SavedState saved;
   gl::prepare_host_draw();
-  bind_reads(planned_pass("host"), current_, 1 - current_);
+  bind_reads(planned_pass("host"), feedback_.last(), feedback_.now());
   host_pass_.draw(origin, interior, surface_box_);
 }
 
 void IbfvsRenderer::write_texture_raw(const ImageF& texture) {
-  if (texture.width != settings_.width || texture.height != settings_.height ||
-      texture.channels != kRawChannels)
-    throw InputError("renderer: write_texture_raw needs a " + std::to_string(settings_.width) +
-                     "x" + std::to_string(settings_.height) + " image of " +
-                     std::to_string(kRawChannels) + " channels");
-  upload_raw(texture);
+  feedback_.upload_raw(texture, settings_.sharpen);
 }
 
 void IbfvsRenderer::take_texture(const ImageF& raw, const ViewState& view) {
@@ -604,24 +457,19 @@ void IbfvsRenderer::take_texture(const ImageF& raw, const ViewState& view) {
       resampled.at(x, y, 5) = -1.0f;
     }
   }
-  tap_depth_[current_] = tap_depth_map(view.projection);
-  upload_raw(resampled);
+  feedback_.set_tap_depth(feedback_.last(), tap_depth_map(view.projection));
+  feedback_.upload_raw(resampled, settings_.sharpen);
   previous_view_projection_ = view.projection * view.view;
   last_view_ = view;
   has_previous_ = true;
 }
 
 ImageF IbfvsRenderer::read_output_raw() const {
-  ImageF image(settings_.width, settings_.height, 4);
-  output_.read_float(image.pixels, 4);
-  return image;
+  return targets_.read_output_raw();
 }
 
 void IbfvsRenderer::write_output_raw(const ImageF& output) {
-  if (output.width != settings_.width || output.height != settings_.height || output.channels != 4)
-    throw InputError("renderer: write_output_raw needs a " + std::to_string(settings_.width) + "x" +
-                     std::to_string(settings_.height) + " RGBA image");
-  output_.upload_float(output.pixels, 4);
+  targets_.write_output_raw(output);
 }
 
 void IbfvsRenderer::set_probe_length(float world) {

@@ -2,8 +2,11 @@
 // The IBFVS texture synthesis on OpenGL 4.5 (paper sections 3.2-3.3,
 // equations 10-13). A frame runs these passes, each compiled with only the
 // features in use (shaders.h; their samplers' units: texture_units.h), each
-// an object that owns its program, target and uniforms (passes.h); the
-// renderer owns the images passed between them and runs them in order:
+// an object that owns its program and uniforms (passes.h), drawing into the
+// images that one frame hands the next (feedback_images.h: F_t, the taps)
+// and into the frame's targets, through each pass's framebuffer
+// (frame_targets.h: F, the depth, the G-buffer); the renderer runs them in
+// order:
 //
 //   grid      G_ij = w(v_g k + phi_ij) once per grid point        (eq. 8)
 //   IBFVS     the mesh drawn once; per pixel:                       (steps 2-7)
@@ -58,7 +61,9 @@
 #include "ibfvs/core/texture/noise.h"
 #include "ibfvs/core/texture/reference.h"
 #include "ibfvs/gl/objects.h"
+#include "ibfvs/render/feedback_images.h"
 #include "ibfvs/render/frame_plan.h"
+#include "ibfvs/render/frame_targets.h"
 #include "ibfvs/render/passes.h"
 #include "ibfvs/render/shaders.h"
 #include "ibfvs/render/surface_buffers.h"
@@ -150,7 +155,7 @@ class IbfvsRenderer {
 
   [[nodiscard]] int frame() const { return frame_; }
   /// Channels F_t is stored in: 1 while it can only be grey, else 4.
-  [[nodiscard]] int texture_channels() const { return colour_texture_ ? 4 : 1; }
+  [[nodiscard]] int texture_channels() const { return feedback_.layout().colour ? 4 : 1; }
   [[nodiscard]] const RenderSettings& settings() const { return settings_; }
   /// The composed image F, RGBA8, rows bottom-up.
   [[nodiscard]] ImageU8 read_output() const;
@@ -169,7 +174,7 @@ class IbfvsRenderer {
   /// or RGB, eye depth, 0, 0 and -1. The depth is kNoDepth off the surface.
   /// write_texture_raw takes the same.
   [[nodiscard]] ImageF read_texture_raw() const;
-  static constexpr int kRawChannels = 6;
+  static constexpr int kRawChannels = FeedbackImages::kRawChannels;
   /// Records every pixel's displacement from now on (for measurements: it
   /// costs a fourth attachment), or stops.
   void record_flow(bool on);
@@ -243,17 +248,14 @@ class IbfvsRenderer {
   bool defer_statistics_ = false;
   bool deferred_allowed_ = true;
   bool statistics_due_ = false;
-  void build_framebuffers();
-  void clear_targets(gl::Framebuffer& fb);
   // The IBFVS pass (or its deferred first half) into F_t and F.
   void ibfvs_pass(const IbfvsPrograms& v, const ViewState& view, float dt, float noise_time);
   // The image of the frame plan named `name` (frame_plan.h) in a frame that
-  // draws F_t into texture_[now] from texture_[last]; binds a pass's images.
+  // draws F_t into its pair member `now` from `last`; binds a pass's images.
   [[nodiscard]] const gl::Texture2D* image(std::string_view name, int now, int last) const;
   void bind_reads(const PlannedPass& pass, int now, int last) const;
   void display_pass(const IbfvsPrograms& v);
-  void resolve_pass(const IbfvsPrograms& v,
-                    gl::Framebuffer& fb);  // the deferred pass's second half
+  void resolve_pass(const IbfvsPrograms& v);  // the deferred pass's second half
   // The pixels the mesh can cover in this view: its bounding box projected
   // (x, y, width, height), or the whole image where a corner is behind the eye.
   [[nodiscard]] glm::ivec4 screen_box(const glm::mat4& view_projection) const;
@@ -267,23 +269,10 @@ class IbfvsRenderer {
   [[nodiscard]] shaders::ShaderFeatures features() const;
   Variant& current_variant();  // the variant for the current features, compiled and up to date
   void apply_settings();       // after settings_ changed
-  // F_t in two channels (RG16F: value, depth) while it can only hold grey
-  // values (a grey background and grey noise), else RGBA16F (RGB, depth);
-  // fewer channels are cheaper to sample on llvmpipe. Switching keeps the
-  // content.
-  void allocate_texture(bool colour);
-  void use_colour_texture();
-  // How F_t is stored for these settings; a change allocates it again.
-  struct TextureLayout {
-    int channels = 4;   // F_t's: 2 (grey value, depth) or 4
-    bool taps = false;  // a tap texture beside it (shaders::tap_texture)
-    bool operator==(const TextureLayout&) const = default;
-  };
-  [[nodiscard]] TextureLayout texture_layout(bool colour) const;
-  void upload_raw(const ImageF& raw);  // read_texture_raw's layout into F_t (and its taps)
-  [[nodiscard]] unsigned flow_attachment() const { return taps_[0] ? 4u : 2u; }
-  bool colour_texture_ = true;
-  TextureLayout texture_layout_;
+  // F_t holds grey until the settings ask for colour (FeedbackImages::
+  // layout_for): fewer channels are cheaper to sample on llvmpipe. A change
+  // of layout keeps the content.
+  void relayout();
 
   RenderSettings settings_;
   // The passes that stand on their own (passes.h), made from the settings.
@@ -295,29 +284,12 @@ class IbfvsRenderer {
   glm::ivec2 phase_size_{0};
   glm::vec3 image_centre_{0.0f};
   float field_mix_ = 0.0f;
-  gl::Texture2D texture_[2];  // F_t ping-pong
-  gl::Texture2D taps_[2];     // the display filter's taps beside a grey F_t (tap_texture), or none
-  glm::vec2 tap_depth_[2]{};  // the depth map taps_[i] was written with (core/texture/display.h)
-  // With the tap texture the IBFVS pass leaves the display pass ((1 - beta)
-  // F_s, beta) and the seed (the filter's first tap, t(x)'s depth, the
-  // displacement).
-  gl::Texture2D base_;
-  gl::Texture2D seed_;
-  gl::Texture2D output_;                // F
-  gl::Framebuffer output_framebuffer_;  // output_ and depth_: the display pass draws F in it
-  gl::Texture2D flow_;                  // displacement of the last frame, pixels (when recorded)
-  bool record_flow_ = false;
+  // The images a frame hands the next: F_t's ping-pong and the taps
+  // (feedback_images.h); and what the passes draw into, with each pass's
+  // framebuffer (frame_targets.h).
+  FeedbackImages feedback_;
+  FrameTargets targets_;
   gl::VertexArray empty_vao_;  // for the attributeless resolve and display passes
-  // The deferred IBFVS pass's first half leaves the surface here, per pixel
-  // (made with the first deferred variant): t(x), its depth and this pixel's;
-  // fwidth of that depth, the headlight's diffuse term and the scalars.
-  gl::Texture2D gbuffer_[2];
-  gl::Framebuffer gbuffer_framebuffer_;
-  gl::Texture2D depth_;  // a texture: draw_to_host reads it
-  // [i] draws into texture_[i], output_ (or base_, taps_[i], seed_) (, flow_)
-  gl::Framebuffer framebuffer_[2];
-  // [i]: texture_[i], output_, taps_[i] (, flow_): the deferred pass's second half
-  gl::Framebuffer resolve_framebuffer_[2];
   // The surface: its points (two steps where it moves), the pair the last
   // frame drew, the field, the scalars, the triangles (surface_buffers.h).
   SurfaceBuffers surface_;
@@ -334,8 +306,7 @@ class IbfvsRenderer {
   int cull_ = 0;                   // closed_orientation of the mesh: its back faces are never seen
   glm::vec2 texture_shift_{0.0f};  // pixels, for the next frame only
   glm::vec2 noise_shift_{0.0f};    // pixels, accumulated
-  int current_ = 0;                // texture_[current_] holds F_t of the last frame
-  int displayed_ = 0;              // framebuffer_[displayed_] drew the last F
+  int displayed_ = 0;              // the pair member of F_t the last F was drawn with
   int frame_ = 0;
   bool has_previous_ = false;
   bool locked_ = false;

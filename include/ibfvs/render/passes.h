@@ -1,7 +1,9 @@
 #pragma once
-// The passes of a frame that stand on their own, each owning its program,
-// its target and its uniforms; IbfvsRenderer (ibfvs_renderer.h) owns the
-// images passed between them and runs them in order:
+// The passes of a frame, each owning its program and its uniforms; the grid
+// and statistics passes their targets too. The IBFVS, resolve and display
+// passes draw into the feedback images (feedback_images.h) and the frame's
+// targets (frame_targets.h), each through its own framebuffer there.
+// IbfvsRenderer (ibfvs_renderer.h) runs them in order:
 //
 //   GridPass   the noise grid G of the frame                     (eq. 8)
 //   IbfvsPrograms  the IBFVS pass (or its G-buffer and resolve halves) and

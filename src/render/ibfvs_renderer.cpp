@@ -40,7 +40,7 @@ IbfvsRenderer::IbfvsRenderer(const RenderSettings& settings)
   phase_size_ = grid_pass_.size();
   empty_vao_ = gl::VertexArray::create();
   apply_settings();
-  static_cast<void>(current_variant());  // compile now: a shader error shows at construction
+  static_cast<void>(variant(features()));  // compile now: a shader error shows at construction
   reset();
 }
 
@@ -71,8 +71,7 @@ shaders::ShaderFeatures IbfvsRenderer::features() const {
   return f;
 }
 
-IbfvsRenderer::Variant& IbfvsRenderer::current_variant() {
-  const shaders::ShaderFeatures f = features();
+IbfvsRenderer::Variant& IbfvsRenderer::variant(const shaders::ShaderFeatures& f) {
   const bool deferred = deferred_allowed_ && shaders::deferred_pass(f);
   const unsigned key = f.key() | (deferred ? 1u << 24u : 0u);
   auto it = variants_.find(key);
@@ -152,12 +151,13 @@ void IbfvsRenderer::render_frame(const ViewState& view, float dt) {
   surface_box_ = screen_box(vp);
   if (!surface_.empty()) {
     const float noise_time = settings_.noise.rate * static_cast<float>(frame_);
-    const IbfvsPrograms& v = current_variant().programs;
+    const shaders::ShaderFeatures f = features();
+    const IbfvsPrograms& v = variant(f).programs;
     // The frame's passes, in the plan's order, each where its `when` says
     // (frame_plan.h: pass_runs, which the page follows too). The statistics
     // change slowly: every kStatsEvery frames is enough, and on llvmpipe
     // each extra pass ends the frame's scene early.
-    const PassFacts facts = pass_facts(features(), static_cast<bool>(v.resolve()), frame_);
+    const PassFacts facts = pass_facts(f, static_cast<bool>(v.resolve()), frame_);
     for (const PlannedPass& pass : frame_plan()) {
       if (!pass_runs(pass.when, facts)) continue;
       if (pass.name == "grid") {  // G_ij of this frame

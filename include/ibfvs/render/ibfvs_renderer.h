@@ -267,8 +267,9 @@ class IbfvsRenderer {
   // draw inside it.
   glm::ivec4 surface_box_{0};
   [[nodiscard]] shaders::ShaderFeatures features() const;
-  Variant& current_variant();  // the variant for the current features, compiled and up to date
-  void apply_settings();       // after settings_ changed
+  // The variant for features `f` (features()), compiled and up to date.
+  Variant& variant(const shaders::ShaderFeatures& f);
+  void apply_settings();  // after settings_ changed
   // F_t holds grey until the settings ask for colour (FeedbackImages::
   // layout_for): fewer channels are cheaper to sample on llvmpipe. A change
   // of layout keeps the content.

@@ -290,6 +290,23 @@ def test_texture_on_the_surface_nothing_on_the_background_and_it_moves(data, tmp
     assert (moved[outside] > 1).mean() < 0.001
 
 
+def test_properties_reach_the_texture_through_the_keys_rules(data, tmp_path):
+    # Each property goes to the mapper by its scene key's host name and the
+    # key's own check (vtkIBFVSMapper::SetKey): a step of 0 with a still
+    # noise stops the texture, as the key says; a seed the key refuses is
+    # one error naming the property, and the rest still applies.
+    done, out = run({"data": str(data / "sphere.vtp"), "vectors": ["POINTS", "v"],
+                     "frames": 36, "shots": [30, 36], "mask": True,
+                     "properties": {"StepPixels": 0, "NoiseRate": 0, "Seed": -1}}, tmp_path)
+    text = done.stdout + done.stderr
+    assert text.count("IBFVS: Seed: ") == 1, text[-2000:]
+    mask = mask_of(out)
+    a, b = image(out + "-30.png"), image(out + "-36.png")
+    assert local_contrast(a, mask) > 4  # still the texture
+    still = np.abs(a - b).max(axis=-1)
+    assert (still[mask] > 10).mean() < 0.01, (still[mask] > 10).mean()
+
+
 def test_colour_by_a_scalar_through_paraviews_colour_map(data, tmp_path):
     _, out = run({"data": str(data / "sphere.vtp"), "vectors": ["POINTS", "v"],
                   "color": ["POINTS", "height"], "frames": 12, "shots": [12], "mask": True},

@@ -660,7 +660,7 @@ TEST_F(RenderCommand, ImpossibleOptionsFailCleanly) {
   expect_error(m + "--background 0.5,0.5 --out x.png", "--background");
   expect_error(m + "--camera 10,20 --out x.png", "--camera");
   expect_error(m + "--fov 0 --out x.png", "--fov");
-  expect_error(m + "--step 0 --out x.png", "--step");
+  expect_error(m + "--step -1 --out x.png", "--step");
   expect_error(m + "--dt -1 --out x.png", "--dt");
   expect_error(m + "--advect-view next --out x.png", "--advect-view");
   expect_error(m + "--inject mix --out x.png", "--inject");

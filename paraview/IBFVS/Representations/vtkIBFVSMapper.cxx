@@ -139,28 +139,6 @@ void vtkIBFVSMapper::SetVectors(int association, const char* name) {
   this->Modified();
 }
 
-namespace {
-// A property's value within its scene key's range (the library's one table,
-// ibfvs::key_range; the XML's domains are checked against it).
-float in_range(std::string_view key, double value) {
-  return ibfvs::clamp_to_key_range(key, static_cast<float>(value));
-}
-// An enumeration property's integer as the enum, clamped to the values of
-// its name table (the XML's entries are the table's: a test checks).
-template <class E>
-E in_enum(int value) {
-  int lo = value, hi = value;
-  bool first = true;
-  for (const auto& e : ibfvs::EnumNames<E>::table) {
-    const int v = static_cast<int>(e.value);
-    lo = first ? v : std::min(lo, v);
-    hi = first ? v : std::max(hi, v);
-    first = false;
-  }
-  return static_cast<E>(std::clamp(value, lo, hi));
-}
-}  // namespace
-
 // The scene with one property's value: checked by the keys' own rules and
 // acted on by each changed key's (HostFlow::set_scene: live, a new noise
 // grid, or a new start); a value the key refuses is an error, and the
@@ -174,18 +152,30 @@ void vtkIBFVSMapper::SetScene(const ibfvs::Scene& scene) {
   }
 }
 
-// A property of a scene key: its value in the key's range, then the key's rules.
-#define IBFVS_SETTING(Name, Type, member, conversion) \
-  void vtkIBFVSMapper::Set##Name(Type value) {        \
-    ibfvs::Scene s = this->Internal->flow.scene();    \
-    const auto v = conversion;                        \
-    if (s.member == v) return;                        \
-    s.member = v;                                     \
-    this->SetScene(s);                                \
+// A property of a scene key, by its host name (SceneKey::host: ParaView's
+// property and the representation's Set<Host> call it so): the value as
+// the key's text (ibfvs::host_setting: within the key's range, an
+// enumeration's nearest value), then the key's own check and rules.
+bool vtkIBFVSMapper::SetKey(const char* host, double value) {
+  const std::string name = host ? host : "";
+  const ibfvs::SceneKey* key = ibfvs::find_host_key(name);
+  if (!key) {
+    vtkErrorMacro(<< "IBFVS: no setting is called '" << name << "'");
+    return false;
   }
-IBFVS_SETTING(Alpha, double, alpha, in_range("alpha", value))
-IBFVS_SETTING(Beta, double, beta, in_range("beta", value))
-IBFVS_SETTING(NoiseScale, double, scale, in_range("scale", value))
+  ibfvs::Scene s = this->Internal->flow.scene();
+  try {
+    ibfvs::apply_setting(s, key->name, ibfvs::host_setting(*key, value));
+  } catch (const ibfvs::SettingError& e) {
+    vtkErrorMacro(<< "IBFVS: " << name << ": " << e.problem());
+    return false;
+  } catch (const std::exception& e) {
+    vtkErrorMacro(<< "IBFVS: " << name << ": " << e.what());
+    return false;
+  }
+  if (key->get(s) != key->get(this->Internal->flow.scene())) this->SetScene(s);
+  return true;
+}
 
 void vtkIBFVSMapper::SetFramesPerStep(int frames) {
   const int v = std::clamp(frames, 1, ibfvs::kMaxFramesPerStep);
@@ -203,18 +193,6 @@ void vtkIBFVSMapper::Restart() {
   this->Internal->flow.restart();
   this->Modified();
 }
-
-IBFVS_SETTING(StepPixels, double, step, in_range("step", value))
-IBFVS_SETTING(TimeProfile, int, profile, in_enum<ibfvs::NoiseProfile>(value))
-IBFVS_SETTING(NoiseRate, double, vg, in_range("vg", value))
-IBFVS_SETTING(ImageNormalize, int, image_normalize, value != 0)
-IBFVS_SETTING(FilterLength, double, filter, in_range("filter", value))
-IBFVS_SETTING(Contrast, double, contrast, in_range("contrast", value))
-IBFVS_SETTING(Sharpen, double, sharpen, in_range("sharpen", value))
-IBFVS_SETTING(Resample, int, resample, in_enum<ibfvs::Resample>(value))
-IBFVS_SETTING(FieldFrame, int, field_frame, in_enum<ibfvs::FieldFrame>(value))
-IBFVS_SETTING(Seed, int, seed, static_cast<std::uint32_t>(std::max(value, 0)))
-#undef IBFVS_SETTING
 
 int vtkIBFVSMapper::GetFrame() {
   return this->Internal->flow.frame();

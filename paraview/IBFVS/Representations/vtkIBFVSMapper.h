@@ -37,19 +37,11 @@ class IBFVSREPRESENTATIONS_EXPORT vtkIBFVSMapper : public vtkCompositePolyDataMa
   /// The vector array: association 0 point data, 1 cell data.
   void SetVectors(int association, const char* name);
 
-  void SetAlpha(double value);
-  void SetBeta(double value);
-  void SetNoiseScale(double pixels);
-  void SetStepPixels(double pixels);
-  void SetTimeProfile(int profile);
-  void SetNoiseRate(double vg);
-  void SetImageNormalize(int on);
-  void SetFilterLength(double pixels);
-  void SetContrast(double contrast);
-  void SetSharpen(double k);
-  void SetResample(int mode);     // ibfvs::Resample
-  void SetFieldFrame(int frame);  // ibfvs::FieldFrame
-  void SetSeed(int seed);
+  /// The scene key a host calls `host` (ibfvs::SceneKey::host: Alpha,
+  /// NoiseScale, ...), set to `value`: kept to the key's range, an
+  /// enumeration's number, a flag's 0 or 1. A value the key refuses is an
+  /// error and the setting stays: false.
+  bool SetKey(const char* host, double value);
   /// At least this many texture frames for each change of the data (a time
   /// step): a change adds the frames that the renders since the last one
   /// fell short of, at the new data (Save Animation renders a step once;

@@ -49,10 +49,13 @@ void vtkIBFVSRepresentation::SelectInputVectors(int, int, int, int attributeMode
   this->IBFVSLODMapper->SetVectors(attributeMode, name);
 }
 
-#define IBFVS_FORWARD(Name, Type)                      \
-  void vtkIBFVSRepresentation::Set##Name(Type value) { \
-    this->IBFVSMapper->Set##Name(value);               \
-    this->IBFVSLODMapper->Set##Name(value);            \
+// Each scene key's property (the XML's, from the keys' table): to both
+// mappers by its host name, which is the property's (the build checks that
+// these are the table's host keys: paraview/generate_xml.cpp); a value the
+// key refuses is one error, from the first.
+#define IBFVS_FORWARD(Name, Type)                                                            \
+  void vtkIBFVSRepresentation::Set##Name(Type value) {                                       \
+    if (this->IBFVSMapper->SetKey(#Name, value)) this->IBFVSLODMapper->SetKey(#Name, value); \
   }
 IBFVS_FORWARD(Alpha, double)
 IBFVS_FORWARD(Beta, double)
@@ -67,8 +70,12 @@ IBFVS_FORWARD(Sharpen, double)
 IBFVS_FORWARD(Resample, int)
 IBFVS_FORWARD(FieldFrame, int)
 IBFVS_FORWARD(Seed, int)
-IBFVS_FORWARD(FramesPerStep, int)
 #undef IBFVS_FORWARD
+
+void vtkIBFVSRepresentation::SetFramesPerStep(int frames) {
+  this->IBFVSMapper->SetFramesPerStep(frames);
+  this->IBFVSLODMapper->SetFramesPerStep(frames);
+}
 
 void vtkIBFVSRepresentation::RestartTexture() {
   this->IBFVSMapper->Restart();

@@ -27,7 +27,11 @@ class IBFVSREPRESENTATIONS_EXPORT vtkIBFVSRepresentation
   /// Surface LIC's SelectInputVectors.
   void SelectInputVectors(int, int, int, int attributeMode, const char* name);
 
-  /// The texture (alpha, beta: paper equations 10-11; noise: 6-8).
+  /// The texture (alpha, beta: paper equations 10-11; noise: 6-8): the
+  /// scene keys' properties, each Set<its host name> (ibfvs::SceneKey::host),
+  /// a double for a number key, else an int. ParaView's wrapping reads these
+  /// declarations; the build holds them to the keys' table
+  /// (paraview/generate_xml.cpp).
   void SetAlpha(double value);
   void SetBeta(double value);
   void SetNoiseScale(double pixels);

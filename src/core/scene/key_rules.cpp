@@ -2,11 +2,14 @@
 // does when a key changes, and the number keys' ranges, each read from the
 // key's entry in the one table (scene_keys(), scene_keys.cpp).
 #include <algorithm>
+#include <cmath>
 #include <optional>
 #include <string_view>
 #include <vector>
 
 #include "ibfvs/core/scene/scene.h"
+#include "ibfvs/core/support/error.h"
+#include "ibfvs/core/support/text.h"
 
 namespace ibfvs {
 
@@ -79,6 +82,25 @@ std::optional<KeyRange> key_range(std::string_view name) {
 float clamp_to_key_range(std::string_view name, float value) {
   const std::optional<KeyRange> r = key_range(name);
   return r ? std::clamp(value, r->min, r->max) : value;
+}
+
+std::string host_setting(const SceneKey& key, double value) {
+  if (!key.choices.empty()) {
+    const auto by_distance = [&](const KeyChoice& a, const KeyChoice& b) {
+      return std::abs(a.value - value) < std::abs(b.value - value);
+    };
+    return std::string(std::min_element(key.choices.begin(), key.choices.end(), by_distance)->name);
+  }
+  switch (key.kind) {
+    case KeyKind::Flag:
+      return value != 0.0 ? "true" : "false";
+    case KeyKind::Integer:
+      return std::abs(value) < 9.0e18 ? std::to_string(std::llround(value)) : format_number(value);
+    case KeyKind::Number:
+      return format_number(clamp_to_key_range(key.name, static_cast<float>(value)));
+    default:
+      throw InputError(std::string(key.name) + ": not a number a host sets");
+  }
 }
 
 }  // namespace ibfvs

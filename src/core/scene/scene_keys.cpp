@@ -250,9 +250,11 @@ std::vector<SceneKey> make_keys() {
          s.seed = static_cast<std::uint32_t>(parse_integer(t, 0, 4294967295LL));
        },
        [](const Scene& s) { return one(std::to_string(s.seed)); }, KeyEffect::kNoise},
-      IBFVS_NUMBER_KEY(step, "largest image-space displacement per frame in pixels (sets dt)",
-                       require(v > 0.0f, "must be a positive number of pixels"), KeyEffect::kStep,
-                       KeyRange{0.0f, 64.0f, false}),
+      IBFVS_NUMBER_KEY(step,
+                       "largest image-space displacement per frame in pixels (sets dt; 0 stops "
+                       "the texture)",
+                       require(v >= 0.0f, "must be 0 or a positive number of pixels"),
+                       KeyEffect::kStep, KeyRange{0.0f, 64.0f, false}),
       IBFVS_NUMBER_KEY(dt, "time step in world units per frame; > 0 overrides step",
                        require(v >= 0.0f, "must be a non-negative number")),
       {"image_normalize", KeyKind::Flag,
@@ -408,7 +410,8 @@ namespace {
 
 // The labels of the keys a control shows where the name alone would not
 // say what it is (its unit, the paper's symbol).
-std::vector<SceneKey> labelled(std::vector<SceneKey> keys) {
+// The labels and host names (SceneKey::label, host) of the keys that have them.
+std::vector<SceneKey> named(std::vector<SceneKey> keys) {
   constexpr std::pair<std::string_view, std::string_view> kLabels[] = {
       {"scale", "noise scale (pixels)"},   {"step", "step (pixels)"},
       {"vg", "noise rate (v_g)"},          {"filter", "filter length (pixels)"},
@@ -416,10 +419,28 @@ std::vector<SceneKey> labelled(std::vector<SceneKey> keys) {
       {"profile", "time profile"},         {"color_map", "colour map"},
       {"surface_color", "surface colour"}, {"image_normalize", "normalize in image space"},
   };
+  // ParaView's property names (and its representation's Set<Name>).
+  constexpr std::pair<std::string_view, std::string_view> kHosts[] = {
+      {"alpha", "Alpha"},
+      {"beta", "Beta"},
+      {"scale", "NoiseScale"},
+      {"step", "StepPixels"},
+      {"profile", "TimeProfile"},
+      {"vg", "NoiseRate"},
+      {"image_normalize", "ImageNormalize"},
+      {"filter", "FilterLength"},
+      {"contrast", "Contrast"},
+      {"sharpen", "Sharpen"},
+      {"resample", "Resample"},
+      {"field_frame", "FieldFrame"},
+      {"seed", "Seed"},
+  };
   for (SceneKey& key : keys) {
     key.label = key.name;
     for (const auto& [name, label] : kLabels)
       if (key.name == name) key.label = label;
+    for (const auto& [name, host] : kHosts)
+      if (key.name == name) key.host = host;
   }
   return keys;
 }
@@ -427,13 +448,20 @@ std::vector<SceneKey> labelled(std::vector<SceneKey> keys) {
 }  // namespace
 
 const std::vector<SceneKey>& scene_keys() {
-  static const std::vector<SceneKey> keys = labelled(make_keys());
+  static const std::vector<SceneKey> keys = named(make_keys());
   return keys;
 }
 
 const SceneKey* find_scene_key(std::string_view name) {
   for (const SceneKey& k : scene_keys())
     if (k.name == name) return &k;
+  return nullptr;
+}
+
+const SceneKey* find_host_key(std::string_view host) {
+  if (host.empty()) return nullptr;
+  for (const SceneKey& k : scene_keys())
+    if (k.host == host) return &k;
   return nullptr;
 }
 

@@ -2,9 +2,12 @@
 // through TOML, styles sit under explicit settings, errors name the key (never
 // a command-line flag), and the enum name tables drive parsing and printing.
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <regex>
+#include <set>
 
 #include <gtest/gtest.h>
 
@@ -13,6 +16,7 @@
 #include "ibfvs/core/scene/scene_prep.h"
 #include "ibfvs/core/support/error.h"
 #include "ibfvs/core/support/names.h"
+#include "ibfvs/core/support/text.h"
 
 namespace ibfvs {
 namespace {
@@ -153,6 +157,43 @@ TEST(SceneKeys, APercentileRangeOrAnUnsteadyTangentPreparesAgain) {
   EXPECT_EQ(change_effect("tangent", s, false), KeyEffect::kTangent);
   EXPECT_EQ(change_effect("tangent", s, true), KeyEffect::kPrepare);
   EXPECT_EQ(change_effect("alpha", s, true), KeyEffect::kLive);
+}
+
+// A host (ParaView) sets a key by its host name with a number: kept to the
+// key's span, an enumeration's nearest value, a flag, an integer; the key's
+// own check still refuses what it refuses. Host names are unique and each
+// host key takes a number.
+TEST(SceneKeys, AHostSetsAKeyByItsNumber) {
+  std::set<std::string_view> hosts;
+  for (const SceneKey& k : scene_keys()) {
+    if (k.host.empty()) continue;
+    EXPECT_TRUE(hosts.insert(k.host).second) << k.host;
+    EXPECT_EQ(find_host_key(k.host), &k);
+    Scene s;
+    EXPECT_NO_THROW(apply_setting(s, k.name, host_setting(k, 1.0))) << k.name;
+  }
+  EXPECT_GE(hosts.size(), 13u);
+  EXPECT_EQ(find_host_key(""), nullptr);
+  EXPECT_EQ(find_host_key("alpha"), nullptr);  // a host name, not the key's
+  const auto text = [](std::string_view host, double v) {
+    return host_setting(*find_host_key(host), v);
+  };
+  EXPECT_EQ(text("Alpha", 0.25), "0.25");
+  EXPECT_EQ(text("Alpha", 7.0), format_number(key_range("alpha")->max));
+  EXPECT_EQ(text("StepPixels", -3.0), "0");  // 0 stops the texture
+  int last = 0;  // an enumeration beyond its values: the nearest, its last
+  for (const KeyChoice& c : find_host_key("TimeProfile")->choices) last = std::max(last, c.value);
+  EXPECT_EQ(text("TimeProfile", 99.0), text("TimeProfile", last));
+  EXPECT_EQ(text("ImageNormalize", 2.0), "true");
+  EXPECT_EQ(text("ImageNormalize", 0.0), "false");
+  EXPECT_EQ(text("Seed", 41.6), "42");
+  Scene s;
+  apply_setting(s, "profile", text("TimeProfile", static_cast<double>(NoiseProfile::Random)));
+  EXPECT_EQ(s.profile, NoiseProfile::Random);
+  EXPECT_THROW(apply_setting(s, "seed", text("Seed", -1.0)), SettingError);
+  EXPECT_THROW(apply_setting(s, "seed", text("Seed", 1e30)), SettingError);
+  EXPECT_THROW(apply_setting(s, "alpha", text("Alpha", std::nan(""))), SettingError);
+  EXPECT_THROW(static_cast<void>(host_setting(*find_scene_key("mesh"), 1.0)), InputError);
 }
 
 TEST(SceneKeys, TomlRoundTrip) {

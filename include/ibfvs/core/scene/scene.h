@@ -261,12 +261,23 @@ struct SceneKey {
   /// What a control of it is called (the viewer's panel, the page's
   /// sliders, ParaView's properties, title-cased): its name, with its unit.
   std::string_view label = {};
+  /// Its name as a host's property (ParaView's, CamelCase: the plugin's XML
+  /// property and its representation's Set<Host>, host_setting); empty:
+  /// not one.
+  std::string_view host = {};
 };
 
 /// Every key, in documentation order.
 const std::vector<SceneKey>& scene_keys();
 /// The key named `name`, or nullptr.
 const SceneKey* find_scene_key(std::string_view name);
+/// The key a host calls `host` (SceneKey::host), or nullptr.
+const SceneKey* find_host_key(std::string_view host);
+/// A host's number for `key` as the key's text form (set() takes it): a
+/// number kept to the key's range (clamp_to_key_range), an enumeration's
+/// number to the nearest of its values, a flag true where not 0, an integer
+/// rounded. The key's own check still applies when set() reads it.
+std::string host_setting(const SceneKey& key, double value);
 
 /// Key `name`'s label (SceneKey::label; its name where the key has none,
 /// or for a name that is no key).

@@ -36,7 +36,7 @@ IbfvsRenderer::IbfvsRenderer(const RenderSettings& settings)
       grid_pass_(NoiseGrid(settings_.width, settings_.height, settings_.noise)),
       targets_(glm::ivec2(settings_.width, settings_.height)) {
   color_map_ = gl::Texture2D(256, 1, gl::Format::RGBA32F, true);
-  relayout();
+  use_layout(shaders::colour_background(settings_), false);
   phase_size_ = grid_pass_.size();
   empty_vao_ = gl::VertexArray::create();
   apply_settings();
@@ -44,18 +44,14 @@ IbfvsRenderer::IbfvsRenderer(const RenderSettings& settings)
   reset();
 }
 
-void IbfvsRenderer::relayout() {
-  // Colour once the settings ask for it (a grey texture turns colour and
-  // stays so until reset()), else the grey layout of these settings.
-  const bool colour = feedback_.size().x > 0 && feedback_.layout().colour;
-  const FeedbackImages::Layout layout =
-      FeedbackImages::layout_for(settings_, colour || shaders::colour_background(settings_));
-  if (feedback_.size().x == 0)
-    feedback_.allocate(glm::ivec2(settings_.width, settings_.height), layout);
-  else if (layout == feedback_.layout())
-    return;
-  else
+void IbfvsRenderer::use_layout(bool colour, bool keep) {
+  const FeedbackImages::Layout layout = FeedbackImages::layout_for(settings_, colour);
+  const bool made = feedback_.size().x > 0;
+  if (made && layout == feedback_.layout()) return;
+  if (made && keep)
     feedback_.convert(layout, settings_.sharpen);
+  else
+    feedback_.allocate(glm::ivec2(settings_.width, settings_.height), layout);
   targets_.attach(feedback_);
 }
 
@@ -106,19 +102,16 @@ void IbfvsRenderer::update_settings(const RenderSettings& settings) {
       settings.noise.scale != settings_.noise.scale || settings.noise.seed != settings_.noise.seed)
     throw InputError("renderer: size, noise scale and seed need a new renderer");
   settings_ = settings;
-  relayout();  // F_t carries over into another layout
+  // A grey texture turns colour once the settings ask for it and stays so
+  // until reset(); F_t carries over into another layout.
+  use_layout(feedback_.layout().colour || shaders::colour_background(settings_), true);
   apply_settings();
 }
 
 void IbfvsRenderer::reset() {
   gl::prepare_own_draw();
   // The layout of these settings, grey where they allow it again.
-  const FeedbackImages::Layout layout =
-      FeedbackImages::layout_for(settings_, shaders::colour_background(settings_));
-  if (layout != feedback_.layout()) {
-    feedback_.allocate(glm::ivec2(settings_.width, settings_.height), layout);
-    targets_.attach(feedback_);
-  }
+  use_layout(shaders::colour_background(settings_), false);
   for (int i = 0; i < 2; ++i) targets_.clear(i, feedback_, settings_.background);
   stats_pass_.clear();  // no statistics before the first frame
   feedback_.rewind();
@@ -364,10 +357,7 @@ void IbfvsRenderer::unlock() {
 }
 
 void IbfvsRenderer::fill_texture_with_cell_colors(std::uint32_t seed) {
-  if (!feedback_.layout().colour) {  // colours need a colour texture (until reset())
-    feedback_.convert(FeedbackImages::layout_for(settings_, true), settings_.sharpen);
-    targets_.attach(feedback_);
-  }
+  use_layout(true, true);  // colours need a colour texture (until reset())
   const int w = settings_.width, h = settings_.height;
   const float s = settings_.noise.scale;
   const int columns = static_cast<int>(std::ceil(static_cast<float>(w) / s)) + 1;

@@ -270,10 +270,11 @@ class IbfvsRenderer {
   // The variant for features `f` (features()), compiled and up to date.
   Variant& variant(const shaders::ShaderFeatures& f);
   void apply_settings();  // after settings_ changed
-  // F_t holds grey until the settings ask for colour (FeedbackImages::
-  // layout_for): fewer channels are cheaper to sample on llvmpipe. A change
-  // of layout keeps the content.
-  void relayout();
+  // F_t in colour or grey, in the layout these settings give it
+  // (FeedbackImages::layout_for: fewer channels are cheaper to sample on
+  // llvmpipe), its content kept (`keep`) or not, and the passes'
+  // framebuffers over it. Nothing where it has that layout already.
+  void use_layout(bool colour, bool keep);
 
   RenderSettings settings_;
   // The passes that stand on their own (passes.h), made from the settings.

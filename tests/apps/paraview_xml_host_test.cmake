@@ -15,15 +15,6 @@ else()
 endif()
 file(WRITE ${DIR}/paraview_xml_host_${MODE}.xml.in "${template_text}")
 file(WRITE ${DIR}/paraview_xml_host_${MODE}.h "${header_text}")
-execute_process(COMMAND ${GEN} ${DIR}/paraview_xml_host_${MODE}.xml.in
-                        ${DIR}/paraview_xml_host_${MODE}.xml ${DIR}/paraview_xml_host_${MODE}.h
-                RESULT_VARIABLE rc ERROR_VARIABLE err)
-if(rc EQUAL 0)
-  message(FATAL_ERROR "a ${MODE} without ${expected} was taken")
-endif()
-string(FIND "${err}" "${expected}" at)
-string(REGEX MATCHALL "\n" lines "${err}")
-list(LENGTH lines count)
-if(at LESS 0 OR NOT count EQUAL 1)
-  message(FATAL_ERROR "expected one line naming ${expected}, got: ${err}")
-endif()
+include(${CMAKE_CURRENT_LIST_DIR}/expect_refusal.cmake)
+expect_refusal("${expected}" ${GEN} ${DIR}/paraview_xml_host_${MODE}.xml.in
+               ${DIR}/paraview_xml_host_${MODE}.xml ${DIR}/paraview_xml_host_${MODE}.h)

@@ -18,6 +18,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,7 @@
 
 #include "ibfvs/core/image/colormap.h"
 #include "ibfvs/core/image/image.h"
+#include "ibfvs/core/mesh/polygon.h"
 #include "ibfvs/core/scene/camera.h"
 #include "ibfvs/core/scene/scene.h"
 #include "ibfvs/core/scene/scene_prep.h"
@@ -331,6 +333,76 @@ glm::mat4 mat4_of(const Array<double>& a, const char* what) {
   return m;
 }
 
+// A polygon list's triangles (core/mesh/polygon.h): the split every reader
+// makes, the same cells given the same triangles again by `memory`.
+// offsets (c + 1,) and ids as VTK's cell arrays hold them; returns the
+// triangles (m, 3) and each one's polygon (m,).
+py::tuple split_polygons(const Array<std::int64_t>& offsets, const Array<std::int64_t>& ids,
+                         const Array<double>& points, SplitMemory* memory) {
+  if (offsets.ndim() != 1 || ids.ndim() != 1)
+    throw py::value_error("polygons: offsets and ids must be flat arrays");
+  const std::vector<glm::vec3> at = vec3s(points, "points");
+  const PolygonList<std::int64_t> list{
+      std::span<const std::int64_t>(offsets.data(), static_cast<std::size_t>(offsets.shape(0))),
+      std::span<const std::int64_t>(ids.data(), static_cast<std::size_t>(ids.shape(0)))};
+  if (list.offsets.empty()) throw py::value_error("polygons: offsets must start with 0");
+  std::int64_t last = 0;
+  for (std::size_t c = 0; c < list.offsets.size(); ++c) {
+    const std::int64_t o = list.offsets[c];
+    if ((c == 0 && o != 0) || o < last ||
+        static_cast<std::uint64_t>(o) > static_cast<std::uint64_t>(list.ids.size()))
+      throw py::value_error("polygons: offset " + std::to_string(c) + " is " + std::to_string(o) +
+                            " (offsets start at 0, never decrease and end at the " +
+                            std::to_string(list.ids.size()) + " ids)");
+    last = o;
+  }
+  if (static_cast<std::uint64_t>(last) != static_cast<std::uint64_t>(list.ids.size()))
+    throw py::value_error("polygons: the offsets end at " + std::to_string(last) + ", not at the " +
+                          std::to_string(list.ids.size()) + " ids");
+  for (std::size_t k = 0; k < list.ids.size(); ++k)
+    if (list.ids[k] < 0 || static_cast<std::uint64_t>(list.ids[k]) >= at.size())
+      throw py::value_error("polygons: id " + std::to_string(k) + " is point " +
+                            std::to_string(list.ids[k]) + " but there are " +
+                            std::to_string(at.size()) + " points");
+  const std::shared_ptr<const PolygonSplit> split =
+      memory ? memory->split(list, at)
+             : std::make_shared<const PolygonSplit>(ibfvs::split_polygons(list, at));
+  const auto m = static_cast<py::ssize_t>(split->triangles.size());
+  py::array_t<std::int64_t> triangles({m, py::ssize_t{3}});
+  py::array_t<std::int64_t> polygon(m);
+  std::int64_t* t = triangles.mutable_data();
+  std::int64_t* c = polygon.mutable_data();
+  for (py::ssize_t i = 0; i < m; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    for (std::size_t j = 0; j < 3; ++j) t[3 * k + j] = split->triangles[k][j];
+    c[k] = split->polygon[k];
+  }
+  return py::make_tuple(triangles, polygon);
+}
+
+// A VTK-style legacy cell list [n, i0, .., n, ...] (PyVista's `faces`) as
+// offsets and ids (VTK's own layout).
+py::tuple cells_of_faces(const Array<std::int64_t>& faces) {
+  if (faces.ndim() != 1)
+    throw py::type_error("faces must be a flat integer array [n, i0, i1, ..., n, ...]");
+  const std::int64_t* f = faces.data();
+  const auto size = static_cast<std::size_t>(faces.shape(0));
+  std::vector<std::int64_t> offsets{0}, ids;
+  ids.reserve(size);
+  for (std::size_t i = 0, cell = 0; i < size; ++cell) {
+    const std::int64_t n = f[i];
+    if (n < 0 || static_cast<std::uint64_t>(n) > size - i - 1)
+      throw py::value_error("faces: cell " + std::to_string(cell) + " says " + std::to_string(n) +
+                            " points but the array ends before");
+    ids.insert(ids.end(), f + i + 1, f + i + 1 + n);
+    offsets.push_back(static_cast<std::int64_t>(ids.size()));
+    i += 1 + static_cast<std::size_t>(n);
+  }
+  return py::make_tuple(
+      py::array_t<std::int64_t>(static_cast<py::ssize_t>(offsets.size()), offsets.data()),
+      py::array_t<std::int64_t>(static_cast<py::ssize_t>(ids.size()), ids.data()));
+}
+
 // The flow texture in a host's own picture (ibfvs/pyvista.py: a VTK render
 // window's context, current in its render callback): HostFlow.
 class HostLayer {
@@ -431,6 +503,18 @@ PYBIND11_MODULE(_ibfvs, m) {
       },
       py::arg("values"), py::arg("lo"), py::arg("hi"), py::arg("log"),
       "Positions in a colour table of VALUES over [LO, HI] (log: base-10), as VTK maps them.");
+  py::class_<SplitMemory>(m, "SplitMemory",
+                          "How polygons split into triangles, kept for the next state of the same "
+                          "cells (a moving mesh's steps: the same triangles at every step).")
+      .def(py::init<>())
+      .def_property_readonly("size", &SplitMemory::size);
+  m.def("split_polygons", &ibfvs::python::split_polygons, py::arg("offsets"), py::arg("ids"),
+        py::arg("points"), py::arg("memory") = nullptr,
+        "Triangles (m, 3) of polygons as VTK's cell arrays hold them, and each one's polygon\n"
+        "(m,): the split every ibfvs reader makes; MEMORY gives the same cells the same\n"
+        "triangles again, wherever their points moved.");
+  m.def("cells_of_faces", &ibfvs::python::cells_of_faces, py::arg("faces"),
+        "A VTK-style cell list [n, i0, ..., n, ...] as (offsets, ids).");
   py::class_<ibfvs::python::HostLayer>(m, "HostLayer",
                                        "The flow texture drawn in a host's own OpenGL context "
                                        "(ibfvs.pyvista); every call that draws needs it current.")

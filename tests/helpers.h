@@ -11,6 +11,9 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
 
 #include "ibfvs/core/image/image.h"
 
@@ -94,6 +97,53 @@ inline Difference difference(const std::vector<float>& a, const std::vector<floa
     d.above /= static_cast<double>(a.size());
   }
   return d;
+}
+
+/// A rotor's wall of cells whose splits are nearly tied: 400 pentagons
+/// whose fifth point makes a nearly straight corner (its turn within 2% of
+/// the sine core/mesh/polygon.h takes as straight, half of them bent out
+/// and half in) and 400 quadrilaterals whose diagonal from the first point
+/// is shorter by the 0.2% split_quad takes as a tie, give or take 1e-5; on
+/// a cylinder of radius 0.4 about +Z, cells 1 cm across. Polygons as VTK's
+/// cell arrays hold them.
+struct Rotor {
+  std::vector<glm::vec3> points;
+  std::vector<long> offsets{0}, ids;
+};
+
+inline Rotor nearly_tied_rotor() {
+  Rotor r;
+  const auto add = [&](const std::vector<glm::dvec2>& corners) {  // (angle, height)
+    for (const glm::dvec2& c : corners) {
+      r.ids.push_back(static_cast<long>(r.points.size()));
+      r.points.emplace_back(0.4 * std::cos(c.x), 0.4 * std::sin(c.x), c.y);
+    }
+    r.offsets.push_back(static_cast<long>(r.ids.size()));
+  };
+  constexpr double da = 0.025, dz = 0.01;
+  for (int i = 0; i < 40; ++i)
+    for (int j = 0; j < 10; ++j) {
+      const double a = i * da, z = j * dz;
+      const double sine = 1e-4 * (1.0 + 0.02 * (((i * 7 + j * 3) % 11) - 5) / 5.0);
+      const double bend = ((i + j) % 2 ? 1.0 : -1.0) * sine * dz / 4.0;
+      add({{a, z}, {a + da, z}, {a + da, z + dz}, {a + da / 2.0, z + dz + bend}, {a, z + dz}});
+      const double shrink = 2e-3 * (1.0 + 5e-3 * (((i * 5 + j * 7) % 11) - 5) / 5.0);
+      add({{a, z + 0.2},
+           {a + da, z + 0.2},
+           {a + da * (1.0 - shrink), z + 0.2 + dz},
+           {a, z + 0.2 + dz}});
+    }
+  return r;
+}
+
+/// `points` turned by `degrees` about `axis` (unit) through the origin.
+inline std::vector<glm::vec3> turned(const std::vector<glm::vec3>& points, double degrees,
+                                     const glm::dvec3& axis) {
+  const glm::dmat4 turn = glm::rotate(glm::dmat4(1.0), glm::radians(degrees), axis);
+  std::vector<glm::vec3> out;
+  out.reserve(points.size());
+  for (const glm::vec3& p : points) out.emplace_back(turn * glm::dvec4(glm::dvec3(p), 1.0));
+  return out;
 }
 
 }  // namespace ibfvs::test

@@ -85,39 +85,30 @@ def _check_float_array(name, values):
     return a
 
 
-def _faces_to_triangles(faces):
-    """A VTK-style cell array [n, i0, ..., n, ...] as triangles (polygons fanned)
-    and, per triangle, the index of the cell it came from."""
+def _faces_to_triangles(faces, points, memory=None):
+    """A VTK-style cell array [n, i0, ..., n, ...] as triangles, each polygon
+    split as every ibfvs reader splits it (the same cells in MEMORY: the
+    triangles they had); per triangle, the index of the cell it came from;
+    and the number of cells."""
     faces = np.asarray(faces)
     if faces.dtype.kind not in "iu" or faces.ndim != 1:
         raise TypeError("faces must be a flat integer array [n, i0, i1, ..., n, ...]")
-    tris, cells = [], []
-    i, cell = 0, 0
-    size = len(faces)
-    while i < size:
-        n = int(faces[i])
-        if n < 0 or i + 1 + n > size:
-            raise ValueError(f"faces: cell {cell} says {n} points but the array ends before")
-        ids = faces[i + 1:i + 1 + n]
-        for k in range(1, n - 1):
-            tris.append((ids[0], ids[k], ids[k + 1]))
-            cells.append(cell)
-        i += 1 + n
-        cell += 1
-    return np.asarray(tris, dtype=np.int64).reshape(-1, 3), np.asarray(cells, dtype=np.int64)
+    offsets, ids = _ibfvs.cells_of_faces(faces.astype(np.int64, copy=False))
+    tris, cells = _ibfvs.split_polygons(offsets, ids, np.asarray(points, dtype=np.float64), memory)
+    return tris, cells, len(offsets) - 1
 
 
-def _mesh_arrays(mesh):
+def _mesh_arrays(mesh, memory=None):
     """points, triangles, point arrays and cell arrays (per triangle) of an
     object with `points`, a VTK-style `faces` and `point_data`/`cell_data`."""
     points = _check_float_array("points", mesh.points)
-    triangles, cells = _faces_to_triangles(mesh.faces)
+    triangles, cells, count = _faces_to_triangles(mesh.faces, points, memory)
     point_arrays = {str(k): np.asarray(v) for k, v in getattr(mesh, "point_data", {}).items()}
     cell_arrays = {}
     for k, v in getattr(mesh, "cell_data", {}).items():
         v = np.asarray(v)
         if v.dtype.kind in "fiu":
-            cell_arrays[str(k)] = v[cells] if len(v) == cells.max(initial=-1) + 1 else v
+            cell_arrays[str(k)] = v[cells] if len(v) == count else v
     point_arrays = {k: v for k, v in point_arrays.items() if v.dtype.kind in "fiu"}
     return points, triangles, point_arrays, cell_arrays
 
@@ -169,7 +160,8 @@ class Animation(_ibfvs.Animation):
         if hasattr(source, "points") and hasattr(source, "faces"):
             if triangles is not None:
                 raise TypeError("a mesh object takes no separate triangles")
-            points, triangles, point_arrays, cell_arrays = _mesh_arrays(source)
+            self._splits = _ibfvs.SplitMemory()  # its next states' cells split alike
+            points, triangles, point_arrays, cell_arrays = _mesh_arrays(source, self._splits)
             name = type(source).__name__
         else:
             points = _check_float_array("points", source)
@@ -199,7 +191,9 @@ class Animation(_ibfvs.Animation):
         last = getattr(self, "_data", None)
         point_arrays, cell_arrays = {}, {}
         if points is not None and hasattr(points, "points") and hasattr(points, "faces"):
-            points, triangles, point_arrays, cell_arrays = _mesh_arrays(points)
+            if getattr(self, "_splits", None) is None:
+                self._splits = _ibfvs.SplitMemory()
+            points, triangles, point_arrays, cell_arrays = _mesh_arrays(points, self._splits)
         elif last is not None:
             point_arrays, cell_arrays = dict(last[2]), dict(last[3])
         if points is None or triangles is None:

@@ -85,23 +85,20 @@ def _surface(mesh):
     return mesh
 
 
-def _triangles(surface):
-    """Triangles of the surface's polygons (each fanned from its first point)
-    and, per triangle, the cell it came from (vectorised: meshes of millions)."""
+def _triangles(surface, memory):
+    """Triangles of the surface's polygons, split as every ibfvs reader splits
+    them (the same cells in MEMORY: the triangles they had), and, per
+    triangle, the cell it came from."""
     polys = surface.GetPolys()
     if polys is None or polys.GetNumberOfCells() == 0:
         raise ValueError("mesh has no polygons: the flow is drawn on surfaces")
-    offsets = vtk_to_numpy(polys.GetOffsetsArray()).astype(np.int64)
-    ids = vtk_to_numpy(polys.GetConnectivityArray()).astype(np.int64)
-    sizes = np.diff(offsets)
-    fans = np.maximum(sizes - 2, 0)
-    cell = np.repeat(np.arange(len(sizes)), fans)
-    k = np.arange(len(cell)) - np.repeat(np.cumsum(fans) - fans, fans)  # 0.. within a polygon
-    start = offsets[:-1][cell]
-    tris = np.stack([ids[start], ids[start + k + 1], ids[start + k + 2]], axis=1)
+    offsets = vtk_to_numpy(polys.GetOffsetsArray()).astype(np.int64, copy=False)
+    ids = vtk_to_numpy(polys.GetConnectivityArray()).astype(np.int64, copy=False)
+    tris, cell = _ibfvs.split_polygons(offsets, ids, np.asarray(surface.points, dtype=np.float64),
+                                       memory)
     # Cells of the surface other than polygons (lines, vertices) come first in
     # VTK's cell order: the polygons' cell ids follow them.
-    first = surface.n_cells - len(sizes)
+    first = surface.n_cells - (len(offsets) - 1)
     return tris, cell + first
 
 
@@ -154,6 +151,7 @@ class FlowLayer:
         self._renderer = plotter.renderer  # the subplot add_mesh put the actor in
         self._actor = actor
         self._layer = _ibfvs.HostLayer()
+        self._splits = _ibfvs.SplitMemory()  # the same cells, the same triangles at every update
         self._vectors = vectors
         self._colour_key = None
         self._problem = None
@@ -283,7 +281,7 @@ class FlowLayer:
         surface = self._surface
         _, flow, flow_at = _vectors(surface, self._vectors)
         colours, colour_at = self._colour_values()
-        tris, cells = _triangles(surface)
+        tris, cells = _triangles(surface, self._splits)
         points = np.asarray(surface.points, dtype=np.float64)
         apart = "cell" in (flow_at, colour_at)
         corner = tris.reshape(-1)  # the point of each corner, triangles apart

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "ibfvs/core/mesh/mesh.h"
+#include "ibfvs/core/mesh/polygon.h"
 
 class vtkDataObject;
 class vtkDataSet;
@@ -62,9 +63,12 @@ void check_dataset(vtkDataSet* ds, const Block& b, const Guard& g);
 
 /// The surfaces of the blocks `patterns` choose (all when empty or when
 /// the reader chose them: patterns_applied), merged into one mesh (see
-/// vtk_io.h, surface_mesh, for cells_apart).
+/// vtk_io.h, surface_mesh, for cells_apart). Each block's polygons split as
+/// `memory` split the same cells before (null: split anew); `dropped`
+/// (where given) adds the degenerate triangles the splits left out.
 TriMesh surface_of(vtkDataObject* obj, const std::vector<std::string>& patterns,
                    std::vector<std::string>* block_names, std::vector<std::string>& warnings,
-                   const Guard& g, bool patterns_applied, bool cells_apart = false);
+                   const Guard& g, bool patterns_applied, bool cells_apart = false,
+                   SplitMemory* memory = nullptr, std::size_t* dropped = nullptr);
 
 }  // namespace ibfvs::vtk::detail

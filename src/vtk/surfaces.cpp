@@ -19,8 +19,10 @@
 #include <new>
 #include <optional>
 #include <set>
+#include <span>
 #include <sstream>
 #include <string>
+#include <type_traits>
 #include <unordered_map>
 #include <vector>
 
@@ -98,7 +100,8 @@ void check_cells(vtkCellArray* cells, vtkIdType points, const char* what, const 
   double last = 0.0;
   for (vtkIdType i = 0; i < offsets->GetNumberOfTuples(); ++i) {
     const double o = offsets->GetComponent(i, 0);
-    if (o < last || o > static_cast<double>(n)) g.fail(std::string(what) + ": malformed cell list");
+    if (o < last || o > static_cast<double>(n) || (i == 0 && o != 0.0))
+      g.fail(std::string(what) + ": malformed cell list");
     last = o;
   }
 }
@@ -215,60 +218,36 @@ struct Surface {
   std::vector<glm::vec3> positions;
   std::vector<Triangle> triangles;
   Arrays point_arrays, cell_arrays;
+  std::size_t dropped = 0;  // degenerate triangles left out (PolygonSplit::dropped)
 };
 
-// A quadrilateral's two triangles: along the shorter diagonal, as VTK's
-// triangle filter splits it, but where the two are within a thousandth of
-// each other along the one from the second point, as VTK does for equal
-// ones. VTK's own choice for the nearly equal diagonals of a polar mesh's
-// cells (a rotor's) flips with the rounding as the points move: the
-// triangles of a moving mesh must not change from step to step.
-std::array<Triangle, 2> split_quad(const vtkIdType* q, const std::vector<glm::vec3>& points) {
-  const auto id = [&](int k) { return static_cast<std::uint32_t>(q[k]); };
-  for (int k = 0; k < 4; ++k)  // a point that is not there: the mesh's check names it
-    if (q[k] < 0 || static_cast<std::size_t>(q[k]) >= points.size())
-      return {{{id(0), id(1), id(2)}, {id(0), id(2), id(3)}}};
-  const auto distance2 = [&](int i, int j) {
-    const glm::dvec3 d = glm::dvec3(points[static_cast<std::size_t>(q[i])]) -
-                         glm::dvec3(points[static_cast<std::size_t>(q[j])]);
-    return d.x * d.x + d.y * d.y + d.z * d.z;
+// A surface's polygons as triangles (core/mesh/polygon.h: split_polygons,
+// or the split these very cells got before, from `memory`), straight from
+// the cell array's offsets and connectivity in its 32- or 64-bit storage.
+std::shared_ptr<const PolygonSplit> split_cells(vtkCellArray* polys,
+                                                std::span<const glm::vec3> points,
+                                                SplitMemory* memory) {
+  const auto split = [&](const auto* offsets, const auto* connectivity) {
+    using Index = std::remove_cvref_t<decltype(*offsets)>;
+    const auto n = static_cast<std::size_t>(polys->GetNumberOfCells());
+    const PolygonList<Index> list{
+        std::span<const Index>(offsets, n + 1),
+        std::span<const Index>(connectivity, static_cast<std::size_t>(offsets[n]))};
+    return memory ? memory->split(list, points)
+                  : std::make_shared<const PolygonSplit>(split_polygons(list, points));
   };
-  const double ac = distance2(0, 2);
-  const double bd = distance2(1, 3);
-  if (ac < bd * (1.0 - 2e-3)) return {{{id(0), id(1), id(2)}, {id(0), id(2), id(3)}}};
-  return {{{id(0), id(1), id(3)}, {id(1), id(2), id(3)}}};
-}
-
-// Each polygon's point ids, read straight from the cell array's offsets and
-// connectivity (its 32- or 64-bit storage), as `visit(cell, count, ids)`
-// (ids null for fewer than three).
-template <typename Visit>
-void each_polygon(vtkCellArray* polys, Visit&& visit) {
-  if (!polys || polys->GetNumberOfCells() == 0) return;
-  const auto walk = [&](const auto* offsets, const auto* connectivity) {
-    std::vector<vtkIdType> ids;
-    for (vtkIdType c = 0; c < polys->GetNumberOfCells(); ++c) {
-      const vtkIdType begin = offsets[c], count = offsets[c + 1] - begin;
-      if (count < 3) {
-        visit(c, count, nullptr);
-        continue;
-      }
-      ids.resize(static_cast<std::size_t>(count));
-      for (vtkIdType k = 0; k < count; ++k)
-        ids[static_cast<std::size_t>(k)] = static_cast<vtkIdType>(connectivity[begin + k]);
-      visit(c, count, ids.data());
-    }
-  };
+  if (!polys || polys->GetNumberOfCells() == 0) return std::make_shared<const PolygonSplit>();
   if (polys->IsStorage64Bit())
-    walk(polys->GetOffsetsArray64()->GetPointer(0), polys->GetConnectivityArray64()->GetPointer(0));
-  else
-    walk(polys->GetOffsetsArray32()->GetPointer(0), polys->GetConnectivityArray32()->GetPointer(0));
+    return split(polys->GetOffsetsArray64()->GetPointer(0),
+                 polys->GetConnectivityArray64()->GetPointer(0));
+  return split(polys->GetOffsetsArray32()->GetPointer(0),
+               polys->GetConnectivityArray32()->GetPointer(0));
 }
 
-// A surface of triangles and quadrilaterals, as it is: its points, the
-// triangles (quadrilaterals split), the arrays (a cell's values on each of
+// A surface of polygons, as it is: its points, the triangles (each polygon
+// split as split_cells splits it), the arrays (a cell's values on each of
 // its triangles).
-Surface own_triangles(vtkPolyData* poly) {
+Surface own_triangles(vtkPolyData* poly, SplitMemory* memory) {
   Surface s;
   const vtkIdType n = poly->GetNumberOfPoints();
   s.positions.resize(static_cast<std::size_t>(n));
@@ -284,60 +263,28 @@ Surface own_triangles(vtkPolyData* poly) {
       s.positions[static_cast<std::size_t>(i)] = glm::vec3(p[0], p[1], p[2]);
     }
   }
-  std::vector<vtkIdType> cell_of;  // each triangle's cell (vertices and lines come first)
-  std::vector<std::uint32_t> polygon;
-  const vtkIdType first = poly->GetNumberOfVerts() + poly->GetNumberOfLines();
-  s.triangles.reserve(static_cast<std::size_t>(poly->GetNumberOfPolys()) * 2);
-  cell_of.reserve(s.triangles.capacity());
-  each_polygon(poly->GetPolys(), [&](vtkIdType c, vtkIdType count, const vtkIdType* ids) {
-    if (count == 3) {
-      s.triangles.push_back({static_cast<std::uint32_t>(ids[0]), static_cast<std::uint32_t>(ids[1]),
-                             static_cast<std::uint32_t>(ids[2])});
-      cell_of.push_back(first + c);
-    } else if (count == 4) {
-      for (const Triangle& t : split_quad(ids, s.positions)) {
-        s.triangles.push_back(t);
-        cell_of.push_back(first + c);
-      }
-    } else if (count > 4) {
-      // Triangles from the polygon's points in their order (core/mesh/
-      // polygon.h): the same at every step of a moving mesh.
-      polygon.clear();
-      bool within = true;
-      for (vtkIdType k = 0; k < count; ++k) {
-        within = within && ids[k] >= 0 && ids[k] < n;
-        polygon.push_back(static_cast<std::uint32_t>(ids[k]));
-      }
-      if (!within) {  // a point that is not there: the mesh's check names it
-        for (vtkIdType k = 1; k + 1 < count; ++k) {
-          s.triangles.push_back({polygon[0], polygon[static_cast<std::size_t>(k)],
-                                 polygon[static_cast<std::size_t>(k + 1)]});
-          cell_of.push_back(first + c);
-        }
-        return;
-      }
-      for (const Triangle& t : triangulate_polygon(polygon, s.positions)) {
-        s.triangles.push_back(t);
-        cell_of.push_back(first + c);
-      }
-    }
-  });
+  const std::shared_ptr<const PolygonSplit> split =
+      split_cells(poly->GetPolys(), s.positions, memory);
+  s.triangles = split->triangles;
+  s.dropped = split->dropped;
   take_arrays(poly->GetPointData(), n, s.point_arrays);
   Arrays cells;
   take_arrays(poly->GetCellData(), poly->GetNumberOfCells(), cells);
+  // Each triangle's cell: vertices and lines come before the polygons.
+  const auto first = static_cast<std::size_t>(poly->GetNumberOfVerts() + poly->GetNumberOfLines());
   for (auto& [name, array] : cells) {
     const auto c = static_cast<std::size_t>(array.first);
-    std::vector<float> per_triangle(cell_of.size() * c);
-    for (std::size_t t = 0; t < cell_of.size(); ++t)
-      std::copy_n(array.second.begin() +
-                      static_cast<std::ptrdiff_t>(static_cast<std::size_t>(cell_of[t]) * c),
-                  c, per_triangle.begin() + static_cast<std::ptrdiff_t>(t * c));
+    std::vector<float> per_triangle(split->polygon.size() * c);
+    for (std::size_t t = 0; t < split->polygon.size(); ++t)
+      std::copy_n(
+          array.second.begin() + static_cast<std::ptrdiff_t>((first + split->polygon[t]) * c), c,
+          per_triangle.begin() + static_cast<std::ptrdiff_t>(t * c));
     s.cell_arrays[name] = {array.first, std::move(per_triangle)};
   }
   return s;
 }
 
-Surface block_surface(vtkDataSet* ds) {
+Surface block_surface(vtkDataSet* ds, SplitMemory* memory) {
   vtkSmartPointer<vtkPolyData> poly = vtkPolyData::SafeDownCast(ds);
   if (!poly) {
     vtkNew<vtkDataSetSurfaceFilter> surface;  // the outer surface of a volume
@@ -345,18 +292,17 @@ Surface block_surface(vtkDataSet* ds) {
     surface->Update();
     poly = surface->GetOutput();
   }
-  // Polygons are taken as they are, each quadrilateral split by split_quad
-  // and each larger polygon by triangulate_polygon (the filter would copy a
-  // mesh of triangles: a second on six million; and its triangles of a
-  // polygon change as the polygon moves); strips go through VTK's triangle
-  // filter; lines and vertices are dropped.
-  if (poly->GetNumberOfStrips() == 0) return own_triangles(poly);
+  // Polygons are taken as they are, split by split_cells (VTK's triangle
+  // filter would copy a mesh of triangles: a second on six million; and its
+  // triangles of a polygon change as the polygon moves); strips go through
+  // VTK's triangle filter; lines and vertices are dropped.
+  if (poly->GetNumberOfStrips() == 0) return own_triangles(poly, memory);
   vtkNew<vtkTriangleFilter> triangles;
   triangles->SetInputData(poly);
   triangles->PassVertsOff();
   triangles->PassLinesOff();
   triangles->Update();
-  return own_triangles(triangles->GetOutput());
+  return own_triangles(triangles->GetOutput(), memory);
 }
 
 // Every triangle with three vertices of its own, so that its cells' values
@@ -631,7 +577,8 @@ void check_dataset(vtkDataSet* ds, const Block& b, const Guard& g) {
 // Surfaces of the selected blocks of a data object, merged into one mesh.
 TriMesh surface_of(vtkDataObject* obj, const std::vector<std::string>& patterns,
                    std::vector<std::string>* block_names, std::vector<std::string>& warnings,
-                   const Guard& g, bool patterns_applied, bool cells_apart) {
+                   const Guard& g, bool patterns_applied, bool cells_apart, SplitMemory* memory,
+                   std::size_t* dropped) {
   std::vector<Block> blocks;
   collect_blocks(obj, "", "", blocks);
   std::vector<Block> chosen;
@@ -668,8 +615,9 @@ TriMesh surface_of(vtkDataObject* obj, const std::vector<std::string>& patterns,
     check_dataset(b.data, b, g);
     cells += b.data->GetNumberOfCells();
     points += b.data->GetNumberOfPoints();
-    Surface s = block_surface(b.data);
+    Surface s = block_surface(b.data, memory);
     g.check();
+    if (dropped) *dropped += s.dropped;
     if (s.triangles.empty()) continue;
     surfaces.push_back(std::move(s));
     names.push_back(b.path.empty() ? "(the data)" : b.path);

@@ -335,8 +335,10 @@ vtkSmartPointer<vtkDataObject> read_series_step(const SeriesSteps& steps, std::s
 }
 
 // A mesh for ibfvs: degenerate triangles dropped, normals, checked.
-void finish(TriMesh& mesh, std::vector<std::string>& warnings, const Guard& g) {
-  const std::size_t dropped = remove_degenerate_triangles(mesh);
+// The first step's repairs: degenerate triangles out (`split`: those the
+// polygons' splits left out already), normals, the mesh checked.
+void finish(TriMesh& mesh, std::vector<std::string>& warnings, const Guard& g, std::size_t split) {
+  const std::size_t dropped = split + remove_degenerate_triangles(mesh);
   if (mesh.triangles.empty()) g.fail("every triangle has zero area");
   if (dropped > 0)
     warnings.push_back(g.path().string() + ": " + std::to_string(dropped) +
@@ -423,25 +425,33 @@ IsolatedBytes read_in_child(const fs::path& path, const std::function<void(ByteW
       limits);
 }
 
-// Step k's surface (the first: with its blocks and what was repaired).
-void read_step_bytes(const DatasetRequest& request, std::size_t k, ByteWriter& out) {
+// Step k's surface (the first: with its blocks and what was repaired), its
+// polygons split as `memory` split the same cells before; then the splits
+// it made of cells it had not seen.
+void read_step_bytes(const DatasetRequest& request, std::size_t k, SplitMemory& memory,
+                     ByteWriter& out) {
   const Guard g(request.path);
   const Source source = open_source(request, g);
   std::vector<std::string> blocks, warnings;
+  const std::uint64_t known = memory.made();
+  std::size_t dropped = 0;
   TriMesh mesh = surface_of(source.read_step(k, g), request.blocks, &blocks, warnings, g,
-                            source.patterns_applied);
+                            source.patterns_applied, false, &memory, &dropped);
   if (k == 0) {
-    finish(mesh, warnings, g);
+    finish(mesh, warnings, g, dropped);
   } else {
-    // The first step's repairs; its checks (finite points) are the
-    // caller's, which names the step.
-    remove_degenerate_triangles(mesh);
+    // The first step's repairs, by the same cells: the splits left out what
+    // had no area when they were made, and a triangle of the same cells
+    // that has none here stays (it is the first step's, and has no pixels);
+    // its checks (finite points) are the caller's, which names the step.
+    remove_degenerate_triangles(mesh, false);
     if (mesh.triangles.empty()) g.fail("step " + std::to_string(k) + ": no triangles");
   }
   put_mesh(out, mesh);
   out.put(blocks);
   out.put(warnings);
   out.put(source.times);
+  memory.put_since(out, known);
 }
 
 // ------------------------------------------------------------ volumes for sampling
@@ -538,25 +548,39 @@ std::string vtk_version() {
 
 Dataset read(const DatasetRequest& request) {
   const std::string subject = request.path.string();
-  const IsolatedBytes bytes =
-      read_in_child(request.path, [&](ByteWriter& out) { read_step_bytes(request, 0, out); });
+  // The splits of the steps' polygons: a later step with the first one's
+  // cells gets its triangles (core/mesh/polygon.h says why). The children
+  // read it as the fork left it; their new splits come back with the mesh.
+  auto memory = std::make_shared<SplitMemory>();
+  const IsolatedBytes bytes = read_in_child(
+      request.path, [&](ByteWriter& out) { read_step_bytes(request, 0, *memory, out); });
   ByteReader in(bytes.view(), subject);
   Dataset d;
   d.mesh = get_mesh(in);
   d.blocks = in.get_strings();
   d.warnings = in.get_strings();
   std::vector<double> times = in.get_vector<double>();
+  memory->take(in);
   validate_mesh(d.mesh, subject);
   if (times.size() > 1) {
     d.times = std::move(times);
     // Each step's whole surface: a moving mesh's points move, a changing
     // mesh's triangles differ (scene_prep takes either on).
-    d.step = [request](std::size_t k) {
+    d.step = [request, memory](std::size_t k) {
       try {
-        const IsolatedBytes step_bytes =
-            read_in_child(request.path, [&](ByteWriter& out) { read_step_bytes(request, k, out); });
+        const IsolatedBytes step_bytes = read_in_child(
+            request.path, [&](ByteWriter& out) { read_step_bytes(request, k, *memory, out); });
         ByteReader step_in(step_bytes.view(), request.path.string());
-        return get_mesh(step_in);
+        TriMesh mesh = get_mesh(step_in);
+        static_cast<void>(
+            step_in.get_strings());  // the blocks, warnings and times: the first step's
+        static_cast<void>(step_in.get_strings());
+        static_cast<void>(step_in.get_vector<double>());
+        // Not while another thread makes a child (it would copy the memory
+        // half changed): the lock read_in_child makes them under.
+        const std::lock_guard lock(vtk_mutex());
+        memory->take(step_in);
+        return mesh;
       } catch (const InputError& e) {
         // "PATH: problem" becomes "PATH: step K: problem".
         const std::string path = request.path.string(), what = e.what();
@@ -673,11 +697,12 @@ void write_polydata(const TriMesh& mesh, const std::vector<glm::vec2>* uv, const
   });
 }
 
-TriMesh surface_mesh(vtkDataObject* data, const std::string& name, bool cells_apart) {
+TriMesh surface_mesh(vtkDataObject* data, const std::string& name, bool cells_apart,
+                     SplitMemory* memory) {
   if (!data) throw InputError(name + ": no data");
   const Guard g(name, false);
   std::vector<std::string> warnings;
-  return surface_of(data, {}, nullptr, warnings, g, true, cells_apart);
+  return surface_of(data, {}, nullptr, warnings, g, true, cells_apart, memory);
 }
 
 void install_vtk_io() {

@@ -23,6 +23,10 @@
 
 class vtkDataObject;
 
+namespace ibfvs {
+class SplitMemory;
+}
+
 namespace ibfvs::vtk {
 
 /// Installs these readers and writers into the core (install_dataset_io)
@@ -42,8 +46,11 @@ std::string vtk_version();
 /// ParaView's Surface colours cell data), with the welded surface's smooth
 /// normals; cell arrays then win over point arrays of the same name.
 /// Leaves VTK's output window alone. Throws InputError starting with `name`
-/// when there is no surface.
-TriMesh surface_mesh(vtkDataObject* data, const std::string& name, bool cells_apart = false);
+/// when there is no surface. With `memory`, polygons split as they did the
+/// last time the same cells came (a host's next time step of a moving
+/// mesh: the same triangles, core/mesh/polygon.h), and are kept there.
+TriMesh surface_mesh(vtkDataObject* data, const std::string& name, bool cells_apart = false,
+                     SplitMemory* memory = nullptr);
 
 /// What dataset_io.h's functions do, callable directly.
 Dataset read(const DatasetRequest& request);

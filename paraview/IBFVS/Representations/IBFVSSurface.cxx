@@ -38,14 +38,15 @@ std::string array_names(const ibfvs::TriMesh& mesh) {
 // The surface of this rank's piece with the chosen vectors; `problem` says
 // why there is none. An empty piece is no problem (null mesh).
 std::shared_ptr<ibfvs::TriMesh> take_surface(vtkDataObject* input, const std::string& vectors,
-                                             bool cells_apart, std::string& problem) {
+                                             bool cells_apart, ibfvs::SplitMemory& splits,
+                                             std::string& problem) {
   problem.clear();
   if (!input || input->GetNumberOfElements(vtkDataObject::POINT) == 0) {
     return nullptr;
   }
   try {
-    auto mesh =
-        std::make_shared<ibfvs::TriMesh>(ibfvs::vtk::surface_mesh(input, "the input", cells_apart));
+    auto mesh = std::make_shared<ibfvs::TriMesh>(
+        ibfvs::vtk::surface_mesh(input, "the input", cells_apart, &splits));
     bool any_vectors = false;
     for (const auto& a : mesh->vector_arrays) any_vectors = any_vectors || a.first != "Normals";
     if (!any_vectors) {

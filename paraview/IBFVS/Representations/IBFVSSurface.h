@@ -12,6 +12,7 @@
 #include <glm/vec3.hpp>
 
 #include "ibfvs/core/mesh/mesh.h"
+#include "ibfvs/core/mesh/polygon.h"
 
 class vtkDataObject;
 class vtkScalarsToColors;
@@ -23,8 +24,11 @@ namespace ibfvs::paraview {
 /// array), normals from the data where it has them. Null with `problem`
 /// saying why when it cannot be drawn; null without a problem for an empty
 /// piece. (Its fastest vector is HostFlow's, from the surface it is given.)
+/// Polygons split as `splits` split the same cells before: the next time
+/// step of a moving part gets the same triangles (core/mesh/polygon.h).
 std::shared_ptr<ibfvs::TriMesh> take_surface(vtkDataObject* input, const std::string& vectors,
-                                             bool cells_apart, std::string& problem);
+                                             bool cells_apart, ibfvs::SplitMemory& splits,
+                                             std::string& problem);
 
 /// Whether the Surface representation would colour by a cell array (what
 /// ParaView's ColorBy(("CELLS", name)) sets).

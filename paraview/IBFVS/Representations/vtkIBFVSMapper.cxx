@@ -69,6 +69,7 @@ class vtkIBFVSMapper::Internals {
   std::string input_vectors;
   bool cells_apart = false;              // coloured by a cell array: triangles apart
   std::shared_ptr<ibfvs::TriMesh> mesh;  // this rank's piece as taken; null: empty
+  ibfvs::SplitMemory splits;             // its polygons' triangles, the same at every step
   std::string problem;                   // why this rank cannot draw the texture
   bool retake = true;                    // take the surface again (the vectors were set)
   std::string colour_key;  // the array, table and mode the flow's colours were mapped by
@@ -259,7 +260,7 @@ void vtkIBFVSMapper::TakeSurface(vtkDataObject* input, vtkMTimeType input_time, 
   in.input_vectors = in.vectors;
   in.cells_apart = cells_apart;
   in.problem.clear();
-  in.mesh = ibfvs::paraview::take_surface(input, in.vectors, cells_apart, in.problem);
+  in.mesh = ibfvs::paraview::take_surface(input, in.vectors, cells_apart, in.splits, in.problem);
   in.colour_key.clear();
 }
 

@@ -266,10 +266,11 @@ std::uint64_t topology_hash(const TriMesh& mesh) {
   return h;
 }
 
-std::size_t remove_degenerate_triangles(TriMesh& mesh) {
+std::size_t remove_degenerate_triangles(TriMesh& mesh, bool by_area) {
   const std::size_t before = mesh.triangles.size();
   std::erase_if(mesh.triangles, [&](const Triangle& t) {
     if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) return true;
+    if (!by_area) return false;
     const glm::vec3 n = glm::cross(mesh.positions[t[1]] - mesh.positions[t[0]],
                                    mesh.positions[t[2]] - mesh.positions[t[0]]);
     return !(glm::dot(n, n) > 0.0f);

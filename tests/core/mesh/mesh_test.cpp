@@ -7,7 +7,6 @@
 #include <glm/geometric.hpp>
 
 #include "ibfvs/core/mesh/mesh.h"
-#include "ibfvs/core/mesh/polygon.h"
 #include "ibfvs/core/mesh/procedural.h"
 #include "ibfvs/core/support/error.h"
 #include "ibfvs/core/support/text.h"
@@ -193,51 +192,6 @@ TEST(Text, GlobMatch) {
   EXPECT_FALSE(glob_match("wing", "wings"));
   EXPECT_FALSE(glob_match("a*b*c", "aXbY"));
   EXPECT_TRUE(glob_match("a*b*c", "aXbYc"));
-}
-
-// The triangles of a polygon depend on its points' order, not on where it
-// is: a turned copy gives the same; a star (not convex) is covered exactly.
-TEST(Polygon, TrianglesFollowThePointsNotThePlace) {
-  std::vector<glm::vec3> star;
-  for (int k = 0; k < 10; ++k) {
-    const float a = 0.6283185f * static_cast<float>(k), r = k % 2 ? 0.4f : 1.0f;
-    star.push_back({r * std::cos(a), r * std::sin(a), 0.0f});
-  }
-  const std::vector<std::uint32_t> ids{0, 1, 2, 3, 4, 5, 6, 7, 8, 9};
-  const std::vector<Triangle> first = triangulate_polygon(ids, star);
-  ASSERT_EQ(first.size(), 8u);
-  float area = 0.0f, truth = 0.0f;
-  for (const Triangle& t : first) {
-    const float z = glm::cross(star[t[1]] - star[t[0]], star[t[2]] - star[t[0]]).z;
-    EXPECT_GT(z, 0.0f);
-    area += 0.5f * z;
-  }
-  for (std::size_t k = 0; k < star.size(); ++k)
-    truth += 0.5f * glm::cross(star[k], star[(k + 1) % star.size()]).z;
-  EXPECT_NEAR(area, truth, 1e-5f);
-  for (float turn = 0.05f; turn < 6.3f; turn += 0.37f) {
-    std::vector<glm::vec3> turned;
-    for (const glm::vec3& p : star)
-      turned.push_back({std::cos(turn) * p.x - std::sin(turn) * p.y,
-                        std::sin(turn) * p.x + std::cos(turn) * p.y, 3.0f + p.x});
-    EXPECT_EQ(triangulate_polygon(ids, turned), first) << turn;
-  }
-  // A regular hexagon is a fan from its first point; fewer than 3 points give none.
-  std::vector<glm::vec3> hexagon;
-  for (int k = 0; k < 6; ++k)
-    hexagon.push_back({std::cos(1.0471976f * k), std::sin(1.0471976f * k), 0.0f});
-  EXPECT_EQ(triangulate_polygon(std::vector<std::uint32_t>{0, 1, 2, 3, 4, 5}, hexagon),
-            (std::vector<Triangle>{{0, 1, 2}, {0, 2, 3}, {0, 3, 4}, {0, 4, 5}}));
-  EXPECT_TRUE(triangulate_polygon(std::vector<std::uint32_t>{0, 1}, hexagon).empty());
-  // A star of 4,000 points (no solver's face): fanned, in bounded time.
-  std::vector<glm::vec3> big;
-  std::vector<std::uint32_t> all;
-  for (std::uint32_t k = 0; k < 4000; ++k) {
-    const float a = 0.0015707963f * static_cast<float>(k), r = k % 2 ? 0.9f : 1.0f;
-    big.push_back({r * std::cos(a), r * std::sin(a), 0.0f});
-    all.push_back(k);
-  }
-  EXPECT_EQ(triangulate_polygon(all, big).size(), 3998u);
 }
 
 }  // namespace

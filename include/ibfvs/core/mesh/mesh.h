@@ -70,8 +70,11 @@ std::vector<glm::vec3> triangle_to_vertex(const TriMesh& mesh,
 /// either lacks is dropped, so every array stays one per vertex.
 void append_mesh(TriMesh& into, const TriMesh& more);
 
-/// Drops triangles with a repeated vertex index or zero area; returns how many.
-std::size_t remove_degenerate_triangles(TriMesh& mesh);
+/// Drops triangles with a repeated vertex index or (`by_area`) zero area;
+/// returns how many. Without `by_area`: a later state of a surface whose
+/// polygons split as the first state's did (core/mesh/polygon.h), which left
+/// out what had no area then; it keeps the first state's triangles.
+std::size_t remove_degenerate_triangles(TriMesh& mesh, bool by_area = true);
 
 /// A 64-bit digest of the vertex count and the triangles, in their order:
 /// equal for two states of one surface whose points moved (a time step of a

@@ -60,7 +60,9 @@ void field(Preparation& c) {
         throw SettingError("field_step", e.what());
       }
     };
-  } else if (series && field_spec->kind == FieldKind::File && series_last > series_first) {
+  } else if (series && series_last > series_first && !own_time(*field_spec)) {
+    // A series plays whatever the field: a moving mesh's points move with a
+    // field of the scene's (rotate:, principal:) as with its own arrays.
     p.step_count = series_last - series_first + 1;
     p.step_data = [read = loaded.read_step, first = series_first, context,
                    label = mesh_label](std::size_t k) {

@@ -126,15 +126,10 @@ void series(Preparation& c) {
   p.vertex_order = loaded.vertex_order;
   // The points as read: a later state whose points equal these stands still.
   c.still = std::make_shared<const std::vector<glm::vec3>>(mesh.positions);
-  const bool field_is_file =
-      (field_spec && field_spec->kind == FieldKind::File) ||
-      (!field_spec && (!mesh.vector_arrays.empty() || mesh.vectors.size() == mesh.vertex_count()));
-  if (s.time && s.time->last > s.time->first && !(series && field_is_file) &&
-      !(field_spec &&
-        (field_spec->kind == FieldKind::Wind || field_spec->kind == FieldKind::Sample)))
+  if (s.time && s.time->last > s.time->first && !series && !(field_spec && own_time(*field_spec)))
     throw SettingError("time",
-                       "a range A:B needs a series (.pvd, OpenFOAM times, numbered files) with "
-                       "field file[:ARRAY], or field wind:... or sample:...");
+                       "a range A:B needs a series (.pvd, OpenFOAM times, numbered files), or "
+                       "field wind:... or sample:...");
 }
 
 }  // namespace ibfvs::prep

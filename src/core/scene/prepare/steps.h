@@ -103,6 +103,9 @@ std::size_t steps_played(const PreparedScene& p);
 // The positions a step's surface has.
 const std::vector<glm::vec3>& step_positions(const StepData& d, const TriMesh& mesh);
 bool wants_curvature(const std::string& name);
+// A field with a time axis of its own (wind:, sample:): the time key steps
+// through it, not through the mesh's series.
+bool own_time(const FieldSpec& spec);
 // Checks that need no file.
 void check(const Scene& s);
 // The image size and what follows from it with the scene's camera; returns

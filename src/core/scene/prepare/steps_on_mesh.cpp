@@ -153,6 +153,10 @@ const std::vector<glm::vec3>& step_positions(const StepData& d, const TriMesh& m
   return d.mesh ? d.mesh->positions : !d.positions.empty() ? d.positions : mesh.positions;
 }
 
+bool own_time(const FieldSpec& spec) {
+  return spec.kind == FieldKind::Wind || spec.kind == FieldKind::Sample;
+}
+
 bool wants_curvature(const std::string& name) {
   const std::string n = !name.empty() && name[0] == '-' ? name.substr(1) : name;
   return n == "kmin" || n == "kmax";

@@ -61,7 +61,7 @@ void HostFlow::set_surface(TriMesh mesh, const std::string& name) {
                     last->triangles == mesh.triangles && last->vectors == mesh.vectors &&
                     last->scalars == mesh.scalars && last->normals == mesh.normals;
   if (same) return;
-  const bool moved = last && last->triangles == mesh.triangles && last->positions != mesh.positions;
+  const bool moved = last && last->positions != mesh.positions && points_correspond(*last, mesh);
   mesh_ = std::make_shared<const TriMesh>(std::move(mesh));
   name_ = name;
   speed_ = speed;

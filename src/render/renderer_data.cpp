@@ -2,6 +2,7 @@
 // the field's mix, the scalars and the surface image (the passes are in
 // ibfvs_renderer.cpp).
 #include <algorithm>
+#include <string>
 #include <vector>
 
 #include "ibfvs/core/support/error.h"
@@ -24,6 +25,15 @@ void IbfvsRenderer::upload_mesh(const TriMesh& mesh, std::span<const glm::vec3> 
   probe_ = shaders::probe_length(surface_.bounds().diagonal());
   cull_ = closed_orientation(mesh);
   field_mix_ = 0.0f;
+}
+
+void IbfvsRenderer::set_triangles(const TriMesh& mesh) {
+  if (mesh.vertex_count() != surface_.vertex_count())
+    throw InputError("renderer: other triangles need the same " +
+                     std::to_string(surface_.vertex_count()) + " vertices, got " +
+                     std::to_string(mesh.vertex_count()));
+  surface_.set_triangles(mesh.triangles);
+  cull_ = closed_orientation(mesh);
 }
 
 void IbfvsRenderer::set_surface_steps(std::span<const glm::vec3> positions,

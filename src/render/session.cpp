@@ -74,24 +74,33 @@ class Session::StepPlayer {
   void apply(IbfvsRenderer& renderer) {
     const TriMesh& mesh = mesh_of(current_);
     if (&mesh != on_renderer_) {
-      // Other triangles: the image-space path (the texture stays in the image).
-      renderer.replace_mesh(mesh, current_.field);
+      // Other triangles on the same points: the points carry the texture on
+      // (below); other points: the image-space path (the texture stays in
+      // the image).
+      if (on_renderer_ && points_correspond(*on_renderer_, mesh))
+        renderer.set_triangles(mesh);
+      else
+        renderer.replace_mesh(mesh, current_.field);
       held_ = current_.mesh;  // keeps a step's own mesh while the renderer shows it
       on_renderer_ = &mesh;
     }
-    // Between steps of one surface the points and field are interpolated;
-    // into a step with other triangles the current one holds to the end.
-    const bool pair = &mesh_of(next_) == &mesh;
+    // Between steps of the same points the points and field are
+    // interpolated (whatever their triangles); into a step of other points
+    // the current one holds to the end.
+    const TriMesh& next_mesh = mesh_of(next_);
+    const bool pair = &next_mesh == &mesh || points_correspond(mesh, next_mesh);
     const StepData& to = pair ? next_ : current_;
+    const TriMesh& to_mesh = pair ? next_mesh : mesh;
+    const std::vector<glm::vec3>& from = positions_of(current_, mesh);
+    const std::vector<glm::vec3>& next = positions_of(to, to_mesh);
     // A surface that moves at either step (or moved before) takes both
     // steps' points, and between them moves along each vertex's fitted
-    // screw (core/geometry/rigid_motion.h): a rigid part stays rigid.
-    if (renderer.moving() || !current_.positions.empty() || !to.positions.empty()) {
-      const std::vector<glm::vec3>& from = positions_of(current_, mesh);
-      const std::vector<glm::vec3>& next = positions_of(to, mesh);
+    // screw (core/geometry/rigid_motion.h, over this step's triangles): a
+    // rigid part stays rigid.
+    if (renderer.moving() || !current_.positions.empty() || !to.positions.empty() || from != next) {
       const SurfaceMotion motion =
           from != next ? fit_surface_motion(mesh.triangles, from, next) : SurfaceMotion{};
-      renderer.set_surface_steps(from, normals_of(current_, mesh), next, normals_of(to, mesh),
+      renderer.set_surface_steps(from, normals_of(current_, mesh), next, normals_of(to, to_mesh),
                                  motion);
     }
     renderer.set_field_steps(current_.field, to.field);
@@ -384,11 +393,13 @@ void Session::change_data(PreparedScene next) {
   const TriMesh& to = *next.mesh;
   // A series played so far gives way to the new data.
   player_.reset();
-  if (to.vertex_count() == from.vertex_count() && to.triangles == from.triangles) {
-    // The same surface: the next frame advects from where the last one drew
-    // its points (the renderer keeps them) to the new ones, at once; the
-    // frames after it take the texture onto the new flow (docs/paraview.md,
-    // "Time": faster than interpolating the change over them).
+  if (points_correspond(from, to)) {
+    // The same points (the same triangles, or a few split otherwise): the
+    // next frame advects from where the last one drew its points (the
+    // renderer keeps them) to the new ones, at once; the frames after it
+    // take the texture onto the new flow (docs/paraview.md, "Time": faster
+    // than interpolating the change over them).
+    if (to.triangles != from.triangles) renderer_->set_triangles(to);
     if (to.positions != from.positions || renderer_->moving())
       renderer_->set_surface_steps(to.positions, to.normals, to.positions, to.normals);
     renderer_->set_field(next.field);

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "ibfvs/core/support/error.h"
@@ -125,6 +126,17 @@ void SurfaceBuffers::set_steps(std::span<const glm::vec3> positions,
     bounds_.max = hi;
     bounds_.radius = 0.0f;
   }
+}
+
+void SurfaceBuffers::set_triangles(std::span<const Triangle> triangles) {
+  for (const Triangle& t : triangles)
+    for (const std::uint32_t i : t)
+      if (i >= vertex_count_)
+        throw InputError("renderer: a triangle refers to vertex " + std::to_string(i) + " of " +
+                         std::to_string(vertex_count_));
+  indices_ = gl::Buffer(bytes_of(triangles));
+  vao_.index_buffer(indices_);
+  index_count_ = triangles.size() * 3;
 }
 
 void SurfaceBuffers::point_drawn(bool compensate) {

@@ -6,8 +6,10 @@
 // 3.7's artifact); with a field that holds the body's motion already
 // (field_frame absolute) the texture is not carried.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
@@ -27,8 +29,9 @@ constexpr int kSize = 160;
 
 // A disc (an annulus 0.05..1 in z = 0) turned by `turn` radians about z,
 // with a field that turns with it: circles about its point (0.3, 0.3), a
-// wall quantity relative to the surface.
-TriMesh turned_disc(float turn) {
+// wall quantity relative to the surface. `flipped`: each quadrilateral
+// split along its other diagonal (the same points, other triangles).
+TriMesh turned_disc(float turn, bool flipped = false) {
   TriMesh m;
   constexpr int rings = 20, sectors = 96;
   const float c = std::cos(turn), s = std::sin(turn);
@@ -47,8 +50,13 @@ TriMesh turned_disc(float turn) {
   };
   for (int r = 0; r < rings; ++r)
     for (int k = 0; k < sectors; ++k) {
-      m.triangles.push_back({at(r, k), at(r, k + 1), at(r + 1, k + 1)});
-      m.triangles.push_back({at(r, k), at(r + 1, k + 1), at(r + 1, k)});
+      if (flipped) {
+        m.triangles.push_back({at(r, k), at(r, k + 1), at(r + 1, k)});
+        m.triangles.push_back({at(r, k + 1), at(r + 1, k + 1), at(r + 1, k)});
+      } else {
+        m.triangles.push_back({at(r, k), at(r, k + 1), at(r + 1, k + 1)});
+        m.triangles.push_back({at(r, k), at(r + 1, k + 1), at(r + 1, k)});
+      }
     }
   return m;
 }
@@ -112,10 +120,14 @@ ImageTurn image_turn(Session& s) {
   return {c, a.x * b.y - a.y * b.x > 0.0f ? 1.0f : -1.0f};
 }
 
-ibfvs::Scene disc_scene(const test::TempDir& dir, float turn_per_step, int steps) {
+// A series of the disc, `steps` steps; `flip_every` > 0: every step k with
+// k % flip_every == 1 has the other triangles.
+ibfvs::Scene disc_scene(const test::TempDir& dir, float turn_per_step, int steps,
+                        int flip_every = 0) {
   for (int k = 0; k < steps; ++k)
-    write_ply(turned_disc(turn_per_step * static_cast<float>(k)),
-              dir / ("disc_" + std::to_string(k) + ".ply"));
+    write_ply(
+        turned_disc(turn_per_step * static_cast<float>(k), flip_every > 0 && k % flip_every == 1),
+        dir / ("disc_" + std::to_string(k) + ".ply"));
   ibfvs::Scene s;
   s.mesh = (dir / "disc_*.ply").string();
   s.field = FieldSpec::parse("file");
@@ -128,6 +140,21 @@ ibfvs::Scene disc_scene(const test::TempDir& dir, float turn_per_step, int steps
 struct Across {
   double turned = 0.0, left = 0.0, within = 0.0;
 };
+
+// A series played 6 frames a step, `per_step` radians a step; the frames.
+struct Played {
+  std::vector<Frame> frames;
+  ImageTurn image;
+};
+Played play_series(const ibfvs::Scene& s, int frames) {
+  Session session(prepare_scene(s));
+  Played p{{}, image_turn(session)};
+  for (int k = 0; k < frames; ++k) {
+    session.advance();
+    p.frames.push_back(frame_of(session));
+  }
+  return p;
+}
 
 TEST_F(RendererGLTest, ASeriesTurningBetweenStepsCarriesItsTexture) {
   // 12 degrees a step, 6 frames a step: the body turns 2 degrees a frame,
@@ -157,32 +184,35 @@ TEST_F(RendererGLTest, ASeriesTurningBetweenStepsCarriesItsTexture) {
   EXPECT_GT(m.turned, m.left + 0.1);
 }
 
+// ParaView's Play over the series `s` (steps disc_0 and disc_1 in `dir`):
+// the step's data replaces the last at once, after 24 renders of the first.
+Across host_change(const test::TempDir& dir, const ibfvs::Scene& s, float per_step,
+                   FieldFrame frame) {
+  ibfvs::Scene one = s;
+  one.mesh = (dir / "disc_0.ply").string();
+  one.field_frame = frame;
+  Session session(prepare_scene(one));
+  const ImageTurn image = image_turn(session);
+  for (int k = 0; k < 23; ++k) session.render(session.camera());
+  const Frame before_last = frame_of(session);
+  session.render(session.camera());
+  const Frame last = frame_of(session);
+  session.change_data(prepare_change(session.scene(), read_mesh(dir / "disc_1.ply"), "the input"));
+  session.render(session.camera());
+  const Frame after = frame_of(session);
+  Across m;
+  m.turned = correlation(turned(last, image.centre, image.per_radian * per_step), after);
+  m.left = correlation(last, after);
+  m.within = correlation(before_last, last);
+  return m;
+}
+
 TEST_F(RendererGLTest, AHostsStepChangeCarriesTheTextureWithTheBody) {
-  // ParaView's Play: the step's data replaces the last at once (2.9 degrees,
-  // as the rotor), after 24 renders of the first.
+  // 2.9 degrees a step, as the rotor.
   const test::TempDir dir;
   const float per_step = 2.9f * kPi / 180.0f;
   const ibfvs::Scene s = disc_scene(dir, per_step, 2);
-  const auto play = [&](FieldFrame frame) {
-    ibfvs::Scene one = s;
-    one.mesh = (dir / "disc_0.ply").string();
-    one.field_frame = frame;
-    Session session(prepare_scene(one));
-    const ImageTurn image = image_turn(session);
-    for (int k = 0; k < 23; ++k) session.render(session.camera());
-    const Frame before_last = frame_of(session);
-    session.render(session.camera());
-    const Frame last = frame_of(session);
-    session.change_data(
-        prepare_change(session.scene(), read_mesh(dir / "disc_1.ply"), "the input"));
-    session.render(session.camera());
-    const Frame after = frame_of(session);
-    Across m;
-    m.turned = correlation(turned(last, image.centre, image.per_radian * per_step), after);
-    m.left = correlation(last, after);
-    m.within = correlation(before_last, last);
-    return m;
-  };
+  const auto play = [&](FieldFrame frame) { return host_change(dir, s, per_step, frame); };
   const Across carried = play(FieldFrame::Surface), absolute = play(FieldFrame::Absolute);
   std::printf(
       "a host's step change, 2.9 degrees: %.3f turned with the body, %.3f left in place, "
@@ -191,6 +221,54 @@ TEST_F(RendererGLTest, AHostsStepChangeCarriesTheTextureWithTheBody) {
   EXPECT_GT(carried.turned, 0.8 * carried.within);
   EXPECT_GT(carried.turned, carried.left + 0.1);
   EXPECT_GT(absolute.left, absolute.turned + 0.1);
+}
+
+// The same points with other triangles at a step (cells split otherwise:
+// points_correspond): they still move along their fitted motion and carry
+// the texture, played as a series and as a host's step change; every frame
+// turns with the body, none stands still.
+TEST_F(RendererGLTest, OtherTrianglesOnTheSamePointsStillMoveAndCarryTheTexture) {
+  const test::TempDir flipped_dir, plain_dir;
+  const float per_step = 12.0f * kPi / 180.0f;
+  ibfvs::Scene s = disc_scene(flipped_dir, per_step, 4, 2);  // steps 1 and 3 flipped
+  ibfvs::Scene plain = disc_scene(plain_dir, per_step, 4);
+  s.frames_per_step = plain.frames_per_step = 6;
+  const Played p = play_series(s, 19), q = play_series(plain, 19);
+  const float per_frame = p.image.per_radian * per_step / 6.0f;
+  // Frames 5|6, 11|12 and 17|18 cross into and out of a flipped step. Each
+  // pair turned with the body correlates as it does where no step is
+  // flipped: the points move and carry the texture alike.
+  double worst_across = 1.0, within = 0.0, worst_gap = 0.0;
+  for (int k = 2; k + 1 < 19; ++k) {
+    const double flipped =
+        correlation(turned(p.frames[k], p.image.centre, per_frame), p.frames[k + 1]);
+    const double same =
+        correlation(turned(q.frames[k], q.image.centre, per_frame), q.frames[k + 1]);
+    if (k % 6 == 5)
+      worst_across = std::min(worst_across, flipped);
+    else
+      within = std::max(within, flipped);
+    worst_gap = std::max(worst_gap, same - flipped);
+  }
+  std::printf(
+      "other triangles at steps 1 and 3, 2 degrees a frame: across the changes at least %.3f "
+      "turned with the body (within a step up to %.3f); at most %.3f below the same series "
+      "without other triangles\n",
+      worst_across, within, worst_gap);
+  EXPECT_GT(worst_across, 0.8 * within);
+  EXPECT_LT(worst_gap, 0.03);
+
+  // A host's step change to the same points with other triangles.
+  const test::TempDir dir;
+  const float host_step = 2.9f * kPi / 180.0f;
+  const Across host =
+      host_change(dir, disc_scene(dir, host_step, 2, 2), host_step, FieldFrame::Surface);
+  std::printf(
+      "a host's step change to other triangles, 2.9 degrees: %.3f turned with the body, %.3f "
+      "left in place, %.3f within a step\n",
+      host.turned, host.left, host.within);
+  EXPECT_GT(host.turned, 0.8 * host.within);
+  EXPECT_GT(host.turned, host.left + 0.1);
 }
 
 }  // namespace

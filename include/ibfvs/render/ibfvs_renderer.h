@@ -92,6 +92,13 @@ class IbfvsRenderer {
   /// F_t stays where it is in the image and the flow takes it on (the
   /// image-space path). Same arguments as set_mesh.
   void replace_mesh(const TriMesh& mesh, std::span<const glm::vec3> field);
+  /// The same vertices with other triangles (a step whose cells split
+  /// otherwise, a host's own triangles of the same points:
+  /// points_correspond): the texture stays, and so does the pair of steps
+  /// the last frame drew, so that set_surface_steps's motion still carries
+  /// it. Positions and fields as they were; `mesh` gives the triangles (its
+  /// positions tell a closed surface's orientation).
+  void set_triangles(const TriMesh& mesh);
   /// The surface moves (the same triangles: a moving or deforming mesh,
   /// rigid-body motion): its positions and normals at the current and the
   /// next time step, interpolated with set_field_mix as the field is. The

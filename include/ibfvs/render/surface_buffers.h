@@ -30,6 +30,10 @@ class SurfaceBuffers {
   void set_steps(std::span<const glm::vec3> positions, std::span<const glm::vec3> normals,
                  std::span<const glm::vec3> next_positions, std::span<const glm::vec3> next_normals,
                  const SurfaceMotion& motion, bool keep_drawn);
+  /// The same vertices with other triangles (each index below the vertex
+  /// count, else InputError): points, fields, the pair the last frame drew
+  /// and whether it drew this surface all stay.
+  void set_triangles(std::span<const Triangle> triangles);
   /// Points the drawn attributes (7, 8, 11, 12) at the pair the last frame
   /// drew where its motion enters the advection (`compensate`), else at the
   /// current pair (a vertex taken where it is drawn).

@@ -240,6 +240,30 @@ Topology analyze_topology(const TriMesh& mesh) {
   return top;
 }
 
+bool points_correspond(const TriMesh& a, const TriMesh& b) {
+  if (a.vertex_count() != b.vertex_count()) return false;
+  if (a.triangles == b.triangles) return true;
+  // Each mesh's edges, once each: a polygon split otherwise keeps its own
+  // edges and changes only those inside it.
+  const auto edges = [](const TriMesh& m) {
+    std::vector<std::uint64_t> e;
+    e.reserve(3 * m.triangles.size());
+    for (const Triangle& t : m.triangles)
+      for (int k = 0; k < 3; ++k) {
+        const std::uint64_t i = t[static_cast<std::size_t>(k)], j = t[(k + 1) % 3];
+        e.push_back(std::min(i, j) << 32 | std::max(i, j));
+      }
+    std::sort(e.begin(), e.end());
+    e.erase(std::unique(e.begin(), e.end()), e.end());
+    return e;
+  };
+  const std::vector<std::uint64_t> known = edges(a), given = edges(b);
+  std::size_t shared = 0;
+  for (const std::uint64_t e : given)
+    shared += std::binary_search(known.begin(), known.end(), e) ? 1 : 0;
+  return !given.empty() && 2 * shared >= given.size();
+}
+
 std::uint64_t topology_hash(const TriMesh& mesh) {
   // splitmix64's finaliser on each word, folded in order: every index and
   // its position count (not a checksum that swapped triangles would keep).

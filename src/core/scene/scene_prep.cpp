@@ -120,10 +120,12 @@ namespace ibfvs {
 PreparedScene prepare_change(const PreparedScene& prepared, TriMesh mesh, const std::string& name) {
   const Scene& s = prepared.scene;
   // Subdivided or displaced, the prepared mesh is not the given one moved.
+  // Other triangles on the same points stay on the prepared mesh's points
+  // (mesh_on); other points are another scene.
   if (s.subdivide > 0 || s.displace || !prepared.mesh ||
-      mesh.vertex_count() != prepared.source_vertices ||
-      topology_hash(mesh) != prepared.source_topology)
+      mesh.vertex_count() != prepared.source_vertices)
     return prepare_scene(s, std::move(mesh), name);
+  const std::uint64_t topology = topology_hash(mesh);
   StepContext c;
   c.mesh = prepared.mesh;
   c.still = std::shared_ptr<const std::vector<glm::vec3>>(prepared.mesh, &prepared.mesh->positions);
@@ -135,8 +137,16 @@ PreparedScene prepare_change(const PreparedScene& prepared, TriMesh mesh, const 
   c.reverse = s.reverse;
   if (prepared.settings.use_color) c.color_by = s.color_by;
   if (prepared.settings.use_beta) c.beta_by = s.beta_by;
-  bool same = true, moved = false;
-  TriMesh on = mesh_on(c, std::move(mesh), name, false, same, moved, true);  // hashed above
+  TriMesh on;
+  if (topology == prepared.source_topology) {
+    bool same = true, moved = false;
+    on = mesh_on(c, std::move(mesh), name, false, same, moved, true);  // hashed above
+  } else if (std::optional<TriMesh> others = on_prepared_points(c, mesh, name)) {
+    prep::check_finite(others->positions, name);
+    on = std::move(*others);
+  } else {
+    return prepare_scene(s, std::move(mesh), name);
+  }
   StepData d;
   evaluate_step(c, on, d);
   PreparedScene next = prepared;
@@ -146,6 +156,7 @@ PreparedScene prepare_change(const PreparedScene& prepared, TriMesh mesh, const 
   next.color_scalar = std::move(d.color_scalar);
   next.beta_scalar = std::move(d.beta_scalar);
   next.mesh = std::make_shared<const TriMesh>(std::move(on));
+  next.source_topology = topology;  // the next change compares with these triangles
   return next;
 }
 

@@ -117,6 +117,40 @@ TEST(Mesh, TopologyHashTellsTrianglesApart) {
     EXPECT_NE(topology_hash(*other), h);
 }
 
+// The same points with other triangles (every quadrilateral of a grid
+// split along its other diagonal) correspond; the same number of points
+// numbered otherwise, or another number, do not.
+TEST(Mesh, PointsCorrespondWhereMostEdgesStay) {
+  const auto grid = [](bool flipped, bool renumbered) {
+    TriMesh m;
+    constexpr std::uint32_t n = 8;
+    for (std::uint32_t y = 0; y <= n; ++y)
+      for (std::uint32_t x = 0; x <= n; ++x) m.positions.emplace_back(x, y, 0.0f);
+    const auto at = [&](std::uint32_t x, std::uint32_t y) {
+      const std::uint32_t i = y * (n + 1) + x;
+      return renumbered ? (i * 37) % ((n + 1) * (n + 1)) : i;  // 37 is prime to 81
+    };
+    for (std::uint32_t y = 0; y < n; ++y)
+      for (std::uint32_t x = 0; x < n; ++x) {
+        if (flipped) {
+          m.triangles.push_back({at(x, y), at(x + 1, y), at(x, y + 1)});
+          m.triangles.push_back({at(x + 1, y), at(x + 1, y + 1), at(x, y + 1)});
+        } else {
+          m.triangles.push_back({at(x, y), at(x + 1, y), at(x + 1, y + 1)});
+          m.triangles.push_back({at(x, y), at(x + 1, y + 1), at(x, y + 1)});
+        }
+      }
+    return m;
+  };
+  const TriMesh a = grid(false, false);
+  EXPECT_TRUE(points_correspond(a, a));
+  EXPECT_TRUE(points_correspond(a, grid(true, false)));
+  EXPECT_FALSE(points_correspond(a, grid(false, true)));
+  TriMesh more = a;
+  more.positions.emplace_back(0.0f);
+  EXPECT_FALSE(points_correspond(a, more));
+}
+
 TEST(Mesh, BoundsAndRadius) {
   const TriMesh m = make_torus(1.0f, 0.25f, 64, 16);
   const Bounds b = mesh_bounds(m);

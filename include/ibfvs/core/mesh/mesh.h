@@ -76,6 +76,15 @@ void append_mesh(TriMesh& into, const TriMesh& more);
 /// out what had no area then; it keeps the first state's triangles.
 std::size_t remove_degenerate_triangles(TriMesh& mesh, bool by_area = true);
 
+/// Whether `b` is `a`'s surface with other triangles: as many points, and
+/// at least half of b's edges among a's, so that point i of one is point i
+/// of the other (the same ids) -- cells split otherwise at a moving mesh's
+/// step (a polygon keeps its own edges), or a host's triangles of its own,
+/// not another mesh that happens to have as many points. Its points then
+/// move along their fitted motion and carry the texture (render/session.h).
+/// True for equal triangles.
+bool points_correspond(const TriMesh& a, const TriMesh& b);
+
 /// A 64-bit digest of the vertex count and the triangles, in their order:
 /// equal for two states of one surface whose points moved (a time step of a
 /// moving mesh), different where the connectivity changed.

@@ -88,7 +88,15 @@ struct StepContext {
 void check_finite(const std::vector<glm::vec3>& points, const std::string& where);
 // A step's arrays (in file vertex order) onto the mesh, reordered like it.
 void take_arrays(TriMesh& mesh, const TriMesh& step, const std::vector<unsigned>& order);
-// A step's surface as given on the prepared mesh (steps_on_mesh.cpp).
+// A surface of the prepared mesh's points with triangles of its own (as
+// many points, points_correspond), on those points in the prepared order;
+// none where it is not.
+std::optional<TriMesh> on_prepared_points(const StepContext& c, const TriMesh& given,
+                                          const std::string& where, bool arrays_only = false);
+// A step's surface as given on the prepared mesh (steps_on_mesh.cpp): the
+// prepared triangles with its points (same), or triangles of its own on
+// the prepared mesh's points in their order where the points correspond
+// (points_correspond), else a mesh of its own.
 TriMesh mesh_on(const StepContext& c, TriMesh given, const std::string& where, bool arrays_only,
                 bool& same, bool& moved, bool same_known = false);
 // The field and scalars of a surface, as the scene evaluates them.

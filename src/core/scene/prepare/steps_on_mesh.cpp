@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <mutex>
+#include <optional>
 
 #include "ibfvs/core/geometry/displacement.h"
 #include "ibfvs/core/geometry/vertex_scalar.h"
@@ -36,41 +37,77 @@ void check_finite(const std::vector<glm::vec3>& points, const std::string& where
   }
 }
 
-// A step's surface as given (the caller's order: a series file, a host's
-// data) on the prepared mesh: the same triangles take its order and
-// triangles, with its points and arrays; other triangles are a mesh of
-// their own (checked, normals, GPU order). `arrays_only`: only its arrays
-// count (a field_step file on the scene's mesh, the same vertices).
-// `moved`: the points differ from the prepared mesh's; `same`: its triangles
-// (`same_known`: the caller compared them already).
-TriMesh mesh_on(const StepContext& c, TriMesh given, const std::string& where, bool arrays_only,
-                bool& same, bool& moved, bool same_known) {
-  if (!arrays_only) check_finite(given.positions, where);
+namespace {
+
+// A step's points, normals and arrays (in the caller's order) onto `on`,
+// whose triangles are set, in the prepared mesh's order; the prepared
+// mesh's own points and normals where they did not move and the triangles
+// are its own. `moved`: the points differ from those read first.
+void take_step(const StepContext& c, const TriMesh& given, bool arrays_only, bool own_triangles,
+               TriMesh& on, bool& moved) {
   const auto put = [&](const auto& values) {
     return c.order.empty() ? values : remap_vertex_data(values, c.order);
   };
+  on.positions = arrays_only ? *c.still : put(given.positions);
+  moved = on.positions != *c.still;
+  if (!moved && !own_triangles) {
+    on.positions = c.mesh->positions;
+    on.normals = c.mesh->normals;
+  } else if (given.normals.size() == given.vertex_count()) {
+    on.normals = put(given.normals);
+  } else {
+    compute_vertex_normals(on);
+  }
+  on.scalars = c.mesh->scalars;  // what a step does not carry (curvature, netCDF scalars)
+  take_arrays(on, given, c.order);
+}
+
+}  // namespace
+
+std::optional<TriMesh> on_prepared_points(const StepContext& c, const TriMesh& given,
+                                          const std::string& where, bool arrays_only) {
+  if (given.vertex_count() != c.source_vertices || given.triangles.empty()) return std::nullopt;
+  // Point i stays point i: the prepared mesh's order, the step's triangles
+  // renumbered to it.
+  validate_mesh(given, where);
+  TriMesh others;
+  others.triangles = given.triangles;
+  if (!c.order.empty())
+    for (Triangle& t : others.triangles)
+      for (std::uint32_t& i : t)
+        if ((i = c.order[i]) == ~0u) return std::nullopt;  // a point step 0 left out
+  others.positions.resize(c.mesh->vertex_count());         // for the comparison's count
+  if (!points_correspond(*c.mesh, others)) return std::nullopt;
+  bool moved = false;
+  take_step(c, given, arrays_only, true, others, moved);
+  return others;
+}
+
+// A step's surface as given (the caller's order: a series file, a host's
+// data) on the prepared mesh: the same triangles take its order and
+// triangles, with its points and arrays; other triangles on the same points
+// keep their order (on_prepared_points); else a mesh of its own (checked,
+// normals, GPU order). `arrays_only`: only its arrays count (a field_step
+// file on the scene's mesh, the same vertices). `moved`: the points differ
+// from the prepared mesh's; `same`: its triangles (`same_known`: the caller
+// compared them already).
+TriMesh mesh_on(const StepContext& c, TriMesh given, const std::string& where, bool arrays_only,
+                bool& same, bool& moved, bool same_known) {
+  if (!arrays_only) check_finite(given.positions, where);
   moved = false;
   same = arrays_only || same_known ||
          (given.vertex_count() == c.source_vertices && topology_hash(given) == c.source_topology);
   if (!same) {
     if (given.triangles.empty()) throw InputError(where + ": no triangles");
+    if (std::optional<TriMesh> others = on_prepared_points(c, given, where, arrays_only)) {
+      moved = others->positions != *c.still;
+      return std::move(*others);
+    }
     return load_mesh(std::move(given), where, 0, true).mesh;  // checked, normals, GPU order
   }
   TriMesh on;
-  on.positions = arrays_only ? *c.still : put(given.positions);
   on.triangles = c.mesh->triangles;
-  if (on.positions == *c.still) {
-    on.positions = c.mesh->positions;
-    on.normals = c.mesh->normals;
-  } else {
-    moved = true;
-    if (given.normals.size() == given.vertex_count())
-      on.normals = put(given.normals);
-    else
-      compute_vertex_normals(on);
-  }
-  on.scalars = c.mesh->scalars;  // what a step does not carry (curvature, netCDF scalars)
-  take_arrays(on, given, c.order);
+  take_step(c, given, arrays_only, false, on, moved);
   return on;
 }
 

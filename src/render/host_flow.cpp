@@ -167,9 +167,9 @@ void HostFlow::apply_host(const HostRender& r, const HostChanges& all) {
 int HostFlow::begin(const HostRender& r, const HostChanges& all) {
   failure_ = nullptr;
   problem_.clear();
-  const int frames =
-      pacer_.next(all.changed || all.restart, all.restart,
-                  all.moved && !carries_surface(scene_.advect_view, scene_.field_frame));
+  const bool carries = carries_surface(scene_.advect_view, scene_.field_frame);
+  const int frames = pacer_.next(all.changed || all.restart, all.restart, all.moved && !carries,
+                                 all.moved && carries);
   update_session(std::max(r.width, 1), std::max(r.height, 1), all);
   if (session_) apply_host(r, all);
   return frames;

@@ -369,7 +369,7 @@ void FramePacer::set_frames_per_step(int frames) {
   per_step_ = std::clamp(frames, 1, kMaxFramesPerStep);
 }
 
-int FramePacer::next(bool changed, bool restart, bool moved) {
+int FramePacer::next(bool changed, bool restart, bool moved, bool carried) {
   if (restart) {
     first_ = true;
     renders_ = 1;
@@ -379,7 +379,7 @@ int FramePacer::next(bool changed, bool restart, bool moved) {
     ++renders_;
     return 1;
   }
-  const int rendered = first_ || moved || renders_ <= 2 ? 1 : renders_;
+  const int rendered = moved ? 1 : carried ? renders_ : first_ || renders_ <= 2 ? 1 : renders_;
   const int owed = std::max(per_step_ - rendered, 0);
   first_ = false;
   renders_ = 1;

@@ -64,6 +64,28 @@ TEST(FramePacer, EveryStepGetsItsFramesAndPlayNoJump) {
     EXPECT_EQ(pacer.next(true, false, true), 3);
     EXPECT_EQ(pacer.next(false, false, false), 1);
   }
+  // A change that moves a surface carrying its texture (a turning part):
+  // its renders count as they are, the first data's too. Play in pvbatch
+  // (many renders a step): one frame at every change, the first too; the
+  // GUI's Play (two a step): two; Save Animation (one a step): all three.
+  {
+    FramePacer play(3), gui(3), save(3);
+    std::vector<int> frames;
+    for (int k = 0; k < 30; ++k) play.next(k == 0, k == 0);
+    for (int step = 1; step < 3; ++step)
+      for (int k = 0; k < 30; ++k) frames.push_back(play.next(k == 0, false, false, k == 0));
+    EXPECT_EQ(frames[0], 1);
+    EXPECT_EQ(frames[30], 1);
+    frames.clear();
+    for (int step = 0; step < 3; ++step)
+      for (int k = 0; k < 2; ++k)
+        frames.push_back(gui.next(k == 0, step == 0 && k == 0, false, step > 0 && k == 0));
+    EXPECT_EQ(frames, (std::vector<int>{3, 1, 2, 1, 2, 1}));
+    frames.clear();
+    for (int step = 0; step < 4; ++step)
+      frames.push_back(save.next(true, step == 0, false, step > 0));
+    EXPECT_EQ(frames, (std::vector<int>{3, 3, 3, 3}));
+  }
   // A TemporalInterpolator: every render a change, each the same.
   EXPECT_EQ(paced(4, 1, 1, 5), (std::vector<int>{4, 4, 4, 4, 4}));
   // A restart forms a new texture; the data it starts on counts once.

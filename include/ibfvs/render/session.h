@@ -73,7 +73,13 @@ inline constexpr int kMaxFramesPerStep = 200;
 /// picture taken). The data the texture started on counts as rendered once
 /// too (a host renders it any number of times before it plays or saves:
 /// those frames formed the texture, they owe the next step nothing), and a
-/// restart gives frames_per_step, a new texture formed.
+/// restart gives frames_per_step, a new texture formed. A change that moves
+/// a surface carrying its texture (a turning part) counts every render as
+/// it is, the first data's too: the render that shows the step carries the
+/// texture across it in its first frame, and each frame after that takes it
+/// further from the picture before (the GUI's Play renders a step twice:
+/// two frames at the change, not three; Play in pvbatch, many renders a
+/// step: one, at the first change too).
 class FramePacer {
  public:
   explicit FramePacer(int frames_per_step = kDefaultFramesPerStep) {
@@ -90,7 +96,8 @@ class FramePacer {
   /// renders before: the texture left in the image takes them to form on
   /// the moved surface (one frame shows it half formed: docs/paraview.md,
   /// "Time"). A texture the surface carries needs none: it rides on it.
-  int next(bool changed, bool restart, bool moved = false);
+  /// `carried`: the change moved the points under a texture they carry.
+  int next(bool changed, bool restart, bool moved = false, bool carried = false);
 
  private:
   int per_step_ = kDefaultFramesPerStep;

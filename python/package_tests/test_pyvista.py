@@ -239,6 +239,27 @@ def test_triangle_strips_are_drawn_whole():
     assert (a[r < 0.9] == 255).all(axis=1).mean() < 0.01
 
 
+def test_polygons_split_as_the_readers_split_them_and_alike_when_they_move():
+    """A PyVista mesh's polygons become the triangles every reader of ibfvs
+    makes (an L is cut inside itself, not fanned across its notch), each
+    with its cell, as numpy 2 holds them; the same cells moved keep their
+    triangles (a moving mesh's steps)."""
+    points = np.array([[0, 0, 0], [2, 0, 0], [2, 1, 0], [1, 1, 0], [1, 2, 0], [0, 2, 0],
+                       [3, 0, 0], [3, 1, 0]], dtype=float)
+    faces = np.array([6, 2, 3, 4, 5, 0, 1, 4, 1, 6, 7, 2])  # the L from its notch, a square
+    offsets, ids = ibfvs._ibfvs.cells_of_faces(faces)
+    assert offsets.tolist() == [0, 6, 10] and ids.tolist() == [2, 3, 4, 5, 0, 1, 1, 6, 7, 2]
+    memory = ibfvs._ibfvs.SplitMemory()
+    tris, cells, count = ibfvs._faces_to_triangles(faces, points, memory)
+    assert count == 2 and cells.tolist() == [0, 0, 0, 0, 1, 1]
+    a, b, c = (points[tris[:, k]] for k in range(3))
+    area = 0.5 * np.cross(b - a, c - a)[:, 2]
+    assert (area > 0).all() and area[:4].sum() == pytest.approx(3.0)
+    turned = points @ np.array([[0.6, 0.8, 0], [-0.8, 0.6, 0], [0, 0, 1.0]]) + 5.0
+    again, _, _ = ibfvs._faces_to_triangles(faces, turned, memory)
+    assert (again == tris).all() and memory.size == 1
+
+
 def test_nearer_actors_hide_the_texture_and_the_scalar_bar_stays():
     p = start(plotter())
     ibfvs.pyvista.add_flow(p, swirl_sphere(), vectors="swirl", scalars="height")

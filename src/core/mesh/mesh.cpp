@@ -240,15 +240,13 @@ Topology analyze_topology(const TriMesh& mesh) {
   return top;
 }
 
-bool points_correspond(const TriMesh& a, const TriMesh& b) {
-  if (a.vertex_count() != b.vertex_count()) return false;
-  if (a.triangles == b.triangles) return true;
+bool most_edges_shared(std::span<const Triangle> a, std::span<const Triangle> b) {
   // Each mesh's edges, once each: a polygon split otherwise keeps its own
   // edges and changes only those inside it.
-  const auto edges = [](const TriMesh& m) {
+  const auto edges = [](std::span<const Triangle> triangles) {
     std::vector<std::uint64_t> e;
-    e.reserve(3 * m.triangles.size());
-    for (const Triangle& t : m.triangles)
+    e.reserve(3 * triangles.size());
+    for (const Triangle& t : triangles)
       for (int k = 0; k < 3; ++k) {
         const std::uint64_t i = t[static_cast<std::size_t>(k)], j = t[(k + 1) % 3];
         e.push_back(std::min(i, j) << 32 | std::max(i, j));
@@ -262,6 +260,11 @@ bool points_correspond(const TriMesh& a, const TriMesh& b) {
   for (const std::uint64_t e : given)
     shared += std::binary_search(known.begin(), known.end(), e) ? 1 : 0;
   return !given.empty() && 2 * shared >= given.size();
+}
+
+bool points_correspond(const TriMesh& a, const TriMesh& b) {
+  if (a.vertex_count() != b.vertex_count()) return false;
+  return a.triangles == b.triangles || most_edges_shared(a.triangles, b.triangles);
 }
 
 std::uint64_t topology_hash(const TriMesh& mesh) {

@@ -142,8 +142,7 @@ PreparedScene prepare_change(const PreparedScene& prepared, TriMesh mesh, const 
     bool same = true, moved = false;
     on = mesh_on(c, std::move(mesh), name, false, same, moved, true);  // hashed above
   } else if (std::optional<TriMesh> others = on_prepared_points(c, mesh, name)) {
-    prep::check_finite(others->positions, name);
-    on = std::move(*others);
+    on = std::move(*others);  // checked there (validate_mesh)
   } else {
     return prepare_scene(s, std::move(mesh), name);
   }

@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdint>
 #include <map>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -84,6 +85,10 @@ std::size_t remove_degenerate_triangles(TriMesh& mesh, bool by_area = true);
 /// move along their fitted motion and carry the texture (render/session.h).
 /// True for equal triangles.
 bool points_correspond(const TriMesh& a, const TriMesh& b);
+
+/// Whether at least half of b's edges are a's (each counted once): the
+/// test of points_correspond, for triangles of the same points.
+bool most_edges_shared(std::span<const Triangle> a, std::span<const Triangle> b);
 
 /// A 64-bit digest of the vertex count and the triangles, in their order:
 /// equal for two states of one surface whose points moved (a time step of a

@@ -243,6 +243,29 @@ def test_errors_are_exceptions_with_a_reason():
         ibfvs.Animation("nowhere.off")
 
 
+def test_bad_polygons_are_exceptions_with_a_reason():
+    """A VTK-style cell list or polygon list that does not hold together is
+    one ValueError naming what is wrong, never a crash."""
+    points = np.zeros((4, 3))
+    split = ibfvs._ibfvs.split_polygons
+    with pytest.raises(ValueError, match="cell 1 says 5 points but the array ends before"):
+        ibfvs._ibfvs.cells_of_faces(np.array([3, 0, 1, 2, 5, 0, 1]))
+    with pytest.raises(ValueError, match="says -1 points"):
+        ibfvs._ibfvs.cells_of_faces(np.array([-1, 0]))
+    with pytest.raises(ValueError, match="offsets start at 0"):
+        split(np.array([1, 3]), np.array([0, 1, 2]), points)
+    with pytest.raises(ValueError, match="offset 2 is 2"):
+        split(np.array([0, 3, 2]), np.array([0, 1, 2]), points)
+    with pytest.raises(ValueError, match="end at 3, not at the 4 ids"):
+        split(np.array([0, 3]), np.array([0, 1, 2, 3]), points)
+    with pytest.raises(ValueError, match="id 2 is point 9 but there are 4 points"):
+        split(np.array([0, 3]), np.array([0, 1, 9]), points)
+    with pytest.raises(ValueError, match="offsets and ids must be flat"):
+        split(np.zeros((2, 2), np.int64), np.array([0, 1, 2]), points)
+    with pytest.raises(ValueError, match="cell 0 says 7 points"):
+        ibfvs._faces_to_triangles(np.array([7, 0, 1]), points)
+
+
 def test_the_gil_is_released_while_rendering():
     p, t, v = torus()
     anim = ibfvs.Animation(p, t, v, size=(256, 256))

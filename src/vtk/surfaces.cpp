@@ -414,8 +414,12 @@ TriMesh merge_surfaces(std::vector<Surface>& surfaces, const std::vector<std::st
   const bool weld = surfaces.size() > 1;
   std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> by_position;
   const auto key = [](const glm::vec3& p) {
+    // The bits of equal points: -0 as +0 (a point on a turning part's axis
+    // comes back as -0 at some steps, equal to +0 but of other bits, and
+    // was then welded at some steps and not at others).
+    const glm::vec3 q = p + glm::vec3(0.0f);
     std::uint32_t b[3];
-    std::memcpy(b, &p, sizeof b);
+    std::memcpy(b, &q, sizeof b);
     return (static_cast<std::uint64_t>(b[0]) * 0x9E3779B97F4A7C15ull) ^
            (static_cast<std::uint64_t>(b[1]) * 0xC2B2AE3D27D4EB4Full) ^ b[2];
   };

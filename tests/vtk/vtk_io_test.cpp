@@ -347,6 +347,30 @@ TEST_F(VtkIo, PolygonsSplitTheSameWayWhereverThePointsMove) {
   EXPECT_NEAR(area, 3.0f, 1e-5f);
 }
 
+// Two blocks that share an edge are welded along it, also where one gives a
+// shared point's coordinate as -0 and the other as +0 (a point on a turning
+// part's axis comes back as -0 at some steps: it was welded at some steps
+// and not at others, and those steps played as meshes of their own).
+TEST_F(VtkIo, BlocksWeldWhereTheirPointsAreEqualMinusZeroToo) {
+  const auto triangle = [](std::array<glm::vec3, 3> corners) {
+    vtkNew<vtkPoints> p;
+    for (const glm::vec3& c : corners) p->InsertNextPoint(c.x, c.y, c.z);
+    vtkNew<vtkCellArray> cells;
+    const vtkIdType ids[3] = {0, 1, 2};
+    cells->InsertNextCell(3, ids);
+    auto poly = vtkSmartPointer<vtkPolyData>::New();
+    poly->SetPoints(p);
+    poly->SetPolys(cells);
+    return poly;
+  };
+  vtkNew<vtkMultiBlockDataSet> both;
+  both->SetBlock(0, triangle({glm::vec3(0, 0, 0), glm::vec3(1, 0, 0), glm::vec3(0, 1, 0)}));
+  both->SetBlock(1, triangle({glm::vec3(-0.0f, 1, -0.0f), glm::vec3(1, 0, 0), glm::vec3(1, 1, 0)}));
+  const TriMesh welded = vtk::surface_mesh(both, "two blocks");
+  EXPECT_EQ(welded.vertex_count(), 4u);
+  EXPECT_EQ(welded.triangle_count(), 2u);
+}
+
 // The rotor of helpers.h (cells whose splits are nearly tied) on `points`,
 // with a point vector array v.
 vtkSmartPointer<vtkPolyData> rotor_data(const test::Rotor& rotor,

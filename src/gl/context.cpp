@@ -158,7 +158,29 @@ struct HeadlessContext::Impl {
   }
 };
 
+// libepoxy finds OpenGL 1.0 and 1.1's functions in OpenGL's own library
+// (GLVND's libOpenGL.so.0, or libGL.so.1), not through EGL, and aborts the
+// process where neither is installed (an EGL-only system): asked first, that
+// is one error that says what to install.
+namespace {
+void require_gl_library() {
+  static const bool found = [] {
+    for (const char* lib : {"libOpenGL.so.0", "libGL.so.1"})
+      if (void* handle = dlopen(lib, RTLD_LAZY | RTLD_LOCAL)) {
+        dlclose(handle);
+        return true;
+      }
+    return false;
+  }();
+  if (!found)
+    throw GraphicsError(
+        "OpenGL's library is not installed (neither libOpenGL.so.0 nor libGL.so.1): "
+        "apt-get install libopengl0 (or libgl1), or your system's OpenGL (GLVND) package");
+}
+}  // namespace
+
 HeadlessContext::HeadlessContext(const ContextOptions& options) : impl_(std::make_unique<Impl>()) {
+  require_gl_library();
   impl_->debug = options.debug;
   std::ostringstream log;
   const char* client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
@@ -232,7 +254,9 @@ const void* current_context() {
 }
 
 int current_gl_version() {
-  return current_context() ? epoxy_gl_version() : 0;
+  if (!current_context()) return 0;
+  require_gl_library();
+  return epoxy_gl_version();
 }
 
 void HeadlessContext::release_current() {

@@ -58,27 +58,67 @@ void pad_to_even(const ImageU8& in, ImageU8& out) {
 
 }  // namespace
 
+std::string ffmpeg_pipe_command(const std::string& program, const std::filesystem::path& format,
+                                const std::filesystem::path& out, int width, int height,
+                                double fps) {
+  const std::string ext = lower_extension(format);
+  std::ostringstream cmd;
+  cmd << shell_quote(program) << " -nostdin -y -loglevel error -f rawvideo -pix_fmt rgba -s "
+      << width << "x" << height << " -r " << fps << " -i - -vf vflip ";  // GL rows are bottom-up
+  if (ext == ".webm")  // VideoEncoder's settings (video_encoder.cpp)
+    cmd << "-c:v libvpx-vp9 -pix_fmt yuv420p -b:v 0 -crf 32 ";
+  else if (ext != ".gif")
+    cmd << "-c:v libx264 -pix_fmt yuv420p -preset ultrafast -crf 18 ";
+  // The container from the extension the user gave (the file is written
+  // under a temporary name); "file:" because "a:b.mp4" is a file.
+  const std::string muxer = ext == ".mkv" ? "matroska" : ext.substr(1);
+  cmd << "-f " << muxer << " " << shell_quote("file:" + out.string());
+  return cmd.str();
+}
+
+namespace {
+
+// The ffmpeg program: IBFVS_FFMPEG where it is set (the pip package sets it
+// to imageio-ffmpeg's), else `ffmpeg` on PATH; empty when there is none.
+std::string ffmpeg_program() {
+  if (const char* named = std::getenv("IBFVS_FFMPEG"); named && *named) return named;
+  return program_on_path("ffmpeg") ? "ffmpeg" : "";
+}
+
+}  // namespace
+
 VideoWriter::VideoWriter(const std::filesystem::path& path, int width, int height, double fps)
     : path_(path), pending_(path), width_(width), height_(height) {
-  if (lower_extension(path) != ".gif") {
+  const bool gif = lower_extension(path) == ".gif";
+  const char* named = std::getenv("IBFVS_FFMPEG");
+#if IBFVS_HAVE_LIBAV
+  if (!gif && !(named && *named)) {
     encoder_ = std::make_unique<VideoEncoder>(pending_.temporary(), width + width % 2,
                                               height + height % 2, fps, path.string());
-  } else {
-    if (!program_on_path("ffmpeg"))
-      throw InputError(path.string() +
-                       ": writing a GIF needs the ffmpeg program (apt-get install ffmpeg); "
-                       "or write MP4, or PNG frames with --out frame%04d.png");
-    // A dying ffmpeg must not kill us with SIGPIPE; fwrite reports the error.
-    std::signal(SIGPIPE, SIG_IGN);
-    std::ostringstream cmd;
-    cmd << "ffmpeg -nostdin -y -loglevel error -f rawvideo -pix_fmt rgba -s " << width << "x"
-        << height << " -r " << fps << " -i - -vf vflip "          // GL rows are bottom-up
-        << shell_quote("file:" + pending_.temporary().string());  // "a:b.gif" is a file
-    // In a session of its own: a Ctrl-C at the terminal is ours to handle
-    // (a shorter, finished file), not ffmpeg's.
-    pipe_ = popen(("exec setsid " + cmd.str()).c_str(), "w");
-    if (!pipe_) throw InputError(path.string() + ": cannot start ffmpeg");
+    writer_ = std::thread(&VideoWriter::feed, this);
+    return;
   }
+#endif
+  const std::string program = ffmpeg_program();
+  if (program.empty())
+    throw InputError(path.string() + ": writing " + (gif ? "a GIF" : "video") +
+                     " needs the ffmpeg program: pip install imageio-ffmpeg (the Python package "
+                     "finds it), apt-get install ffmpeg, or IBFVS_FFMPEG=/path/to/ffmpeg; "
+                     "or write PNG frames with --out frame%04d.png");
+  if (named && *named && access(named, X_OK) != 0)
+    throw InputError(path.string() + ": IBFVS_FFMPEG names no program that runs (" +
+                     std::string(named) + ")");
+  // A dying ffmpeg must not kill us with SIGPIPE; fwrite reports the error.
+  std::signal(SIGPIPE, SIG_IGN);
+  // Every format but GIF wants an even size: padded here as VideoEncoder's
+  // frames are (feed).
+  const int w = gif ? width : width + width % 2, h = gif ? height : height + height % 2;
+  // In a session of its own: a Ctrl-C at the terminal is ours to handle
+  // (a shorter, finished file), not ffmpeg's.
+  const std::string cmd = ffmpeg_pipe_command(program, path, pending_.temporary(), w, h, fps);
+  pipe_ = popen(("exec setsid " + cmd).c_str(), "w");
+  if (!pipe_) throw InputError(path.string() + ": cannot start ffmpeg");
+  pad_ = !gif;
   writer_ = std::thread(&VideoWriter::feed, this);
 }
 
@@ -105,18 +145,23 @@ void VideoWriter::feed() {
     }
     changed_.notify_all();  // room in the queue
     std::string failure;
+    const bool odd = frame.width % 2 != 0 || frame.height % 2 != 0;
+#if IBFVS_HAVE_LIBAV
     if (encoder_) {
       try {
-        const bool odd = frame.width % 2 != 0 || frame.height % 2 != 0;
         if (odd) pad_to_even(frame, padded);
         to_yuv420(odd ? padded : frame, yuv_);
         encoder_->encode(yuv_);
       } catch (const std::exception& e) {
         failure = e.what();
       }
-    } else if (std::fwrite(frame.pixels.data(), 1, frame.pixels.size(), pipe_) !=
-               frame.pixels.size()) {
-      failure = path_.string() + ": ffmpeg stopped accepting frames (see its message above)";
+    } else
+#endif
+    {
+      if (pad_ && odd) pad_to_even(frame, padded);
+      const ImageU8& out = pad_ && odd ? padded : frame;
+      if (std::fwrite(out.pixels.data(), 1, out.pixels.size(), pipe_) != out.pixels.size())
+        failure = path_.string() + ": ffmpeg stopped accepting frames (see its message above)";
     }
     std::lock_guard<std::mutex> lock(mutex_);
     if (!failure.empty()) {
@@ -128,6 +173,7 @@ void VideoWriter::feed() {
     }
     if (spares_.size() < kQueued) spares_.push_back(std::move(frame));
   }
+#if IBFVS_HAVE_LIBAV
   if (encoder_) {
     try {
       encoder_->finish();
@@ -136,6 +182,7 @@ void VideoWriter::feed() {
       error_ = e.what();
     }
   }
+#endif
 }
 
 void VideoWriter::write(ImageU8 frame) {

@@ -159,6 +159,51 @@ TEST_F(RenderCommand, OutputThatIsAnInputIsRefused) {
   EXPECT_EQ(test::read_file(dir_ / "tex.png"), before);
 }
 
+// The pip package's way (no FFmpeg libraries in its wheel): every container
+// through the ffmpeg program that IBFVS_FFMPEG names, with the in-process
+// encoder's codecs; an odd size padded to even as there, the frames in
+// order and upright; a program that is not there one error line.
+TEST_F(RenderCommand, VideoThroughTheFfmpegProgramAsThePipPackageWritesIt) {
+  const std::string ffmpeg = "IBFVS_FFMPEG=/usr/bin/ffmpeg";
+  for (const char* name : {"p.mp4", "p.mkv", "p.mov", "p.webm", "p.avi"}) {
+    const Result r =
+        run(std::string("render --mesh torus --size 47x32 --frames 5 -q --out ") + name, ffmpeg);
+    ASSERT_EQ(r.status, 0) << name << "\n" << r.err;
+    EXPECT_TRUE(r.err.empty()) << name << "\n" << r.err;
+    const std::string count =
+        "ffprobe -v error -count_frames -select_streams v:0 -show_entries "
+        "stream=nb_read_frames,width,codec_name -of csv=p=0 '" +
+        (dir_ / name).string() + "' > '" + (dir_ / "probe.txt").string() + "'";
+    ASSERT_EQ(std::system(count.c_str()), 0) << count;
+    const std::string codec = std::string(name) == "p.webm" ? "vp9" : "h264";
+    EXPECT_EQ(test::read_file(dir_ / "probe.txt"), codec + ",48,5\n") << name;
+  }
+  const std::string common =
+      "render --mesh torus --frames 12 --color-by y --color-map viridis --background "
+      "0.8,0.2,0.1 --beta 0 -q --size 191x127 ";
+  ASSERT_EQ(run(common + "--out still.png").status, 0);
+  ASSERT_EQ(run(common + "--out piped.mp4", ffmpeg).status, 0);
+  const std::string decode = "ffmpeg -v error -y -i '" + (dir_ / "piped.mp4").string() +
+                             "' -vf select='eq(n\\,11)' -frames:v 1 '" +
+                             (dir_ / "piped-last.png").string() + "'";
+  ASSERT_EQ(std::system(decode.c_str()), 0) << decode;
+  const ImageU8 want = read_png(dir_ / "still.png");
+  const ImageU8 got = read_png(dir_ / "piped-last.png");
+  ASSERT_EQ(got.width, 192);
+  ASSERT_EQ(got.height, 128);
+  double same = 0.0;
+  for (int y = 0; y < want.height; ++y)
+    for (int x = 0; x < want.width; ++x)
+      for (int c = 0; c < 3; ++c) same += std::abs(got.at(x, y + 1, c) - want.at(x, y, c));
+  // As the in-process encoder's (VideoFramesMatchTheRenderedImage): about 7.7.
+  EXPECT_LT(same / (3.0 * want.width * want.height), 10.0);
+  const Result missing =
+      run("render --mesh torus --size 16x16 --frames 2 --out none.mp4", "IBFVS_FFMPEG=/no/ffmpeg");
+  EXPECT_EQ(missing.status, 1) << missing.err;
+  EXPECT_NE(missing.err.find("IBFVS_FFMPEG names no program"), std::string::npos) << missing.err;
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "none.mp4"));
+}
+
 // The frames encoded are the frames rendered: the last one decoded from the
 // MP4 matches the PNG of the same render (colours, orientation, plane order),
 // for an even size and an odd one (padded by a column and a row).

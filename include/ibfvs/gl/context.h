@@ -61,7 +61,9 @@ void tune_process_for_rendering();
 
 /// The OpenGL version of the context current on this thread (a host's:
 /// VTK's or ParaView's render window, through EGL or GLX) as 10 major +
-/// minor, 45 for 4.5; 0 where none is current.
+/// minor, 45 for 4.5; 0 where none is current. Throws GraphicsError where
+/// OpenGL's own library (libOpenGL.so.0 or libGL.so.1, which libepoxy loads
+/// its first functions from) is not installed, as HeadlessContext does.
 int current_gl_version();
 /// The context current on this thread (an EGL or a GLX context's handle),
 /// null where none is: to tell whether the one objects were made in is.

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,23 @@ std::vector<std::string> netcdf_variables(const std::filesystem::path& path);
 /// range.
 LonLatGrid read_lonlat_grid(const std::filesystem::path& path, const std::string& variable,
                             std::size_t time_index = 0);
+
+/// True when this build reads netCDF itself (netCDF-C, the Debian build);
+/// otherwise netcdf_variables and read_lonlat_grid go to the reader that
+/// set_lonlat_reader gave (the pip package's: Python's xarray).
+bool netcdf_built_in();
+
+/// A reader of netCDF lon/lat grids from outside the library, for builds
+/// without netCDF-C. `read` returns the grid as read_lonlat_grid describes
+/// it; the library checks its shape and coordinates as it checks its own.
+/// Either function throws InputError (naming the file) when it cannot read.
+struct LonLatReader {
+  std::function<std::vector<std::string>(const std::filesystem::path&)> variables;
+  std::function<LonLatGrid(const std::filesystem::path&, const std::string&, std::size_t)> read;
+};
+/// Sets the reader for builds without netCDF-C (an empty one: none); the
+/// Debian build, which reads netCDF itself, never calls it.
+void set_lonlat_reader(LonLatReader reader);
 
 /// A geodesic sphere of radius 1: an icosahedron Loop-subdivided `level`
 /// times and projected onto the sphere, with exact normals (20 * 4^level triangles).

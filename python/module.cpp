@@ -24,6 +24,7 @@
 
 #include <glm/trigonometric.hpp>
 
+#include "ibfvs/core/fields/lonlat_grid.h"
 #include "ibfvs/core/image/colormap.h"
 #include "ibfvs/core/image/image.h"
 #include "ibfvs/core/mesh/polygon.h"
@@ -462,6 +463,65 @@ class HostLayer {
   HostFlow host_;
 };
 
+// A Python callable that C++ may hold and copy on any thread: the object is
+// released with the GIL held, and the std::function copies share it without
+// touching its reference count.
+std::shared_ptr<py::object> held(py::object fn) {
+  return {new py::object(std::move(fn)), [](py::object* o) {
+            // After Python's end (a static's destructor at exit) there is no
+            // GIL to take: the object went with the interpreter.
+            if (!Py_IsInitialized()) return;
+            py::gil_scoped_acquire gil;
+            delete o;
+          }};
+}
+
+// The netCDF reader of builds without netCDF-C (the pip package): Python's
+// functions (ibfvs/__init__.py, through xarray), their errors one InputError
+// naming the file.
+void set_netcdf_reader(py::object variables, py::object read) {
+  if (variables.is_none() || read.is_none()) {
+    set_lonlat_reader({});
+    return;
+  }
+  const auto fail = [](const std::filesystem::path& path, const py::error_already_set& e) {
+    return InputError(one_line(path.string() + ": " + e.what()));
+  };
+  LonLatReader reader;
+  reader.variables = [fn = held(std::move(variables)), fail](const std::filesystem::path& path) {
+    py::gil_scoped_acquire gil;
+    try {
+      return (*fn)(path.string()).cast<std::vector<std::string>>();
+    } catch (const py::error_already_set& e) {
+      throw fail(path, e);
+    }
+  };
+  reader.read = [fn = held(std::move(read)), fail](const std::filesystem::path& path,
+                                                   const std::string& variable, std::size_t t) {
+    py::gil_scoped_acquire gil;
+    try {
+      // (lon, lat, values (lat, lon), units, time steps)
+      const py::tuple r = (*fn)(path.string(), variable, t);
+      if (r.size() != 5) throw InputError(path.string() + ": the netCDF reader returned no grid");
+      LonLatGrid g;
+      g.name = variable;
+      g.lon = r[0].cast<std::vector<double>>();
+      g.lat = r[1].cast<std::vector<double>>();
+      const auto values =
+          r[2].cast<py::array_t<float, py::array::c_style | py::array::forcecast>>();
+      g.values.assign(values.data(), values.data() + values.size());
+      g.units = r[3].cast<std::string>();
+      g.time_steps = r[4].cast<std::size_t>();
+      return g;
+    } catch (const py::error_already_set& e) {
+      throw fail(path, e);
+    } catch (const py::cast_error& e) {
+      throw InputError(path.string() + ": the netCDF reader returned no grid (" + e.what() + ")");
+    }
+  };
+  set_lonlat_reader(std::move(reader));
+}
+
 }  // namespace
 }  // namespace ibfvs::python
 
@@ -500,6 +560,14 @@ PYBIND11_MODULE(_ibfvs, m) {
       "Every scene key: (name, help, default text forms).");
 
   m.attr("__version__") = IBFVS_VERSION;
+  // What this build does itself; the pip package leaves both to Python's
+  // own packages (imageio-ffmpeg's ffmpeg, xarray).
+  m.attr("has_libav") = IBFVS_HAVE_LIBAV != 0;
+  m.attr("has_netcdf") = netcdf_built_in();
+  m.def(
+      "set_netcdf_reader", &ibfvs::python::set_netcdf_reader, py::arg("variables"), py::arg("read"),
+      "Where the build has no netCDF-C: VARIABLES(path) -> names and READ(path, variable,\n"
+      "time_index) -> (lon, lat, values, units, time_steps) read netCDF files (None, None: none).");
   m.def(
       "table_positions",
       [](const std::vector<float>& values, double lo, double hi, bool log) {

@@ -23,12 +23,13 @@ from collections.abc import Mapping
 
 import numpy as np
 
-from . import _ibfvs
+from . import _external, _ibfvs
 
 __all__ = ["render", "Animation", "Video", "widget", "keys", "has_vtk", "__version__"]
 
 __version__ = _ibfvs.__version__  # CMakeLists.txt's project(), the one version
 has_vtk = _ibfvs.has_vtk
+_external.install()  # netCDF through xarray where the build has no netCDF-C (the wheel)
 
 
 def keys():
@@ -260,6 +261,13 @@ class Animation(_ibfvs.Animation):
         from .notebook import FlowWidget
 
         return FlowWidget(self)
+
+    def write_video(self, path, frames, fps=30.0):
+        """Render FRAMES more frames into a video file (.mp4, .webm, .mkv,
+        .mov, .avi, .gif); the pip package's goes through imageio-ffmpeg's
+        ffmpeg or one on PATH."""
+        _external.find_ffmpeg()
+        return super().write_video(os.fspath(path), frames, fps)
 
     def video(self, frames=90, fps=30.0):
         """The next FRAMES frames as an MP4 Video, shown in Jupyter as an

@@ -19,6 +19,11 @@ def main() -> None:
     if not exe.is_file():
         sys.exit(f"ibfvs: the command's program is missing from this installation ({exe}); "
                  "build trees run build/ibfvs")
+    # The pip package's video goes through imageio-ffmpeg's ffmpeg (or one on
+    # PATH): named for the program in IBFVS_FFMPEG.
+    from ._external import find_ffmpeg
+
+    find_ffmpeg()
     os.execv(exe, [str(exe), *sys.argv[1:]])
 
 

@@ -12,8 +12,10 @@ on a timer; screenshots and movie frames each take the next frame. The
 texture is drawn in the plotter's own OpenGL context with its camera, in
 place of the actor's surface, coloured as `add_mesh` colours it (the same
 keywords: scalars, cmap, clim, log_scale, the scalar bar), and depth-tested
-against the plotter's other actors. `mesh.ibfvs.add_flow(plotter, ...)` does
-the same.
+against the plotter's other actors. `plotter.ibfvs.add_flow(mesh, ...)` (a
+PyVista plotter component) and `mesh.ibfvs.add_flow(plotter, ...)` (a dataset
+accessor) do the same; PyVista finds both through the package's entry
+points, without an import.
 
 It needs VTK's OpenGL 4.5 context, which Mesa (llvmpipe) and GPU drivers
 give; the VTK is the one pip installs with PyVista (the package links no VTK
@@ -142,6 +144,27 @@ def _world_per_pixel(camera, width, height):
     return extent / max(pixels, 1)
 
 
+_CLIENT_SIDE = ("ibfvs: the flow texture is drawn by the plotter's OpenGL, on the server; "
+                "client-side rendering (vtk.js: trame's client mode, export_html) draws the "
+                "plain surface. Render on the server (jupyter_backend='server', or trame's "
+                "plotter_ui(plotter, mode='server', animate=True)), or use ibfvs.widget(...), "
+                "the page's WebGL2 runtime")
+
+
+class _FlowMapper(vtkPolyDataMapper):
+    """VTK's polygon mapper (vtkOpenGLPolyDataMapper). A serializer for vtk.js
+    asks it for its input (trame_vtk's mapper serializer): the texture cannot
+    go there, and the user is told so, once a process."""
+
+    told = False
+
+    def GetInputDataObject(self, port, connection):  # noqa: N802 - VTK's name
+        if not _FlowMapper.told:
+            _FlowMapper.told = True
+            warnings.warn(_CLIENT_SIDE, RuntimeWarning, stacklevel=2)
+        return super().GetInputDataObject(port, connection)
+
+
 class FlowLayer:
     """The texture of one actor: its surface, settings and the draw in the
     plotter's render. add_flow makes it; `actor.ibfvs` is this object."""
@@ -155,14 +178,14 @@ class FlowLayer:
         self._vectors = vectors
         self._colour_key = None
         self._problem = None
-        self._tag = None
+        self._tags = []
         self.set(**settings)
         if frames_per_step is not None:
             self._layer.set_frames_per_step(int(frames_per_step))
         # VTK's own polygon mapper: it calls back in its render, in the opaque
         # pass, where the texture is drawn instead of its surface.
         # add_mesh's pipeline stays its input: the scalars it made active.
-        mapper = vtkPolyDataMapper()
+        mapper = _FlowMapper()
         mapper.ShallowCopy(actor.GetMapper())
         mapper.SetInputConnection(actor.GetMapper().GetInputConnection(0, 0))
         mapper.Update()
@@ -170,9 +193,11 @@ class FlowLayer:
         self._mapper = mapper
         self._surface = pv.wrap(mapper.GetInput())
         _vectors(self._surface, vectors)
-        actor.GetShaderProperty().AddFragmentShaderReplacement(
-            "//VTK::Color::Impl", True, "//VTK::Color::Impl\n  discard;  // ibfvs draws it", False)
-        self._tag = mapper.AddObserver("EndEvent", self._draw)
+        # VTK's surface is discarded where the texture is drawn; not while a
+        # hardware selector picks (the ids are VTK's own, of its surface).
+        self._discarding = False
+        self._tags = [mapper.AddObserver("StartEvent", self._start),
+                      mapper.AddObserver("EndEvent", self._draw)]
 
     # ------------------------------------------------------------ settings
 
@@ -302,6 +327,22 @@ class FlowLayer:
 
     # ------------------------------------------------------------ the draw
 
+    def _discard(self, on):
+        if on == self._discarding:
+            return
+        shader = self._actor.GetShaderProperty()
+        if on:
+            shader.AddFragmentShaderReplacement(
+                "//VTK::Color::Impl", True, "//VTK::Color::Impl\n  discard;  // ibfvs draws it", False)
+        else:
+            shader.ClearFragmentShaderReplacement("//VTK::Color::Impl", True)
+        self._discarding = on
+
+    def _start(self, mapper, event):
+        """The mapper's StartEvent, before it builds its shader: VTK's
+        surface discarded for the texture, kept for a hardware selector."""
+        self._discard(self._renderer.GetSelector() is None)
+
     def _draw(self, mapper, event):
         """The mapper's EndEvent: VTK's context current, its framebuffer bound."""
         renderer = self._renderer
@@ -355,10 +396,10 @@ class FlowLayer:
     def _fail(self, problem):
         """The plain surface from now on, and one warning that says why."""
         self._problem = problem
-        self._actor.GetShaderProperty().ClearAllFragmentShaderReplacements()
-        if self._tag is not None:
-            self._mapper.RemoveObserver(self._tag)
-            self._tag = None
+        self._discard(False)
+        for tag in self._tags:
+            self._mapper.RemoveObserver(tag)
+        self._tags = []
         warnings.warn(f"ibfvs: {problem}; drawing the plain surface", RuntimeWarning, stacklevel=2)
 
 
@@ -435,3 +476,26 @@ class _Accessor:
 
     def add_flow(self, plotter, vectors=None, **keywords):
         return add_flow(plotter, self._mesh, vectors, **keywords)
+
+
+if hasattr(pv, "register_plotter_component"):  # PyVista 0.48 and later
+
+    @pv.register_plotter_component("ibfvs")
+    class _Component:
+        """plotter.ibfvs.add_flow(mesh, vectors=..., **keywords): add_flow
+        in this plotter (in its active subplot, as add_mesh)."""
+
+        def __init__(self, plotter):
+            self._plotter = plotter
+
+        def add_flow(self, mesh, vectors=None, **keywords):
+            return add_flow(self._plotter, mesh, vectors, **keywords)
+
+        @property
+        def layers(self):
+            """The flow layers of this plotter, in the order they were added."""
+            return list(getattr(self._plotter, "_ibfvs_layers", ()))
+
+        def __plotter_close__(self):
+            # The layers' GL objects go with the plotter's context.
+            self._plotter._ibfvs_layers = []

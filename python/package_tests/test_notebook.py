@@ -5,16 +5,14 @@ web/test/notebook.mjs; and its Python side without a browser."""
 import json
 import os
 import shutil
-import socket
 import subprocess
 import sys
-import time
-import urllib.request
 from pathlib import Path
 
 import pytest
 
 import ibfvs
+from local_server import free_port, wait_until_up
 
 ROOT = Path(__file__).resolve().parents[2]
 anywidget = pytest.importorskip("anywidget")
@@ -52,11 +50,6 @@ def _notebook(path):
         "nbformat": 4, "nbformat_minor": 5}))
 
 
-def _free_port():
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
-
 
 def test_the_widget_and_python_change_each_others_settings_in_jupyterlab(tmp_path):
     pytest.importorskip("jupyterlab")
@@ -64,7 +57,7 @@ def test_the_widget_and_python_change_each_others_settings_in_jupyterlab(tmp_pat
         if not shutil.which(tool):
             pytest.skip(f"{tool} is not installed")
     _notebook(tmp_path / "widget.ipynb")
-    port, token = _free_port(), "ibfvs-test"
+    port, token = free_port(), "ibfvs-test"
     # Jupyter's own folders in the test's (not the user's: their kernels
     # and settings); the venv's kernel and extensions are found in the venv.
     env = dict(os.environ, JUPYTER_RUNTIME_DIR=str(tmp_path / "runtime"),
@@ -81,16 +74,8 @@ def test_the_widget_and_python_change_each_others_settings_in_jupyterlab(tmp_pat
         cwd=tmp_path, env=env, stdout=log, stderr=subprocess.STDOUT)
     try:
         base = f"http://127.0.0.1:{port}"
-        for _ in range(120):
-            try:
-                urllib.request.urlopen(f"{base}/api/status?token={token}", timeout=2)
-                break
-            except OSError:
-                if server.poll() is not None:
-                    break
-                time.sleep(0.5)
-        else:
-            pytest.fail("JupyterLab did not start: " + (tmp_path / "server.log").read_text()[-2000:])
+        wait_until_up(f"{base}/api/status?token={token}", server, tmp_path / "server.log",
+                      "JupyterLab")
         result = tmp_path / "result.json"
         run = subprocess.run(
             ["node", str(ROOT / "web" / "test" / "notebook.mjs"),

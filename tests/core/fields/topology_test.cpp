@@ -1,0 +1,167 @@
+// Critical points against exact answers (issue 64): on meshes jittered so
+// that no answer falls on a vertex by construction, each point found within
+// a small fraction of an edge with its kind, and the indices summing to the
+// Euler characteristic (Poincare-Hopf).
+#include "ibfvs/core/fields/topology.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include <glm/geometric.hpp>
+
+#include "ibfvs/core/fields/lonlat_grid.h"
+#include "ibfvs/core/mesh/procedural.h"
+#include "ibfvs/core/support/error.h"
+
+namespace ibfvs {
+namespace {
+
+double mean_edge(const TriMesh& m) {
+  double sum = 0.0;
+  for (const Triangle& t : m.triangles)
+    for (int k = 0; k < 3; ++k) sum += glm::length(m.positions[t[k]] - m.positions[t[(k + 1) % 3]]);
+  return sum / (3.0 * static_cast<double>(m.triangles.size()));
+}
+
+// Every vertex moved by up to a fifth of an edge, then back onto the surface.
+template <class Back>
+void jitter(TriMesh& m, Back back, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> d(-1.0f, 1.0f);
+  const float amount = 0.2f * static_cast<float>(mean_edge(m));
+  for (glm::vec3& p : m.positions) p = back(p + amount * glm::vec3(d(rng), d(rng), d(rng)));
+}
+
+glm::vec3 tangent(const glm::vec3& v, const glm::vec3& normal) {
+  return v - glm::dot(v, normal) * normal;
+}
+
+// The points of one kind, sorted along an axis.
+std::vector<CriticalPoint> of_kind(const CriticalPoints& c, CriticalKind kind) {
+  std::vector<CriticalPoint> out;
+  for (const CriticalPoint& p : c.points)
+    if (p.kind == kind) out.push_back(p);
+  return out;
+}
+
+void expect_near(const glm::vec3& got, const glm::vec3& want, double tolerance) {
+  EXPECT_LT(glm::length(got - want), tolerance)
+      << "at " << got.x << "," << got.y << "," << got.z << ", expected " << want.x << "," << want.y
+      << "," << want.z;
+}
+
+TriMesh jittered_globe() {
+  TriMesh m = make_globe(4);  // 5120 triangles
+  jitter(
+      m, [](glm::vec3 p) { return glm::normalize(p); }, 7);
+  return m;
+}
+
+TEST(CriticalPoints, HeightOnASphereFlowsFromASourceToASink) {
+  const TriMesh m = jittered_globe();
+  const glm::vec3 up(0.3f, 0.2f, 0.932f);  // no vertex of the globe on the axis
+  const glm::vec3 axis = glm::normalize(up);
+  std::vector<glm::vec3> v;
+  for (const glm::vec3& p : m.positions) v.push_back(tangent(axis, glm::normalize(p)));
+  const CriticalPoints c = find_critical_points(m, v);
+  ASSERT_EQ(c.points.size(), 2u);
+  EXPECT_EQ(c.index_sum, euler_characteristic(m));
+  EXPECT_EQ(euler_characteristic(m), 2);
+  const double edge = mean_edge(m);
+  const auto sink = of_kind(c, CriticalKind::attracting_node);
+  const auto source = of_kind(c, CriticalKind::repelling_node);
+  ASSERT_EQ(sink.size(), 1u);
+  ASSERT_EQ(source.size(), 1u);
+  expect_near(sink[0].position, axis, 0.1 * edge);
+  expect_near(source[0].position, -axis, 0.1 * edge);
+  EXPECT_LT(sink[0].eigen_real[1], 0.0);
+  EXPECT_GT(source[0].eigen_real[0], 0.0);
+}
+
+TEST(CriticalPoints, ATurningAndASpiralOnASphere) {
+  const TriMesh m = jittered_globe();
+  const glm::vec3 axis = glm::normalize(glm::vec3(-0.2f, 0.95f, 0.25f));
+  for (const float pull : {0.0f, 0.5f, -0.5f}) {
+    std::vector<glm::vec3> v;
+    for (const glm::vec3& p : m.positions) {
+      const glm::vec3 n = glm::normalize(p);
+      v.push_back(glm::cross(axis, n) + pull * tangent(axis, n));
+    }
+    const CriticalPoints c = find_critical_points(m, v);
+    ASSERT_EQ(c.points.size(), 2u) << pull;
+    EXPECT_EQ(c.index_sum, 2) << pull;
+    const double edge = mean_edge(m);
+    const CriticalKind at_axis = pull == 0.0f  ? CriticalKind::centre
+                                 : pull > 0.0f ? CriticalKind::attracting_focus
+                                               : CriticalKind::repelling_focus;
+    const CriticalKind opposite = pull == 0.0f  ? CriticalKind::centre
+                                  : pull > 0.0f ? CriticalKind::repelling_focus
+                                                : CriticalKind::attracting_focus;
+    for (const CriticalPoint& p : c.points) {
+      const bool top = glm::dot(p.position, axis) > 0.0f;
+      EXPECT_EQ(p.kind, top ? at_axis : opposite) << pull << ": " << kind_name(p.kind);
+      expect_near(p.position, top ? axis : -axis, 0.1 * edge);
+      EXPECT_NE(p.eigen_imag[1], 0.0);
+    }
+  }
+}
+
+TEST(CriticalPoints, HeightOnATorusHasTwoNodesAndTwoSaddles) {
+  TriMesh m = make_torus(1.0f, 0.35f, 96, 48);  // axis +Y
+  jitter(
+      m,
+      [](glm::vec3 p) {  // back onto the torus: the nearest point of it
+        const glm::vec3 ring = glm::normalize(glm::vec3(p.x, 0.0f, p.z));
+        return ring + 0.35f * glm::normalize(p - ring);
+      },
+      11);
+  // The height along a direction in the torus's plane, a little off its
+  // grid: its gradient on the surface.
+  const glm::vec3 dir = glm::normalize(glm::vec3(1.0f, 0.0f, 0.137f));
+  std::vector<glm::vec3> v;
+  for (const glm::vec3& p : m.positions) {
+    const glm::vec3 ring = glm::normalize(glm::vec3(p.x, 0.0f, p.z));
+    v.push_back(tangent(dir, glm::normalize(p - ring)));
+  }
+  const CriticalPoints c = find_critical_points(m, v);
+  EXPECT_EQ(euler_characteristic(m), 0);
+  EXPECT_EQ(c.index_sum, 0);
+  ASSERT_EQ(c.points.size(), 4u);
+  const double edge = mean_edge(m);
+  const auto saddles = of_kind(c, CriticalKind::saddle);
+  const auto sinks = of_kind(c, CriticalKind::attracting_node);
+  const auto sources = of_kind(c, CriticalKind::repelling_node);
+  ASSERT_EQ(saddles.size(), 2u);
+  ASSERT_EQ(sinks.size(), 1u);
+  ASSERT_EQ(sources.size(), 1u);
+  expect_near(sinks[0].position, 1.35f * dir, 0.25 * edge);
+  expect_near(sources[0].position, -1.35f * dir, 0.25 * edge);
+  for (const CriticalPoint& s : saddles) {
+    const glm::vec3 want = (glm::dot(s.position, dir) > 0.0f ? 0.65f : -0.65f) * dir;
+    expect_near(s.position, want, 0.25 * edge);
+    EXPECT_LT(s.eigen_real[0], 0.0);
+    EXPECT_GT(s.eigen_real[1], 0.0);
+  }
+}
+
+TEST(CriticalPoints, BadInputIsAnErrorAndDegenerateTrianglesAreCounted) {
+  TriMesh m = make_globe(1);
+  std::vector<glm::vec3> v(m.positions.size(), glm::vec3(0.0f));
+  const CriticalPoints zero = find_critical_points(m, v);
+  EXPECT_TRUE(zero.points.empty());
+  EXPECT_EQ(zero.zero_triangles, m.triangles.size());
+  v[3].y = std::nanf("");
+  EXPECT_THROW(find_critical_points(m, v), InputError);
+  v.pop_back();
+  EXPECT_THROW(find_critical_points(m, v), InputError);
+  m.positions.push_back(m.positions[0]);  // a triangle with no area
+  m.triangles.push_back({0, static_cast<std::uint32_t>(m.positions.size() - 1), 1});
+  std::vector<glm::vec3> ok(m.positions.size(), glm::vec3(1.0f, 0.0f, 0.0f));
+  EXPECT_GE(find_critical_points(m, ok).degenerate_triangles, 1u);
+}
+
+}  // namespace
+}  // namespace ibfvs

@@ -78,11 +78,11 @@ std::string ffmpeg_pipe_command(const std::string& program, const std::filesyste
 
 namespace {
 
-// The ffmpeg program: IBFVS_FFMPEG where it is set (the pip package sets it
-// to imageio-ffmpeg's), else `ffmpeg` on PATH; empty when there is none.
-std::string ffmpeg_program() {
-  if (const char* named = std::getenv("IBFVS_FFMPEG"); named && *named) return named;
-  return program_on_path("ffmpeg") ? "ffmpeg" : "";
+// The program IBFVS_FFMPEG names (the pip package names imageio-ffmpeg's);
+// empty where it is unset.
+std::string named_ffmpeg() {
+  const char* named = std::getenv("IBFVS_FFMPEG");
+  return named ? named : "";
 }
 
 }  // namespace
@@ -90,24 +90,24 @@ std::string ffmpeg_program() {
 VideoWriter::VideoWriter(const std::filesystem::path& path, int width, int height, double fps)
     : path_(path), pending_(path), width_(width), height_(height) {
   const bool gif = lower_extension(path) == ".gif";
-  const char* named = std::getenv("IBFVS_FFMPEG");
+  const std::string named = named_ffmpeg();
 #if IBFVS_HAVE_LIBAV
-  if (!gif && !(named && *named)) {
+  if (!gif && named.empty()) {
     encoder_ = std::make_unique<VideoEncoder>(pending_.temporary(), width + width % 2,
                                               height + height % 2, fps, path.string());
     writer_ = std::thread(&VideoWriter::feed, this);
     return;
   }
 #endif
-  const std::string program = ffmpeg_program();
+  // The program named, else `ffmpeg` on PATH.
+  const std::string program = !named.empty() ? named : program_on_path("ffmpeg") ? "ffmpeg" : "";
   if (program.empty())
     throw InputError(path.string() + ": writing " + (gif ? "a GIF" : "video") +
                      " needs the ffmpeg program: pip install imageio-ffmpeg (the Python package "
                      "finds it), apt-get install ffmpeg, or IBFVS_FFMPEG=/path/to/ffmpeg; "
                      "or write PNG frames with --out frame%04d.png");
-  if (named && *named && access(named, X_OK) != 0)
-    throw InputError(path.string() + ": IBFVS_FFMPEG names no program that runs (" +
-                     std::string(named) + ")");
+  if (!named.empty() && access(named.c_str(), X_OK) != 0)
+    throw InputError(path.string() + ": IBFVS_FFMPEG names no program that runs (" + named + ")");
   // A dying ffmpeg must not kill us with SIGPIPE; fwrite reports the error.
   std::signal(SIGPIPE, SIG_IGN);
   // Every format but GIF wants an even size: padded here as VideoEncoder's

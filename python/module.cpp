@@ -25,6 +25,7 @@
 #include <glm/trigonometric.hpp>
 
 #include "ibfvs/core/fields/lonlat_grid.h"
+#include "ibfvs/core/fields/topology.h"
 #include "ibfvs/core/image/colormap.h"
 #include "ibfvs/core/image/image.h"
 #include "ibfvs/core/mesh/polygon.h"
@@ -38,6 +39,7 @@
 #include "ibfvs/render/host_flow.h"
 #include "ibfvs/render/session.h"
 #include "ibfvs/video/video_writer.h"
+#include "topology_binding.h"
 #ifdef IBFVS_HAVE_VTK
 #include "ibfvs/vtk/vtk_io.h"
 #endif
@@ -568,6 +570,42 @@ PYBIND11_MODULE(_ibfvs, m) {
       "set_netcdf_reader", &ibfvs::python::set_netcdf_reader, py::arg("variables"), py::arg("read"),
       "Where the build has no netCDF-C: VARIABLES(path) -> names and READ(path, variable,\n"
       "time_index) -> (lon, lat, values, units, time_steps) read netCDF files (None, None: none).");
+  m.def(
+      "topology",
+      [](const std::string& scene_file, const ibfvs::python::Options& options, double min_strength,
+         double min_length) {
+        return ibfvs::python::topology_of(
+            prepare_scene(ibfvs::python::scene_from(scene_file, options)), min_strength,
+            min_length);
+      },
+      py::arg("scene_file"), py::arg("options"), py::arg("min_strength"), py::arg("min_length"),
+      "The topology of a scene's field (ibfvs.topology).");
+  m.def(
+      "topology",
+      [](const ibfvs::python::Array<double>& points,
+         const ibfvs::python::Array<std::int64_t>& triangles,
+         const std::map<std::string, py::array>& point_arrays,
+         const std::map<std::string, py::array>& cell_arrays, const ibfvs::python::Options& options,
+         const std::string& name, double min_strength, double min_length) {
+        return ibfvs::python::topology_of(
+            prepare_scene(
+                ibfvs::python::scene_from("", options),
+                ibfvs::python::mesh_from_arrays(points, triangles, point_arrays, cell_arrays),
+                name),
+            min_strength, min_length);
+      },
+      py::arg("points"), py::arg("triangles"), py::arg("point_arrays"), py::arg("cell_arrays"),
+      py::arg("options"), py::arg("name"), py::arg("min_strength"), py::arg("min_length"),
+      "The topology of the field on a mesh of arrays (ibfvs.topology).");
+  m.def(
+      "topology_kinds",
+      [] {
+        std::vector<std::tuple<int, std::string, std::array<int, 3>>> out;
+        for (const ibfvs::KindStyle& k : ibfvs::kind_styles())
+          out.emplace_back(k.kind, k.name, std::array<int, 3>{k.rgb[0], k.rgb[1], k.rgb[2]});
+        return out;
+      },
+      "Every `kind` of the topology: (value, name, (r, g, b)).");
   m.def(
       "table_positions",
       [](const std::vector<float>& values, double lo, double hi, bool log) {

@@ -13,6 +13,7 @@
 #include "ibfvs/core/scene/mesh_source.h"
 #include "ibfvs/core/support/error.h"
 #include "ibfvs/core/support/file_names.h"
+#include "ibfvs/render_command.h"
 
 namespace ibfvs::app {
 namespace fs = std::filesystem;
@@ -61,10 +62,7 @@ int run_geometry(const GeometryOptions& o) {
     if (ext == ".vtp") require_dataset_io(o.out, "--out");
     if (same_file(o.out, o.mesh))
       throw InputError("--out: " + o.out + " is the input mesh; writing it would destroy it");
-    const fs::path parent = fs::path(o.out).parent_path();
-    std::error_code ec;
-    if (!parent.empty() && !fs::is_directory(parent, ec))
-      throw InputError("--out: the folder '" + parent.string() + "' does not exist");
+    ensure_parent(o.out, "--out");
   }
   using clock = std::chrono::steady_clock;
   const auto seconds = [](clock::time_point a, clock::time_point b) {

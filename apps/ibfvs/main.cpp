@@ -15,6 +15,7 @@
 #include "ibfvs/options_markdown.h"
 #include "ibfvs/quality_command.h"
 #include "ibfvs/render_command.h"
+#include "ibfvs/topology_command.h"
 #include "ibfvs/view_command.h"
 #ifdef IBFVS_HAVE_VTK
 #include "ibfvs/vtk/vtk_io.h"
@@ -62,6 +63,13 @@ int main(int argc, char** argv) {
       "Measure the picture of a scene (the same options as render): alignment with the flow, "
       "background inflow, pattern speed against the flow, flicker, contrast");
   ibfvs::app::add_quality_options(*quality, *quality_scene, *quality_options);
+  auto topology_scene = std::make_unique<ibfvs::app::SceneOptions>();
+  auto topology_options = std::make_unique<ibfvs::app::TopologyOptions>();
+  CLI::App* topology = app.add_subcommand(
+      "topology",
+      "Skin-friction topology of a scene's field (the same options as render): critical points, "
+      "separation and attachment lines, written as VTK PolyData (-o OUT.vtp)");
+  ibfvs::app::add_topology_options(*topology, *topology_scene, *topology_options);
   bool keys_markdown = false;
   CLI::App* keys = app.add_subcommand(
       "keys", "List every scene key (scene files; the same as render's flags) with its default");
@@ -77,19 +85,20 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help
     // One line in the same form as every other error.
-    if (*render || *geometry || *view || *bench || *keys || *quality || *options)
+    if (*render || *geometry || *view || *bench || *keys || *quality || *options || *topology)
       std::fprintf(stderr, "ibfvs: error: %s (see ibfvs %s --help)\n", e.what(),
-                   *render    ? "render"
-                   : *view    ? "view"
-                   : *bench   ? "bench"
-                   : *keys    ? "keys"
-                   : *quality ? "quality"
-                   : *options ? "options"
-                              : "geometry");
+                   *render     ? "render"
+                   : *view     ? "view"
+                   : *bench    ? "bench"
+                   : *keys     ? "keys"
+                   : *quality  ? "quality"
+                   : *options  ? "options"
+                   : *topology ? "topology"
+                               : "geometry");
     else
       std::fprintf(stderr,
                    "ibfvs: error: unknown command '%s' (expected render, view, geometry, bench, "
-                   "quality, keys or options; see ibfvs "
+                   "quality, topology, keys or options; see ibfvs "
                    "--help)\n",
                    argv[1]);
     return 1;
@@ -103,6 +112,7 @@ int main(int argc, char** argv) {
     if (*view) return ibfvs::app::run_view(*view_options);
     if (*bench) return ibfvs::app::run_bench(*bench_options);
     if (*quality) return ibfvs::app::run_quality(*quality_scene, *quality_options);
+    if (*topology) return ibfvs::app::run_topology(*topology_scene, *topology_options);
     if (*keys) {
       std::fputs(ibfvs::app::scene_keys_table(keys_markdown).c_str(), stdout);
       return 0;

@@ -44,7 +44,9 @@ void add_scene_options(CLI::App& cmd, SceneOptions& o) {
   cmd.add_option("input", o.input,
                  "SCENE.toml (every key a setting; flags override it) or a mesh (as --mesh)");
   for (const SceneKey& key : scene_keys()) {
-    const std::string flag = flag_of(key.name == "quiet" ? "quiet,-q" : key.name);
+    const std::string flag = flag_of(key.name == "quiet" ? "quiet,-q"
+                                     : key.name == "out" ? "out,-o"
+                                                         : key.name);
     CLI::Option* option = nullptr;
     if (key.kind == KeyKind::Flag) {
       // A flag that is on by default is turned off by --no-NAME.
@@ -202,6 +204,8 @@ void check_not_input(const fs::path& out, const std::vector<std::string>& inputs
                        " is an input of this render; writing it would destroy " + input);
 }
 
+}  // namespace
+
 void ensure_parent(const fs::path& out, const char* option) {
   const fs::path parent = out.parent_path();
   std::error_code ec;
@@ -210,8 +214,6 @@ void ensure_parent(const fs::path& out, const char* option) {
   if (!parent.empty() && !fs::is_directory(parent, ec))
     throw InputError(std::string(option) + ": the folder '" + parent.string() + "' does not exist");
 }
-
-}  // namespace
 
 int run_render(const Scene& o, const std::string& scene_file) {
   // ---- output paths (checked before anything is loaded)

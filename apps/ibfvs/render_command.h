@@ -5,6 +5,7 @@
 // argument, parsed once into a typed Scene.
 
 #include <exception>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,10 @@ Scene scene_from_command_line(const SceneOptions& options);
 
 /// The command line's flag for a scene key: color_range -> --color-range.
 std::string flag_of(std::string_view key);
+
+/// Throws InputError "OPTION: ..." when `out` is a folder or its folder
+/// does not exist (every command that writes a file).
+void ensure_parent(const std::filesystem::path& out, const char* option);
 
 /// One line for an error: a SettingError names the flag, others as they are.
 std::string error_line(const std::exception& error);

@@ -25,7 +25,7 @@ import numpy as np
 
 from . import _external, _ibfvs
 
-__all__ = ["render", "Animation", "Video", "widget", "keys", "has_vtk", "__version__"]
+__all__ = ["render", "Animation", "Video", "widget", "keys", "topology", "Topology", "KINDS", "KIND_COLOURS", "has_vtk", "__version__"]
 
 __version__ = _ibfvs.__version__  # CMakeLists.txt's project(), the one version
 has_vtk = _ibfvs.has_vtk
@@ -129,6 +129,41 @@ def _put_vectors(vectors, points, triangles, point_arrays, cell_arrays):
                          f"or one per triangle ({n_tris})")
 
 
+def _source(source, triangles, vectors, options, memory=None):
+    """What Animation(source, triangles, vectors, **options) is given, as
+    ("file", scene_file) with the mesh put in OPTIONS, or ("arrays", points,
+    triangles, point_arrays, cell_arrays, name); OPTIONS gets the field."""
+    point_arrays, cell_arrays = {}, {}
+    name = "arrays"
+    if source is None or isinstance(source, (str, os.PathLike)):
+        if triangles is not None:
+            raise TypeError("a file takes no triangles")
+        path = "" if source is None else os.fspath(source)
+        if isinstance(vectors, str):
+            options.setdefault("field", "file:" + vectors)
+        if path.endswith(".toml"):
+            return ("file", path)
+        if path:
+            options["mesh"] = path
+        return ("file", "")
+    if hasattr(source, "points") and hasattr(source, "faces"):
+        if triangles is not None:
+            raise TypeError("a mesh object takes no separate triangles")
+        points, triangles, point_arrays, cell_arrays = _mesh_arrays(source, memory)
+        name = type(source).__name__
+    else:
+        points = _check_float_array("points", source)
+        if triangles is None:
+            raise TypeError("arrays need triangles: Animation(points, triangles, vectors)")
+        triangles = _check_index_array(triangles)
+    if isinstance(vectors, str):
+        options.setdefault("field", "file:" + vectors)
+    elif vectors is not None:
+        _put_vectors(vectors, points, triangles, point_arrays, cell_arrays)
+        options.setdefault("field", "file:vectors")
+    return ("arrays", points, triangles, point_arrays, cell_arrays, name)
+
+
 class Animation(_ibfvs.Animation):
     """An IBFVS animation in its own headless GL context.
 
@@ -143,37 +178,13 @@ class Animation(_ibfvs.Animation):
     def __init__(self, source=None, triangles=None, vectors=None, **options):
         if "size" in options and isinstance(options["size"], (tuple, list)):
             options["size"] = tuple(options["size"])
-        point_arrays, cell_arrays = {}, {}
-        name = "arrays"
-        if source is None or isinstance(source, (str, os.PathLike)):
-            if triangles is not None:
-                raise TypeError("a file takes no triangles")
-            path = "" if source is None else os.fspath(source)
-            if isinstance(vectors, str):
-                options.setdefault("field", "file:" + vectors)
-            if path.endswith(".toml"):
-                super().__init__(path, _options(options))
-            else:
-                if path:
-                    options["mesh"] = path
-                super().__init__("", _options(options))
-            return
         if hasattr(source, "points") and hasattr(source, "faces"):
-            if triangles is not None:
-                raise TypeError("a mesh object takes no separate triangles")
             self._splits = _ibfvs.SplitMemory()  # its next states' cells split alike
-            points, triangles, point_arrays, cell_arrays = _mesh_arrays(source, self._splits)
-            name = type(source).__name__
-        else:
-            points = _check_float_array("points", source)
-            if triangles is None:
-                raise TypeError("arrays need triangles: Animation(points, triangles, vectors)")
-            triangles = _check_index_array(triangles)
-        if isinstance(vectors, str):
-            options.setdefault("field", "file:" + vectors)
-        elif vectors is not None:
-            _put_vectors(vectors, points, triangles, point_arrays, cell_arrays)
-            options.setdefault("field", "file:vectors")
+        source_args = _source(source, triangles, vectors, options, getattr(self, "_splits", None))
+        if source_args[0] == "file":
+            super().__init__(source_args[1], _options(options))
+            return
+        _, points, triangles, point_arrays, cell_arrays, name = source_args
         super().__init__(points, triangles, point_arrays, cell_arrays, _options(options), name)
         self._data = (points, triangles, point_arrays, cell_arrays)
 
@@ -318,3 +329,115 @@ def render(points, triangles=None, vectors=None, *, size=(512, 512), frames=150,
     anim = Animation(points, triangles, vectors, size=size, **options)
     anim.step(frames)
     return np.array(anim.image(alpha_channel))
+
+
+#: Issue 64's `kind` values (critical points 1-6, lines 10-11): names, and
+#: the colours every front end draws them in (sRGB 0-255).
+KINDS = {kind: name for kind, name, _ in _ibfvs.topology_kinds()}
+KIND_COLOURS = {kind: tuple(rgb) for kind, _, rgb in _ibfvs.topology_kinds()}
+
+
+class Topology:
+    """The skin-friction topology of a field (ibfvs.topology): numpy arrays.
+
+    points (k, 3), normals (k, 3), kind (k,), index (k,), eigenvalues (k, 4):
+    the critical points, the surface's normal there, their kind (KINDS),
+    Poincare index and the Jacobian's eigenvalues (real and imaginary part of
+    the first, then the second);
+    lines: a list of dicts with kind (10 separation, 11 attachment), points
+    (p, 3), normals (p, 3), magnitude (p,), eigenvalues (p, 2), closed,
+    strength, length;
+    index_sum, euler_characteristic, summary."""
+
+    def __init__(self, found):
+        self.points = found["points"]
+        self.normals = found["normals"]
+        self.kind = found["kind"]
+        self.index = found["index"]
+        self.eigenvalues = found["eigenvalues"]
+        self.lines = list(found["lines"])
+        self.index_sum = found["index_sum"]
+        self.euler_characteristic = found["euler_characteristic"]
+        self.degenerate_triangles = found["degenerate_triangles"]
+        self.zero_triangles = found["zero_triangles"]
+        self.summary = found["summary"]
+
+    def __repr__(self):
+        return f"<ibfvs.Topology {self.summary}>"
+
+    def count(self, kind):
+        """How many points or lines of KIND (a number or a name of KINDS)."""
+        if isinstance(kind, str):
+            kind = {v: k for k, v in KINDS.items()}[kind]
+        if kind >= 10:
+            return sum(1 for line in self.lines if line["kind"] == kind)
+        return int(np.count_nonzero(self.kind == kind))
+
+    def to_pyvista(self):
+        """A pyvista.PolyData laid out as `ibfvs topology` writes its .vtp: a
+        vertex per critical point, a polyline per line; cell arrays kind and
+        strength, point arrays index, magnitude, eigenvalues and Normals."""
+        import pyvista
+
+        k = len(self.points)
+        pts = [self.points.reshape(-1, 3)]
+        normals = [self.normals.reshape(-1, 3)]
+        index = [self.index.astype(np.int32)]
+        magnitude = [np.zeros(k, np.float32)]
+        eigen = [self.eigenvalues.reshape(-1, 4)]
+        kind = [self.kind.astype(np.int32)]
+        strength = [np.abs(self.eigenvalues[:, [0, 2]]).max(axis=1) if k else np.zeros(0)]
+        verts = np.column_stack([np.ones(k, np.int64), np.arange(k)]).ravel()
+        cells, start = [], k
+        for line in self.lines:
+            p = line["points"]
+            ids = list(range(start, start + len(p))) + ([start] if line["closed"] else [])
+            cells += [len(ids)] + ids
+            start += len(p)
+            pts.append(p)
+            normals.append(line["normals"])
+            index.append(np.zeros(len(p), np.int32))
+            magnitude.append(line["magnitude"])
+            e = np.zeros((len(p), 4))
+            e[:, 0], e[:, 2] = line["eigenvalues"][:, 0], line["eigenvalues"][:, 1]
+            eigen.append(e)
+            kind.append(np.array([line["kind"]], np.int32))
+            strength.append(np.array([line["strength"]]))
+        mesh = pyvista.PolyData(np.concatenate(pts) if start else np.zeros((0, 3)))
+        if k:
+            mesh.verts = verts
+        if self.lines:
+            mesh.lines = np.array(cells, np.int64)
+        mesh.point_data["index"] = np.concatenate(index)
+        mesh.point_data["Normals"] = np.concatenate(normals).astype(np.float32)
+        mesh.point_data["magnitude"] = np.concatenate(magnitude).astype(np.float32)
+        mesh.point_data["eigenvalues"] = np.concatenate(eigen)
+        mesh.cell_data["kind"] = np.concatenate(kind)
+        mesh.cell_data["strength"] = np.concatenate(strength).astype(np.float64)
+        mesh.field_data["summary"] = [self.summary]
+        return mesh
+
+
+def topology(source=None, triangles=None, vectors=None, *, min_strength=0.1, min_length=4.0, **options):
+    """The skin-friction topology of a field on a surface: its critical points
+    (zeros of the field, by the Jacobian's eigenvalues) and its separation and
+    attachment lines (Kenwright, Henze and Levit's eigenvector method in its
+    parallel-vectors form); docs/cfd.md.
+
+    source, triangles, vectors and options as for Animation (arrays, a
+    VTK-style mesh, a file or a scene; options the scene keys: field, blocks,
+    reverse, time, ...). Returns a Topology of numpy arrays, or for a
+    VTK-style mesh (PyVista's PolyData) a pyvista.PolyData as `ibfvs
+    topology` writes it. min_strength: a line is kept where the flow
+    converges onto it (or diverges) at least this fraction of the field's
+    rate; min_length: lines at least this many edges long."""
+    mesh_object = hasattr(source, "points") and hasattr(source, "faces")
+    args = _source(source, triangles, vectors, options)
+    if args[0] == "file":
+        found = _ibfvs.topology(args[1], _options(options), float(min_strength), float(min_length))
+    else:
+        _, points, tris, point_arrays, cell_arrays, name = args
+        found = _ibfvs.topology(points, tris, point_arrays, cell_arrays, _options(options), name,
+                                float(min_strength), float(min_length))
+    result = Topology(found)
+    return result.to_pyvista() if mesh_object else result

@@ -179,6 +179,7 @@ class FlowLayer:
         self._colour_key = None
         self._problem = None
         self._tags = []
+        self.topology = None  # add_flow(..., topology=True): the features drawn
         self.set(**settings)
         if frames_per_step is not None:
             self._layer.set_frames_per_step(int(frames_per_step))
@@ -403,7 +404,8 @@ class FlowLayer:
         warnings.warn(f"ibfvs: {problem}; drawing the plain surface", RuntimeWarning, stacklevel=2)
 
 
-def add_flow(plotter, mesh, vectors=None, *, frames_per_step=None, animate=True, **keywords):
+def add_flow(plotter, mesh, vectors=None, *, frames_per_step=None, animate=True, topology=False,
+             **keywords):
     """Adds `mesh` to `plotter` with the animated flow texture of its array
     `vectors` (3 components, point or cell data; default the active vectors)
     and returns the actor, as `plotter.add_mesh` does.
@@ -414,7 +416,11 @@ def add_flow(plotter, mesh, vectors=None, *, frames_per_step=None, animate=True,
     log_scale, scalar_bar_args, show_scalar_bar, color, ...). frames_per_step:
     at least this many texture frames for each change of the data
     (FlowLayer.update), 3 by default. animate: a window re-renders on a
-    timer (about 30 frames a second) while it is open.
+    timer (about 30 frames a second) while it is open. topology: True, or a
+    dict of ibfvs.topology's options (min_strength, min_length), draws the
+    field's critical points (spheres coloured by kind) and separation and
+    attachment lines (red, blue) over the texture, with a legend; the
+    features are `actor.ibfvs.topology` (a pyvista.PolyData).
 
     Raises ValueError naming the problem for a missing or non-vector
     array, a mesh without a surface, NaN points or a closed plotter, and
@@ -446,9 +452,44 @@ def add_flow(plotter, mesh, vectors=None, *, frames_per_step=None, animate=True,
         plotter._ibfvs_layers = []
     plotter._ibfvs_layers.append(layer)
     pv.set_new_attribute(actor, "ibfvs", layer)
+    if topology:
+        options = dict(topology) if isinstance(topology, dict) else {}
+        layer.topology = _add_topology(plotter, surface, name, settings, options)
     if animate and not plotter.off_screen:
         _animate(plotter)
     return actor
+
+
+def _add_topology(plotter, surface, vectors, settings, options):
+    """The field's topology over the texture: lines and point glyphs in the
+    kinds' colours, drawn a little in front of the surface they lie on."""
+    from . import KIND_COLOURS, KINDS, topology
+
+    keys = {k: v for k, v in settings.items() if k in ("reverse", "tangent")}
+    found = topology(surface, vectors=vectors, **keys, **options)
+    size = surface.length or 1.0
+    kinds = found.cell_data["kind"]
+    legend = []
+    for kind in sorted(set(int(k) for k in kinds)):
+        part = found.extract_cells(np.flatnonzero(kinds == kind))
+        colour = [c / 255.0 for c in KIND_COLOURS[kind]]
+        if kind >= 10:
+            actor = plotter.add_mesh(part, color=colour, line_width=3, reset_camera=False,
+                                     lighting=False, pickable=False)
+        else:
+            glyphs = pv.PolyData(part.points).glyph(geom=pv.Sphere(radius=0.006 * size),
+                                                    scale=False, orient=False)
+            actor = plotter.add_mesh(glyphs, color=colour, reset_camera=False, pickable=False)
+        # In front of the surface they lie on: VTK's coincident-topology
+        # offset for lines and points, a little more for the glyphs.
+        mapper = actor.GetMapper()
+        mapper.SetResolveCoincidentTopologyToPolygonOffset()
+        mapper.SetRelativeCoincidentTopologyLineOffsetParameters(0, -2000)
+        mapper.SetRelativeCoincidentTopologyPolygonOffsetParameters(0, -2000)
+        legend.append([KINDS[kind], colour])
+    if legend:
+        plotter.add_legend(legend, bcolor=None, face="rectangle", size=(0.22, 0.04 * len(legend)))
+    return found
 
 
 def _animate(plotter):

@@ -603,3 +603,82 @@ def test_a_window_animates_by_itself_under_x():
     window, frames, problem = done.stdout.split()[-3:]
     assert window == "vtkXOpenGLRenderWindow"
     assert int(frames) >= 20 and problem == "None", done.stdout
+
+
+def spiral_sphere(res=96, pull=1.0):
+    """The unit sphere, turning about +Z and pulled onto its equator (a closed
+    separation line; pull < 0: an attachment line), spiralling out of the
+    poles."""
+    s = pv.Sphere(radius=1.0, theta_resolution=res, phi_resolution=res)
+    p = s.points / np.linalg.norm(s.points, axis=1)[:, None]
+    z = p[:, 2:3]
+    s.point_data["spiral"] = np.cross([0.0, 0.0, 1.0], p) - pull * z * (np.array([0, 0, 1.0]) - z * p)
+    return s
+
+
+def test_topology_gives_the_separation_line_and_the_foci_as_polydata():
+    found = ibfvs.topology(spiral_sphere(), vectors="spiral")
+    assert isinstance(found, pv.PolyData)
+    kind = found.cell_data["kind"]
+    assert sorted(kind.tolist()) == [5, 5, 10], found.field_data["summary"]  # two foci, a line
+    assert found.n_verts == 2 and found.n_lines == 1
+    line = found.extract_cells(np.flatnonzero(kind == 10))
+    assert np.abs(line.points[:, 2]).max() < 0.02  # on the equator (edges about 0.065)
+    assert found.point_data["index"].sum() == 2  # Poincare-Hopf: the sphere's 2
+    assert "index sum 2 (Euler characteristic 2)" in found.field_data["summary"][0]
+    reverse = ibfvs.topology(spiral_sphere(pull=-1.0), vectors="spiral")
+    assert sorted(reverse.cell_data["kind"].tolist()) == [4, 4, 11]
+    arrays = ibfvs.topology(*_arrays_of(spiral_sphere()))
+    assert isinstance(arrays, ibfvs.Topology)
+    assert arrays.count("separation line") == 1 and arrays.lines[0]["closed"]
+
+
+def _arrays_of(s):
+    return s.points, s.regular_faces, s.point_data["spiral"]
+
+
+def test_the_command_writes_a_vtp_that_vtk_reads(tmp_path):
+    out = tmp_path / "torus.vtp"
+    done = subprocess.run([ibfvs_command(), "topology", "torus", "--field", "gradient:down:1,0,0.137",
+                           "-o", str(out)], capture_output=True, text=True, check=True).stdout
+    assert "4 critical points (2 saddles, 1 attracting node, 1 repelling node)" in done
+    read = pv.read(out)
+    assert read.n_verts == 4
+    kinds = read.cell_data["kind"].tolist()
+    assert sorted(kinds[:4]) == [1, 1, 2, 3] and set(kinds[4:]) <= {10, 11}
+    assert read.point_data["eigenvalues"].shape == (read.n_points, 4)
+    assert read.point_data["index"].sum() == 0
+
+
+def test_add_flow_draws_the_topology_over_the_texture():
+    p = start(plotter())
+    actor = ibfvs.pyvista.add_flow(p, spiral_sphere(), vectors="spiral", topology=True)
+    # From the side: the equator, a separation line, across the middle.
+    p.camera.position = (5.0, 0.0, 0.0)
+    p.camera.focal_point = (0.0, 0.0, 0.0)
+    p.camera.up = (0.0, 0.0, 1.0)
+    p.enable_parallel_projection()
+    p.camera.parallel_scale = SCALE
+    picture = frames(p, 20)
+    assert actor.ibfvs.problem is None
+    assert sorted(actor.ibfvs.topology.cell_data["kind"].tolist()) == [5, 5, 10]
+    red = (picture[..., 0] > 170) & (picture[..., 1] < 90) & (picture[..., 2] < 90)
+    w, h = SIZE
+    per_unit = (h / 2.0) / SCALE
+    rows = np.flatnonzero(red.any(axis=1))
+    middle = h / 2.0
+    # The line lies along the middle row, in front of the texture...
+    band = red[int(middle - 4):int(middle + 4), :]
+    columns = np.arange(w) + 0.5 - w / 2.0
+    across = np.abs(columns) < 0.8 * per_unit
+    assert band.any(axis=0)[across].mean() > 0.9, "the separation line is not drawn across"
+    # ...and nowhere else but the legend's swatch (the top right corner).
+    body = red[:, : int(0.7 * w)]
+    far = np.abs(np.flatnonzero(body.any(axis=1)) + 0.5 - middle)
+    assert far.max() < 6, f"red off the equator: rows {rows}"
+    # The texture still moves around it.
+    again = frames(p, 1)
+    off_line = np.abs(np.arange(h) + 0.5 - middle)[:, None] > 10
+    surface = (np.hypot(columns[None, :], (middle - np.arange(h) - 0.5)[:, None]) < 0.8 * per_unit)
+    change = np.abs(picture.astype(int) - again.astype(int)).mean(axis=2)
+    assert change[surface & off_line].mean() > 3.0

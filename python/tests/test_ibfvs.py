@@ -345,3 +345,51 @@ def test_the_widget_without_anywidget_says_how_to_install_it():
         pytest.skip("anywidget is installed: python/package_tests test the widget")
     with pytest.raises(ImportError, match=r"ibfvs\[notebook\]"):
         ibfvs.widget(mesh="torus", size=(32, 32))
+
+
+def uv_sphere(rows=48, columns=72):
+    """A unit sphere of rows x columns quads (its poles left open)."""
+    th, ph = np.meshgrid(np.linspace(0.05, np.pi - 0.05, rows),
+                         np.linspace(0, 2 * np.pi, columns, endpoint=False), indexing="ij")
+    points = np.stack([np.sin(th) * np.cos(ph), np.sin(th) * np.sin(ph), np.cos(th)], -1)
+    points = points.reshape(-1, 3)
+    tris = []
+    for i in range(rows - 1):
+        for j in range(columns):
+            a, b = i * columns + j, i * columns + (j + 1) % columns
+            tris += [(a, a + columns, b), (b, a + columns, b + columns)]
+    return points, np.array(tris)
+
+
+def test_topology_of_arrays_finds_the_closed_separation_line_and_its_reverse():
+    points, tris = uv_sphere()
+    axis = np.array([0.3, 0.2, 0.93]) / np.linalg.norm([0.3, 0.2, 0.93])
+    z = points @ axis
+    spiral = np.cross(axis, points) - z[:, None] * (axis - z[:, None] * points)
+    found = ibfvs.topology(points, tris, spiral)
+    assert found.count("separation line") == 1 and found.count("attachment line") == 0
+    line = found.lines[0]
+    assert line["closed"] and line["kind"] == 10
+    assert np.abs(line["points"] @ axis).max() < 0.02  # on the great circle across the axis
+    assert abs(line["length"] - 2 * np.pi) < 0.05
+    assert line["strength"] == pytest.approx(1.0, abs=0.1)  # the pull onto it
+    assert found.kind.tolist() == [5, 5] and found.index_sum == 2  # the two repelling foci
+    assert np.allclose(np.abs(found.points @ axis), 1.0, atol=0.01)
+    assert "open surface, 2 boundary loops" in found.summary  # the poles are holes
+    reverse = ibfvs.topology(points, tris, -spiral)
+    assert [ln["kind"] for ln in reverse.lines] == [11] and reverse.kind.tolist() == [4, 4]
+    assert ibfvs.KINDS[10] == "separation line" and ibfvs.KIND_COLOURS[10][0] > 200
+
+
+def test_topology_of_a_scene_and_its_errors():
+    found = ibfvs.topology("torus", field="gradient:down:1,0,0.137")
+    assert sorted(found.kind.tolist()) == [1, 1, 2, 3] and found.index_sum == 0
+    assert found.euler_characteristic == 0
+    assert np.allclose(np.linalg.norm(found.normals, axis=1), 1.0, atol=1e-4)
+    zero = ibfvs.topology("torus", field="uniform:0,0,0")
+    assert len(zero.kind) == 0 and not zero.lines and zero.zero_triangles == 20480
+    points, tris = uv_sphere(8, 8)
+    with pytest.raises(ValueError, match="vectors has 3 rows"):
+        ibfvs.topology(points, tris, np.zeros((3, 3)))
+    with pytest.raises(ValueError, match="no such file"):
+        ibfvs.topology("no-such-mesh.ply")

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <string>
+#include <unordered_map>
 #include <unordered_set>
 
 #include <glm/geometric.hpp>
@@ -14,8 +16,13 @@ namespace ibfvs {
 namespace {
 
 // Barycentric slack: a zero this close outside a triangle is on its edge,
-// and found by the neighbour too; the copies are merged below.
-constexpr double kOnEdge = 1e-7;
+// and found by the neighbour too; the copies are merged below (within
+// kMerge of a mean edge). Each triangle projects the corners' vectors into
+// its own plane, so on a curved surface a zero on an edge (where a symmetry
+// plane puts it) lands a little outside both neighbours: 2e-4 of the edge on
+// the torus of the tests, 32 triangles around.
+constexpr double kOnEdge = 1e-3;
+constexpr double kMerge = 4e-3;
 
 struct Vec2 {
   double x = 0, y = 0;
@@ -25,6 +32,19 @@ struct Frame {  // a triangle's plane: origin, two unit axes
   glm::dvec3 origin, e1, e2;
   [[nodiscard]] Vec2 of(const glm::dvec3& v) const { return {glm::dot(v, e1), glm::dot(v, e2)}; }
 };
+
+// The distance from the origin to the triangle (a, b, c) in the plane.
+double origin_distance(const Vec2& a, const Vec2& b, const Vec2& c) {
+  const auto side = [](const Vec2& p, const Vec2& q) { return p.x * q.y - p.y * q.x; };
+  const double s0 = side(a, b), s1 = side(b, c), s2 = side(c, a);
+  if ((s0 >= 0 && s1 >= 0 && s2 >= 0) || (s0 <= 0 && s1 <= 0 && s2 <= 0)) return 0.0;
+  const auto to_segment = [](const Vec2& p, const Vec2& q) {
+    const double dx = q.x - p.x, dy = q.y - p.y, len2 = dx * dx + dy * dy;
+    const double t = len2 > 0 ? std::clamp(-(p.x * dx + p.y * dy) / len2, 0.0, 1.0) : 0.0;
+    return std::hypot(p.x + t * dx, p.y + t * dy);
+  };
+  return std::min({to_segment(a, b), to_segment(b, c), to_segment(c, a)});
+}
 
 void classify(double a, double b, double c, double d, CriticalPoint& p) {
   // J = [a b; c d]
@@ -58,6 +78,20 @@ void classify(double a, double b, double c, double d, CriticalPoint& p) {
 
 }  // namespace
 
+std::span<const KindStyle> kind_styles() {
+  static constexpr KindStyle kStyles[] = {
+      {1, "saddle", {255, 221, 0}},
+      {2, "attracting node", {0, 158, 115}},
+      {3, "repelling node", {230, 97, 0}},
+      {4, "attracting focus", {86, 180, 233}},
+      {5, "repelling focus", {204, 121, 167}},
+      {6, "centre", {255, 255, 255}},
+      {10, "separation line", {220, 20, 30}},
+      {11, "attachment line", {30, 90, 255}},
+  };
+  return kStyles;
+}
+
 const char* kind_name(CriticalKind kind) {
   switch (kind) {
     case CriticalKind::saddle:
@@ -87,7 +121,7 @@ long euler_characteristic(const TriMesh& mesh) {
          static_cast<long>(mesh.triangles.size());
 }
 
-CriticalPoints find_critical_points(const TriMesh& mesh, std::span<const glm::vec3> vectors) {
+void check_topology_input(const TriMesh& mesh, std::span<const glm::vec3> vectors) {
   if (vectors.size() != mesh.positions.size())
     throw InputError("topology: " + std::to_string(vectors.size()) + " vectors for " +
                      std::to_string(mesh.positions.size()) + " points");
@@ -97,13 +131,18 @@ CriticalPoints find_critical_points(const TriMesh& mesh, std::span<const glm::ve
         !std::isfinite(mesh.positions[i].y) || !std::isfinite(mesh.positions[i].z))
       throw InputError("topology: point " + std::to_string(i) +
                        " has a vector or a position that is not finite");
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f)
+    for (const std::uint32_t v : mesh.triangles[f])
+      if (v >= mesh.positions.size())
+        throw InputError("topology: triangle " + std::to_string(f) + " names a point out of range");
+}
+
+CriticalPoints find_critical_points(const TriMesh& mesh, std::span<const glm::vec3> vectors) {
+  check_topology_input(mesh, vectors);
   CriticalPoints out;
   double edge_sum = 0.0;
   for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
     const Triangle& t = mesh.triangles[f];
-    if (t[0] >= mesh.positions.size() || t[1] >= mesh.positions.size() ||
-        t[2] >= mesh.positions.size())
-      throw InputError("topology: triangle " + std::to_string(f) + " names a point out of range");
     const glm::dvec3 p0(mesh.positions[t[0]]), p1(mesh.positions[t[1]]), p2(mesh.positions[t[2]]);
     const glm::dvec3 u = p1 - p0, v = p2 - p0;
     edge_sum += glm::length(u);
@@ -127,9 +166,9 @@ CriticalPoints find_critical_points(const TriMesh& mesh, std::span<const glm::ve
     const double scale =
         std::max({std::hypot(w0.x, w0.y), std::hypot(w1.x, w1.y), std::hypot(w2.x, w2.y)});
     if (!(std::abs(det) > 1e-12 * scale * scale)) {
-      // No isolated zero: a zero along a line or none at all. Counted where
-      // the field vanishes in the triangle (it changes sign across it).
-      if (scale > 0.0) ++out.degenerate_triangles;
+      // No isolated zero: a zero along a line or none at all (two corners
+      // with one vector). Counted where the field vanishes in the triangle.
+      if (scale > 0.0 && origin_distance(w0, w1, w2) <= 1e-6 * scale) ++out.degenerate_triangles;
       continue;
     }
     const double s = (-w0.x * m11 + w0.y * m01) / det;
@@ -138,6 +177,7 @@ CriticalPoints find_critical_points(const TriMesh& mesh, std::span<const glm::ve
     if (s < -kOnEdge || r < -kOnEdge || b0 < -kOnEdge) continue;
     CriticalPoint p;
     p.triangle = f;
+    p.normal = glm::vec3(n / area2);
     p.position = glm::vec3(p0 + std::clamp(s, 0.0, 1.0) * u + std::clamp(r, 0.0, 1.0) * v);
     // J = M X^-1, X the corners' offsets in the plane's axes.
     const Vec2 a = frame.of(u), b = frame.of(v);
@@ -147,14 +187,34 @@ CriticalPoints find_critical_points(const TriMesh& mesh, std::span<const glm::ve
              m10 * i01 + m11 * i11, p);
     out.points.push_back(p);
   }
-  // A zero on an edge or a corner is found by each triangle there: one kept.
-  const double merge = 1e-4 * edge_sum / std::max<std::size_t>(mesh.triangles.size(), 1);
+  // A zero on an edge or a corner is found by each triangle there: one kept
+  // (neighbours looked up in a grid of cells as wide as the merge distance).
+  const double merge = std::max(kMerge * edge_sum / std::max<std::size_t>(mesh.triangles.size(), 1),
+                                std::numeric_limits<double>::min());
+  std::unordered_map<std::uint64_t, std::vector<std::size_t>> grid;
+  const auto cell = [&](const glm::vec3& p, int dx, int dy, int dz) {
+    const auto c = [&](float x, int d) {
+      const double k = std::clamp(std::floor(x / merge), -1e15, 1e15);  // no overflow
+      return static_cast<std::uint64_t>(static_cast<std::int64_t>(k) + d) & 0x1fffff;
+    };
+    return c(p.x, dx) << 42 | c(p.y, dy) << 21 | c(p.z, dz);
+  };
   std::vector<CriticalPoint> kept;
-  for (const CriticalPoint& p : out.points)
-    if (std::none_of(kept.begin(), kept.end(), [&](const CriticalPoint& q) {
-          return glm::length(glm::dvec3(p.position - q.position)) <= merge;
-        }))
-      kept.push_back(p);
+  for (const CriticalPoint& p : out.points) {
+    bool near = false;
+    for (int dx = -1; dx <= 1 && !near; ++dx)
+      for (int dy = -1; dy <= 1 && !near; ++dy)
+        for (int dz = -1; dz <= 1 && !near; ++dz) {
+          const auto it = grid.find(cell(p.position, dx, dy, dz));
+          if (it == grid.end()) continue;
+          near = std::any_of(it->second.begin(), it->second.end(), [&](std::size_t k) {
+            return glm::length(glm::dvec3(p.position - kept[k].position)) <= merge;
+          });
+        }
+    if (near) continue;
+    grid[cell(p.position, 0, 0, 0)].push_back(kept.size());
+    kept.push_back(p);
+  }
   out.points = std::move(kept);
   for (const CriticalPoint& p : out.points) out.index_sum += p.index;
   return out;

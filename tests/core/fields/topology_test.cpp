@@ -147,6 +147,24 @@ TEST(CriticalPoints, HeightOnATorusHasTwoNodesAndTwoSaddles) {
   }
 }
 
+TEST(CriticalPoints, ZerosOnEdgesOfASymmetricMeshAreFoundOnce) {
+  // Unjittered, the height along a direction in the torus's mirror plane
+  // puts all four zeros on edges of the rings in that plane: each neighbour
+  // finds them a little outside itself, as its own plane is tilted.
+  const TriMesh m = make_torus(1.0f, 0.4f, 160, 64);
+  const glm::vec3 up = glm::normalize(glm::vec3(1.0f, 0.0f, 0.137f));
+  std::vector<glm::vec3> v;
+  for (const glm::vec3& n : m.normals) v.push_back(tangent(up, n));
+  const CriticalPoints c = find_critical_points(m, v);
+  ASSERT_EQ(c.points.size(), 4u);
+  EXPECT_EQ(c.index_sum, 0);
+  EXPECT_EQ(of_kind(c, CriticalKind::saddle).size(), 2u);
+  EXPECT_EQ(c.degenerate_triangles, 0u);  // the top and bottom rings: constant, no zero
+  for (const CriticalPoint& p : c.points)
+    EXPECT_NEAR(std::abs(glm::dot(p.position, up)), p.kind == CriticalKind::saddle ? 0.6 : 1.4,
+                0.01);
+}
+
 TEST(CriticalPoints, BadInputIsAnErrorAndDegenerateTrianglesAreCounted) {
   TriMesh m = make_globe(1);
   std::vector<glm::vec3> v(m.positions.size(), glm::vec3(0.0f));
@@ -161,6 +179,87 @@ TEST(CriticalPoints, BadInputIsAnErrorAndDegenerateTrianglesAreCounted) {
   m.triangles.push_back({0, static_cast<std::uint32_t>(m.positions.size() - 1), 1});
   std::vector<glm::vec3> ok(m.positions.size(), glm::vec3(1.0f, 0.0f, 0.0f));
   EXPECT_GE(find_critical_points(m, ok).degenerate_triangles, 1u);
+}
+
+// Rotation about `axis` with a pull of `k` towards (k > 0) or away from
+// (k < 0) the great circle across it: the flow spirals out of the two poles
+// onto that circle, a closed separation line (k < 0: the reverse, spiralling
+// off an attachment line into the poles).
+std::vector<glm::vec3> spiral_onto_circle(const TriMesh& m, const glm::vec3& axis, float k) {
+  std::vector<glm::vec3> v;
+  for (const glm::vec3& p : m.positions) {
+    const glm::vec3 n = glm::normalize(p);
+    const float z = glm::dot(axis, n);
+    v.push_back(glm::cross(axis, n) - k * z * (axis - z * n));
+  }
+  return v;
+}
+
+// Where the lines of one kind lie, and how much of the circle across `axis`
+// they cover (bins of 2 degrees of its angle).
+struct Coverage {
+  double farthest = 0.0;  // from the circle
+  double covered = 0.0;   // fraction of the bins
+  double length = 0.0;
+};
+
+Coverage coverage(const FeatureLines& lines, LineKind kind, const glm::vec3& axis) {
+  const glm::vec3 a = glm::normalize(glm::cross(axis, glm::vec3(0.0f, 0.0f, 1.0f)));
+  const glm::vec3 b = glm::cross(axis, a);
+  std::vector<char> bins(180, 0);
+  Coverage c;
+  for (const FeatureLine& l : lines.lines) {
+    if (l.kind != kind) continue;
+    c.length += l.length;
+    for (std::size_t i = 0; i < l.points.size(); ++i) {
+      const glm::vec3 p = l.points[i].position;
+      c.farthest = std::max(
+          c.farthest, std::abs(std::asin(std::clamp(
+                          static_cast<double>(glm::dot(glm::normalize(p), axis)), -1.0, 1.0))));
+      // Bins between this point and the next (segments are short).
+      const glm::vec3 q = l.points[(i + 1) % l.points.size()].position;
+      if (i + 1 == l.points.size() && !l.closed) continue;
+      double t0 = std::atan2(glm::dot(p, b), glm::dot(p, a)),
+             t1 = std::atan2(glm::dot(q, b), glm::dot(q, a));
+      if (t1 < t0) std::swap(t0, t1);
+      if (t1 - t0 > 3.14159) continue;  // across the seam: a sliver left out
+      for (double t = t0; t <= t1; t += 0.01)
+        bins[static_cast<std::size_t>((t + 3.14159265) / (2 * 3.14159265) * 180) % 180] = 1;
+    }
+  }
+  c.covered = std::count(bins.begin(), bins.end(), 1) / 180.0;
+  return c;
+}
+
+TEST(FeatureLines, ASpiralOntoACircleIsAClosedSeparationLineAndItsReverseAnAttachmentLine) {
+  const TriMesh m = jittered_globe();
+  const double edge = mean_edge(m);
+  const glm::vec3 axis = glm::normalize(glm::vec3(0.3f, 0.2f, 0.93f));
+  for (const float k : {1.0f, -1.0f}) {
+    const FeatureLines lines = find_feature_lines(m, spiral_onto_circle(m, axis, k));
+    const LineKind want = k > 0 ? LineKind::separation : LineKind::attachment;
+    const LineKind other = k > 0 ? LineKind::attachment : LineKind::separation;
+    const Coverage c = coverage(lines, want, axis);
+    EXPECT_LT(c.farthest, 0.2 * edge) << k;  // radians on the unit sphere: arc length
+    EXPECT_GT(c.covered, 0.97) << k;
+    EXPECT_NEAR(c.length, 2 * 3.14159265, 0.1) << k;  // the circle, once
+    EXPECT_EQ(coverage(lines, other, axis).length, 0.0) << k;
+    ASSERT_EQ(lines.lines.size(), 1u) << k;
+    EXPECT_TRUE(lines.lines[0].closed) << k;
+    for (const FeatureLine& l : lines.lines) {
+      EXPECT_EQ(l.kind, want);
+      EXPECT_NEAR(l.strength, 1.0, 0.1) << k;  // the pull across the circle
+    }
+  }
+}
+
+TEST(FeatureLines, NoLinesInAFieldWithoutThem) {
+  const TriMesh m = jittered_globe();
+  const glm::vec3 axis = glm::normalize(glm::vec3(-0.2f, 0.95f, 0.25f));
+  // A pure turning (closed orbits, nothing converges) and a zero field.
+  EXPECT_TRUE(find_feature_lines(m, spiral_onto_circle(m, axis, 0.0f)).lines.empty());
+  const std::vector<glm::vec3> zero(m.positions.size(), glm::vec3(0.0f));
+  EXPECT_TRUE(find_feature_lines(m, zero).lines.empty());
 }
 
 }  // namespace

@@ -170,6 +170,7 @@ void ViewerPanel::draw_more_parameters(ViewerSession& viewer) {
     viewer.set("step", format_number(d.step));
   if (enum_combo(std::string(key_label("noise_space")).c_str(), d.noise_space))
     viewer.apply_live(d);
+  if (enum_combo(std::string(key_label("overlay")).c_str(), d.overlay)) viewer.apply_live(d);
   if (enum_combo("tangent", d.tangent)) {
     try {
       viewer.set_tangent(d.tangent);

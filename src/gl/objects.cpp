@@ -449,6 +449,14 @@ void test_depth_behind_surface(bool on) {
   glDepthMask(on ? GL_FALSE : GL_TRUE);
 }
 
+void draw_over(bool on) {
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(on ? GL_LEQUAL : GL_LESS);
+  glDepthMask(on ? GL_FALSE : GL_TRUE);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, on ? GL_FALSE : GL_TRUE);
+  if (on) glDisable(GL_CULL_FACE);
+}
+
 void scissor(bool on, const glm::ivec4& box) {
   set_capability(GL_SCISSOR_TEST, on);
   if (on) glScissor(box.x, box.y, box.z, box.w);

@@ -20,5 +20,7 @@ extern const char* const contrast;
 extern const char* const display_fragment_inputs;
 extern const char* const display_fragment_main;
 extern const char* const host_fragment;
+extern const char* const overlay_vertex;
+extern const char* const overlay_fragment;
 
 }  // namespace ibfvs::shaders::glsl

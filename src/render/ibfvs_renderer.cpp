@@ -419,6 +419,12 @@ std::vector<std::uint8_t> IbfvsRenderer::read_coverage() const {
   return covered;
 }
 
+void IbfvsRenderer::draw_over_output(const std::function<void()>& draw) const {
+  targets_.display().bind();
+  gl::set_viewport(settings_.width, settings_.height);
+  draw();
+}
+
 void IbfvsRenderer::draw_to_host(glm::ivec2 origin, bool interior) const {
   const gl::SavedState saved;
   gl::prepare_host_draw();

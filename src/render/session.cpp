@@ -62,6 +62,15 @@ class Session::StepPlayer {
     renderer.set_field_mix(static_cast<float>(t - static_cast<double>(s)));
   }
 
+  [[nodiscard]] std::size_t step() const { return step_; }
+  // The step shown: its surface (moved where it moves) and field.
+  [[nodiscard]] TriMesh surface() const {
+    TriMesh mesh = mesh_of(current_);
+    if (!current_.positions.empty()) mesh.positions = current_.positions;
+    return mesh;
+  }
+  [[nodiscard]] const std::vector<glm::vec3>& field() const { return current_.field; }
+
  private:
   const TriMesh& mesh_of(const StepData& d) const { return d.mesh ? *d.mesh : *scene_.mesh; }
   // The step after s: the first again where the series loops, else s itself
@@ -231,7 +240,29 @@ void Session::render(const Camera& camera) {
 void Session::render(const ViewState& view) {
   const gl::SavedState saved;
   renderer_->render_frame(view, dt_);
+  draw_overlay(view);
   ++frame_;
+}
+
+void Session::draw_overlay(const ViewState& view) {
+  if (scene_.scene.overlay != Overlay::Topology) {
+    overlay_.reset();
+    overlay_for_.reset();
+    return;
+  }
+  const bool steps = scene_.step_count > 1;
+  const std::array<std::size_t, 4> key{data_version_, steps ? player_->step() : 0,
+                                       static_cast<std::size_t>(scene_.width),
+                                       static_cast<std::size_t>(scene_.height)};
+  const glm::ivec2 size(scene_.width, scene_.height);
+  if (!overlay_ || overlay_for_ != key) {
+    overlay_topology_ = steps ? find_topology(player_->surface(), player_->field())
+                              : find_topology(*scene_.mesh, scene_.field);
+    if (!overlay_) overlay_ = std::make_unique<TopologyOverlay>();
+    overlay_->set(overlay_topology_, size);
+    overlay_for_ = key;
+  }
+  renderer_->draw_over_output([&] { overlay_->draw(view.view, view.projection, size); });
 }
 
 void Session::advance() {
@@ -294,6 +325,7 @@ void Session::set_field(std::vector<glm::vec3> field) {
     throw InputError("the field has " + std::to_string(field.size()) + " vectors, the mesh " +
                      std::to_string(scene_.mesh->vertex_count()) + " vertices");
   scene_.field = std::move(field);
+  ++data_version_;
   const gl::SavedState saved;
   renderer_->set_field(scene_.field);
   refit_dt();
@@ -389,6 +421,7 @@ int FramePacer::next(bool changed, bool restart, bool moved, bool carried) {
 void Session::change_data(PreparedScene next) {
   if (!next.mesh) throw InputError("change_data: no mesh");
   const gl::SavedState saved;
+  ++data_version_;
   const TriMesh& from = *scene_.mesh;
   const TriMesh& to = *next.mesh;
   // A series played so far gives way to the new data.

@@ -54,6 +54,14 @@ std::string host_fragment_source() {
   return prelude(Dialect::Gl45) + glsl::host_fragment;
 }
 
+std::string overlay_vertex_source(Dialect dialect) {
+  return prelude(dialect) + glsl::overlay_vertex;
+}
+
+std::string overlay_fragment_source(Dialect dialect) {
+  return prelude(dialect) + glsl::overlay_fragment;
+}
+
 namespace {
 
 // The IBFVS pass's fragment shader after its contrast stage (also the

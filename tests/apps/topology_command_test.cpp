@@ -2,12 +2,14 @@
 // VTK's own reader reads it (the contract of issue 64).
 
 #include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <set>
 
 #include <gtest/gtest.h>
 
 #include "command_runner.h"
+#include "ibfvs/core/image/image.h"
 
 #ifdef IBFVS_HAVE_VTK
 #include <vtkCellData.h>
@@ -71,6 +73,34 @@ TEST_F(TopologyCommand, ATurningSphereHasTwoCentresAndNoLines) {
                        "lines; index sum 2 (Euler characteristic 2)"),
             std::string::npos)
       << r.out;
+}
+
+// `render --overlay topology`: the same features over the picture, in the
+// kinds' colours, with the legend's dark box in the bottom left corner.
+TEST_F(TopologyCommand, RenderDrawsTheOverlay) {
+  const test::Result r = run(
+      "render torus --field gradient:down:1,0.5,0.137 --overlay topology --size 240x200 "
+      "--frames 20 --out over.png -q");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const test::Result plain =
+      run("render torus --field gradient:down:1,0.5,0.137 --size 240x200 --frames 20 "
+          "--out plain.png -q");
+  ASSERT_EQ(plain.status, 0) << plain.err;
+  const ImageU8 over = read_png(dir_ / "over.png"), without = read_png(dir_ / "plain.png");
+  const auto count = [](const ImageU8& im, int r, int g, int b) {
+    std::size_t n = 0;
+    for (std::size_t i = 0; i + 2 < im.pixels.size(); i += im.channels)
+      n += std::abs(im.pixels[i] - r) < 30 && std::abs(im.pixels[i + 1] - g) < 30 &&
+           std::abs(im.pixels[i + 2] - b) < 30;
+    return n;
+  };
+  EXPECT_GT(count(over, 220, 20, 30), 30u);  // separation lines
+  EXPECT_GT(count(over, 30, 90, 255), 30u);  // attachment lines
+  EXPECT_GT(count(over, 255, 221, 0), 10u);  // saddles
+  EXPECT_EQ(count(without, 220, 20, 30) + count(without, 255, 221, 0), 0u);
+  // The legend: the box's dark grey at its corner (rows are bottom-up).
+  const std::uint8_t* corner = &over.pixels[(5u * over.width + 5u) * over.channels];
+  EXPECT_LT(corner[0] + corner[1] + corner[2], 3 * 30);
 }
 
 TEST_F(TopologyCommand, BadRequestsAreOneLine) {

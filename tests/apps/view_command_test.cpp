@@ -274,3 +274,44 @@ TEST(ViewerScript, ReadsActions) {
 
 }  // namespace
 }  // namespace ibfvs
+
+namespace ibfvs {
+namespace {
+
+// The overlay goes on live in the viewer (one door: the Session), and its
+// legend and features show in the window's picture; off again, they go.
+TEST_F(ViewCommand, TheTopologyOverlayGoesOnAndOffLive) {
+  if (!have_xvfb()) GTEST_SKIP() << "xvfb-run missing (Debian package xvfb)";
+  const Result v = view_under_xvfb("torus --field gradient:down:1,0.5,0.137 --size 200x200",
+                                   "5 screenshot off.png\n"
+                                   "5 set overlay topology\n"
+                                   "10 screenshot on.png\n"
+                                   "10 set overlay none\n"
+                                   "15 screenshot again.png\n"
+                                   "16 quit\n");
+  ASSERT_EQ(v.status, 0) << v.out << v.err;
+  // The kinds' colours: the saddles' yellow, the lines' red and blue.
+  const auto count = [](const ImageU8& im, int r, int g, int b) {
+    std::size_t n = 0;
+    for (std::size_t i = 0; i + 2 < im.pixels.size(); i += im.channels)
+      n += std::abs(im.pixels[i] - r) < 30 && std::abs(im.pixels[i + 1] - g) < 30 &&
+           std::abs(im.pixels[i + 2] - b) < 30;
+    return n;
+  };
+  for (const char* name : {"off.png", "on.png", "again.png"}) {
+    const ImageU8 im = read_png(dir_ / name);
+    const bool on = std::string(name) == "on.png";
+    const std::size_t yellow = count(im, 255, 221, 0), red = count(im, 220, 20, 30),
+                      blue = count(im, 30, 90, 255);
+    if (on) {
+      EXPECT_GT(yellow, 10u) << name;
+      EXPECT_GT(red, 20u) << name;
+      EXPECT_GT(blue, 20u) << name;
+    } else {
+      EXPECT_EQ(yellow + red + blue, 0u) << name;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace ibfvs

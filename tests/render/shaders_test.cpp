@@ -103,6 +103,8 @@ TEST(Shaders, EverySourceCompilesAsGlsl450AndAsEs300) {
     sources.add(shaders::grid_fragment_source(dialect), what + "-grid", "frag");
     sources.add(shaders::stats_fragment_source(true, dialect), what + "-stats-grey", "frag");
     sources.add(shaders::stats_fragment_source(false, dialect), what + "-stats-colour", "frag");
+    sources.add(shaders::overlay_vertex_source(dialect), what + "-overlay", "vert");
+    sources.add(shaders::overlay_fragment_source(dialect), what + "-overlay", "frag");
     EXPECT_EQ(sources.errors(), "") << what;
     std::printf("glslang: %zu %s sources compiled\n", sources.size(), what.c_str());
   }

@@ -187,6 +187,10 @@ void enable_depth_test(bool on);
 /// (a triangle on the far plane, depth test GREATER), the depth left as it
 /// is; off: back to enable_depth_test(true) and depth writes.
 void test_depth_behind_surface(bool on);
+/// on: draws over what is there where nothing nearer was drawn (depth test
+/// LEQUAL, no depth writes), its colour only (the alpha channel stays), no
+/// face culling; off: back to enable_depth_test(true), depth and alpha writes.
+void draw_over(bool on);
 /// Draws only inside `box` (x, y, width, height in pixels), or everywhere.
 void scissor(bool on, const glm::ivec4& box = glm::ivec4(0));
 /// weight > 0: draws blend as weight * new + (1 - weight) * old (a running

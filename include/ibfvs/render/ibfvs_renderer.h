@@ -44,6 +44,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <string_view>
 #include <unordered_map>
@@ -197,6 +198,10 @@ class IbfvsRenderer {
   /// part of a window of that size right of `left` pixels (a side panel) with
   /// its aspect kept, the rest in the background colour.
   void present(int window_width, int window_height, int left = 0) const;
+  /// Runs `draw` with F and the last frame's depth bound as the framebuffer
+  /// over the whole image (an overlay drawn over the frame: it shows in
+  /// read_output and present, not in F_t).
+  void draw_over_output(const std::function<void()>& draw) const;
   /// Draws the last frame into the framebuffer bound now (a host's, such as
   /// ParaView's) over its viewport, which must be the image size and start at
   /// `origin`: F where the surface is, with the surface's depth, so that the

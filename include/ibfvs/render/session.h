@@ -20,6 +20,7 @@
 // (ParaView's render window). It leaves the host's framebuffer binding and
 // viewport as it found them after each frame.
 
+#include <array>
 #include <memory>
 #include <optional>
 #include <utility>
@@ -29,6 +30,7 @@
 #include "ibfvs/core/scene/camera.h"
 #include "ibfvs/core/scene/scene_prep.h"
 #include "ibfvs/render/ibfvs_renderer.h"
+#include "ibfvs/render/topology_overlay.h"
 
 namespace ibfvs {
 
@@ -220,6 +222,12 @@ class Session {
   /// Records each pixel's displacement (measurements: read_flow).
   void record_flow(bool on);
 
+  /// The topology the overlay draws (scene key overlay = topology): of the
+  /// field and surface of the step shown, found when it was first drawn;
+  /// null before, or with another overlay.
+  [[nodiscard]] const FlowTopology* overlay_topology() const {
+    return overlay_ ? &overlay_topology_ : nullptr;
+  }
   /// The displayed image F, RGBA, rows bottom-up.
   [[nodiscard]] ImageU8 read_output() const { return renderer_->read_output(); }
 
@@ -234,6 +242,9 @@ class Session {
   void apply_host(bool upload);
   // dt by the rule in force (dt()).
   void refit_dt();
+  // The scene's overlay over the frame just drawn with `view`: its
+  // features found again where the data, the step or the size changed.
+  void draw_overlay(const ViewState& view);
 
   PreparedScene scene_;
   std::unique_ptr<IbfvsRenderer> renderer_;
@@ -248,6 +259,10 @@ class Session {
   std::optional<AdvectView> advect_override_;
   std::optional<float> probe_;
   bool defer_statistics_ = false, record_flow_ = false;
+  std::unique_ptr<TopologyOverlay> overlay_;
+  FlowTopology overlay_topology_;
+  std::size_t data_version_ = 0;  // a new field or surface: the overlay is found again
+  std::optional<std::array<std::size_t, 4>> overlay_for_;  // version, step, width, height
   int frame_ = 0;
 };
 

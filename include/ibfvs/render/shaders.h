@@ -42,5 +42,8 @@ std::string stats_fragment_source(bool mono_texture, Dialect dialect = Dialect::
 /// the background left as the host drew it; with u_interior 1 not at the
 /// surface's silhouettes (src/render/glsl/host_fragment.glsl).
 std::string host_fragment_source();
+/// The topology overlay (src/render/glsl/overlay_*.glsl; topology_overlay.h).
+std::string overlay_vertex_source(Dialect dialect = Dialect::Gl45);
+std::string overlay_fragment_source(Dialect dialect = Dialect::Gl45);
 
 }  // namespace ibfvs::shaders

@@ -287,6 +287,7 @@ std::vector<SceneKey> make_keys() {
       {"surface_color", KeyKind::Vector, "diffuse colour of the shaded surface, R,G,B",
        [](Scene& s, std::string_view t) { s.surface_color = colour(t); },
        [](const Scene& s) { return one(format_vec3(s.surface_color)); }, KeyEffect::kLive},
+      IBFVS_ENUM_KEY(overlay, Overlay, "drawn over the texture", KeyEffect::kNone),
       IBFVS_ENUM_KEY(noise_space, NoiseSpace, "where the noise lives (3.6)", KeyEffect::kLive),
       IBFVS_ENUM_KEY(advect_view, AdvectView, "which view projects r - v dt (eq. 13)",
                      KeyEffect::kLive),

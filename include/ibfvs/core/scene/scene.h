@@ -43,6 +43,21 @@ struct EnumNames<NoiseSpace> {
   };
 };
 
+/// What is drawn over the texture.
+enum class Overlay {
+  None,      ///< the texture alone
+  Topology,  ///< the field's critical points and separation and attachment lines (issue 64)
+};
+template <>
+struct EnumNames<Overlay> {
+  static constexpr EnumName<Overlay> table[] = {
+      {Overlay::None, "none", "the texture alone"},
+      {Overlay::Topology, "topology",
+       "the field's critical points, separation and attachment lines, with a legend "
+       "(docs/cfd.md)"},
+  };
+};
+
 /// F_t at the start.
 enum class InitMode {
   Background,   ///< the background colour B
@@ -183,6 +198,7 @@ struct Scene {
   float orbit = 0.0f;        ///< degrees per frame about the vertical
   int lock_at = kLockNever;  ///< frame to lock the texture at (3.7), or kLockNever / kLockAuto
   std::optional<glm::vec3> lock_camera;  ///< AZ,EL,DIST once locked
+  Overlay overlay = Overlay::None;        ///< drawn over the texture
 
   // ---- output
   int width = 512, height = 512;

@@ -13,6 +13,8 @@
 //                  key's host name (SceneKey::host), in a DoubleVectorProperty
 //                  for a number key, else an IntVectorProperty
 //   @page.triangles@  the most triangles a web page takes (WebPageLimits)
+//   @topology.strength@, @topology.length@  the defaults of the topology's
+//                  lines (LineOptions), for Skin-Friction Topology
 // and repeats a block for each of several names, first:
 //   <!-- @each NAME NAME ... --> BLOCK <!-- @end -->  BLOCK once for each
 //                  NAME, with @name@ in it replaced by the name
@@ -33,6 +35,7 @@
 #include <string>
 #include <vector>
 
+#include "ibfvs/core/fields/topology.h"
 #include "ibfvs/core/scene/scene.h"
 #include "ibfvs/core/support/text.h"
 #include "ibfvs/page/web_page.h"
@@ -202,6 +205,13 @@ int main(int argc, char** argv) {
     const std::string indent = xml.substr(line, xml.find_first_not_of(' ', line) - line);
     if (m[0].str() == "@page.triangles@") {
       out += std::to_string(ibfvs::WebPageLimits{}.triangles);
+      continue;
+    }
+    if (m[0].str() == "@topology.strength@" || m[0].str() == "@topology.length@") {
+      const ibfvs::LineOptions lines;
+      out += ibfvs::format_number(static_cast<float>(
+          m[1].str() == "topology" && m[2].str() == "strength" ? lines.min_strength
+                                                               : lines.min_length));
       continue;
     }
     const SceneKey* key = ibfvs::find_scene_key(m[1].str());

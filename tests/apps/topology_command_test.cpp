@@ -78,9 +78,9 @@ TEST_F(TopologyCommand, ATurningSphereHasTwoCentresAndNoLines) {
 // `render --overlay topology`: the same features over the picture, in the
 // kinds' colours, with the legend's dark box in the bottom left corner.
 TEST_F(TopologyCommand, RenderDrawsTheOverlay) {
-  const test::Result r = run(
-      "render torus --field gradient:down:1,0.5,0.137 --overlay topology --size 240x200 "
-      "--frames 20 --out over.png -q");
+  const test::Result r =
+      run("render torus --field gradient:down:1,0.5,0.137 --overlay topology --size 240x200 "
+          "--frames 20 --out over.png -q");
   ASSERT_EQ(r.status, 0) << r.err;
   const test::Result plain =
       run("render torus --field gradient:down:1,0.5,0.137 --size 240x200 --frames 20 "

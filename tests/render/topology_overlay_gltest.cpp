@@ -64,8 +64,10 @@ struct Drawn {
 Drawn draw(Overlay overlay, int frames) {
   Session session(prepare_scene(spiral_scene(overlay), spiral_globe(), "spiral"));
   for (int k = 0; k < frames; ++k) session.advance();
-  Drawn d{session.read_output(), session.renderer().read_depth(),
-          ViewState{session.camera().view(), session.camera().projection()}, {}};
+  Drawn d{session.read_output(),
+          session.renderer().read_depth(),
+          ViewState{session.camera().view(), session.camera().projection()},
+          {}};
   if (session.overlay_topology()) d.topology = *session.overlay_topology();
   return d;
 }
@@ -95,8 +97,8 @@ TEST_F(TopologyOverlayGLTest, DrawsWhatItsReferenceSeesAndLeavesTheTexture) {
   const Drawn without = draw(Overlay::None, 12);
   ASSERT_EQ(with.topology.count(LineKind::separation), 1u);
   ASSERT_EQ(with.topology.count(CriticalKind::repelling_focus), 2u);
-  const std::vector<int> ref = overlay_reference(with.topology, with.view.view,
-                                                 with.view.projection, {kW, kH}, with.depth);
+  const std::vector<int> ref =
+      overlay_reference(with.topology, with.view.view, with.view.projection, {kW, kH}, with.depth);
   // The legend's box, from the geometry: left alone below.
   glm::vec2 legend(0.0f);
   for (const OverlayVertex& v : build_overlay(with.topology, {kW, kH}).vertices)
@@ -104,7 +106,8 @@ TEST_F(TopologyOverlayGLTest, DrawsWhatItsReferenceSeesAndLeavesTheTexture) {
   const auto in_legend = [&](int x, int y) { return x <= legend.x + 1 && y <= legend.y + 1; };
   ASSERT_GT(legend.x, 40.0f);  // "separation line (1)" and the foci
   const auto px = [&](const ImageU8& im, int x, int y) {
-    return &im.pixels[(static_cast<std::size_t>(y) * kW + x) * static_cast<std::size_t>(im.channels)];
+    return &im.pixels[(static_cast<std::size_t>(y) * kW + x) *
+                      static_cast<std::size_t>(im.channels)];
   };
   const glm::vec3 red = rgb_of(10), pink = rgb_of(5);
   std::size_t line_ref = 0, line_drawn = 0, focus_ref = 0, focus_drawn = 0;

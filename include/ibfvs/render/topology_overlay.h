@@ -25,16 +25,16 @@ namespace ibfvs {
 
 /// One corner of a quad of the overlay (see overlay_vertex.glsl).
 struct OverlayVertex {
-  glm::vec3 point{0.0f};  ///< this end of a segment, a glyph's centre, or pixels (legend)
-  glm::vec3 other{0.0f};  ///< a segment's other end
+  glm::vec3 point{0.0f};   ///< this end of a segment, a glyph's centre, or pixels (legend)
+  glm::vec3 other{0.0f};   ///< a segment's other end
   glm::vec2 corner{0.0f};  ///< segment: (cap, side); glyph and legend: the corner, -1..1
   glm::vec3 colour{0.0f};
   float shape = 0.0f;  ///< kOverlay* below
 };
 
 // The shapes (overlay_vertex.glsl has the same numbers).
-inline constexpr float kOverlayLine = 0.0f;       ///< a segment of a line
-inline constexpr float kOverlayPixels = 7.0f;     ///< a legend rectangle, in pixels
+inline constexpr float kOverlayLine = 0.0f;         ///< a segment of a line
+inline constexpr float kOverlayPixels = 7.0f;       ///< a legend rectangle, in pixels
 inline constexpr float kOverlayLegendKind = 10.0f;  ///< + kind 1-6: a legend's glyph, in pixels
 
 /// Sizes in pixels for an image of `height` rows.

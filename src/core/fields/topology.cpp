@@ -69,8 +69,10 @@ void classify(double a, double b, double c, double d, CriticalPoint& p) {
   const double im = 0.5 * std::sqrt(-disc);
   p.eigen_real = {0.5 * trace, 0.5 * trace};
   p.eigen_imag = {-im, im};
-  // A centre where the spiralling is a rounding error of the turning.
-  if (std::abs(0.5 * trace) <= 1e-6 * im)
+  // A centre where the spiralling is under a thousandth of the turning:
+  // what the discrete field makes of a pure turning (1.6e-4 on the jittered
+  // globe of the tests, its vectors tangent to the vertex normals).
+  if (std::abs(0.5 * trace) <= 1e-3 * im)
     p.kind = CriticalKind::centre;
   else
     p.kind = trace < 0.0 ? CriticalKind::attracting_focus : CriticalKind::repelling_focus;
@@ -137,8 +139,27 @@ void check_topology_input(const TriMesh& mesh, std::span<const glm::vec3> vector
         throw InputError("topology: triangle " + std::to_string(f) + " names a point out of range");
 }
 
-CriticalPoints find_critical_points(const TriMesh& mesh, std::span<const glm::vec3> vectors) {
-  check_topology_input(mesh, vectors);
+std::vector<glm::vec3> tangent_vectors(const TriMesh& mesh, std::span<const glm::vec3> vectors) {
+  std::vector<glm::dvec3> normal(mesh.positions.size(), glm::dvec3(0.0));
+  for (const Triangle& t : mesh.triangles) {
+    const glm::dvec3 p0(mesh.positions[t[0]]);
+    const glm::dvec3 n = glm::cross(glm::dvec3(mesh.positions[t[1]]) - p0,
+                                    glm::dvec3(mesh.positions[t[2]]) - p0);  // area-weighted
+    for (const std::uint32_t k : t) normal[k] += n;
+  }
+  std::vector<glm::vec3> out(vectors.begin(), vectors.end());
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    const double len = glm::length(normal[i]);
+    if (!(len > 0.0)) continue;
+    const glm::dvec3 n = normal[i] / len, v(vectors[i]);
+    out[i] = glm::vec3(v - glm::dot(v, n) * n);
+  }
+  return out;
+}
+
+CriticalPoints find_critical_points(const TriMesh& mesh, std::span<const glm::vec3> raw) {
+  check_topology_input(mesh, raw);
+  const std::vector<glm::vec3> vectors = tangent_vectors(mesh, raw);
   CriticalPoints out;
   double edge_sum = 0.0;
   for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {

@@ -7,9 +7,9 @@
 // there (saddle: real, opposite signs; node: real, one sign; focus:
 // complex; centre: imaginary).
 // On a surface, the field is the piecewise-linear one: on each triangle, the
-// linear interpolation of its corners' vectors projected into the
-// triangle's plane, which has at most one zero and a constant Jacobian. A
-// zero inside a triangle (or on its edges or corners, counted once) is a
+// linear interpolation of its corners' vectors (tangent to their vertex
+// normals: tangent_vectors) projected into the triangle's plane, which has at most one zero and a
+// constant Jacobian. A zero inside a triangle (or on its edges or corners, counted once) is a
 // critical point. On a closed surface their indices sum to the Euler
 // characteristic (Poincare-Hopf), which the tests check.
 //
@@ -78,6 +78,12 @@ struct CriticalPoints {
   /// Triangles whose three corner vectors are all zero (no direction there).
   std::size_t zero_triangles = 0;
 };
+
+/// `vectors` less their part along each vertex's normal (the area-weighted
+/// mean of its triangles'): what both finders below work on, so that a
+/// field with a normal part (a near-wall velocity, a vector off a curved
+/// wall) has the zeros of its tangent part.
+std::vector<glm::vec3> tangent_vectors(const TriMesh& mesh, std::span<const glm::vec3> vectors);
 
 /// The critical points of `vectors` (one per vertex of `mesh`). Throws
 /// InputError when the counts differ or a vector or position is not finite.

@@ -78,10 +78,10 @@ TEST_F(TopologyCommand, ATurningSphereHasTwoCentresAndNoLines) {
 // `render --overlay topology`: the same features over the picture, in the
 // kinds' colours, with the legend's dark box in the bottom left corner.
 TEST_F(TopologyCommand, RenderDrawsTheOverlay) {
-  const test::Result r =
+  const test::Result drawn =
       run("render torus --field gradient:down:1,0.5,0.137 --overlay topology --size 240x200 "
           "--frames 20 --out over.png -q");
-  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_EQ(drawn.status, 0) << drawn.err;
   const test::Result plain =
       run("render torus --field gradient:down:1,0.5,0.137 --size 240x200 --frames 20 "
           "--out plain.png -q");

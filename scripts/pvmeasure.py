@@ -4,6 +4,7 @@ about the data's centre, the direction-coded picture of the TRUE projected
 flow, and `ibfvs quality` against it (docs/quality.md, "Real data").
 """
 import argparse
+import fnmatch
 import math
 import os
 import subprocess
@@ -68,12 +69,14 @@ def series_view(args):
 
 def flow_of(data, array, reverse, blocks=None):
     """The data's surface with `array` on the points as "flow" (negated with
-    `reverse`): OpenFOAM cases read their patches (`blocks`, else every
-    patch), cell data goes to the points as Surface LIC needs it."""
+    `reverse`): OpenFOAM cases read their patches (`blocks`: names or
+    patterns such as patch/motorBike*, else every patch), cell data goes to
+    the points as Surface LIC needs it."""
     source = pv.OpenDataFile(data)
     if hasattr(source, "MeshRegions"):  # OpenFOAM: the walls, not the volume
         available = source.GetProperty("MeshRegions").Available
-        source.MeshRegions = ([r for r in available if r in blocks] if blocks else
+        source.MeshRegions = ([r for r in available if any(fnmatch.fnmatchcase(r, b) for b in blocks)]
+                              if blocks else
                               [r for r in available if r.startswith("patch/") or r.startswith("wall")]
                               or ["internalMesh"])
     source.UpdatePipeline()

@@ -20,6 +20,7 @@ extern "C" {
 #include "ibfvs/render/frame_plan.h"
 #include "ibfvs/render/pass_settings.h"
 #include "ibfvs/render/shaders.h"
+#include "ibfvs/render/overlay_geometry.h"
 #include "page_json.h"
 
 namespace ibfvs {
@@ -103,6 +104,37 @@ Json ranges() {
       out[std::string(key.name)] = {
           {"min", key.range->min}, {"max", key.range->max}, {"enforced", key.range->enforced}};
   return out;
+}
+
+// The scene's overlay (render/topology_overlay.h): each step's quads, found
+// on that step's surface and field as the Session finds them.
+Json overlay(const PreparedScene& p, const page::SceneSteps& d, page::Block& block) {
+  if (p.scene.overlay != Overlay::Topology) return nullptr;
+  Json steps = Json::array();
+  for (const StepData& step : d.data) {
+    TriMesh moved;
+    const TriMesh* mesh = step.mesh ? step.mesh.get() : p.mesh.get();
+    if (!step.mesh && !step.positions.empty()) {
+      moved = *p.mesh;
+      moved.positions = step.positions;
+      mesh = &moved;
+    }
+    const OverlayGeometry g = build_overlay(find_topology(*mesh, step.field), {p.width, p.height});
+    std::vector<float> corners;
+    corners.reserve(g.vertices.size() * 12);
+    for (const OverlayVertex& v : g.vertices)
+      corners.insert(corners.end(), {v.point.x, v.point.y, v.point.z, v.other.x, v.other.y,
+                                     v.other.z, v.corner.x, v.corner.y, v.colour.x, v.colour.y,
+                                     v.colour.z, v.shape});
+    steps.push_back({{"vertices", block.add(corners)}, {"indices", block.add(g.indices)}});
+  }
+  const OverlaySizes sizes = overlay_sizes(p.height);
+  return {{"vertex", shaders::overlay_vertex_source(shaders::Dialect::Es300)},
+          {"fragment", shaders::overlay_fragment_source(shaders::Dialect::Es300)},
+          {"line_width", sizes.line_width},
+          {"glyph", sizes.glyph},
+          {"lift", kOverlayLift},
+          {"steps", std::move(steps)}};
 }
 
 }  // namespace
@@ -226,6 +258,7 @@ WebPageParts web_page_parts(const PreparedScene& p, WebPageReport* report,
       {"phase_size", {grid.columns(), grid.rows()}},
       {"arrays", std::move(arrays)},
       {"plan", plan()},
+      {"overlay", overlay(p, d, block)},
       {"ranges", ranges()}};
 
   if (report) report->scene = block.bytes().size();

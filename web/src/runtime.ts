@@ -71,6 +71,8 @@ export class PageRenderer {
   private cells: Float32Array | null = null; // F_t's first texels (random cells), or null
   locked = false;
   private lockViewProjection: mat4 | null = null;
+  // The scene's overlay (its topology: render/topology_overlay.h), a set of quads a step.
+  private overlay: { program: WebGLProgram; steps: { vao: WebGLVertexArrayObject; count: number }[] } | null = null;
 
   constructor(gl: WebGL2RenderingContext, scene: SceneHeader, data: ArrayBuffer) {
     this.gl = gl;
@@ -115,7 +117,34 @@ export class PageRenderer {
           this.cells[i + 3] = s.any_depth;
         }
     }
+    if (s.overlay) this.overlay = this.makeOverlay(data);
     this.setLook(0);
+  }
+
+  /// The overlay's program and each step's quads (OverlayVertex: 12 floats a corner).
+  private makeOverlay(data: ArrayBuffer): NonNullable<PageRenderer["overlay"]> {
+    const gl = this.gl, o = this.scene.overlay!;
+    const program = compile(gl, o.vertex, o.fragment);
+    const steps = o.steps.map((step) => {
+      const vao = gl.createVertexArray()!;
+      gl.bindVertexArray(vao);
+      const corners = gl.createBuffer();
+      gl.bindBuffer(gl.ARRAY_BUFFER, corners);
+      gl.bufferData(gl.ARRAY_BUFFER, new Float32Array(data, step.vertices.offset, step.vertices.length),
+                    gl.STATIC_DRAW);
+      // point, other, corner, colour, shape
+      [[0, 3, 0], [1, 3, 3], [2, 2, 6], [3, 3, 8], [4, 1, 11]].forEach(([location, size, at]) => {
+        gl.enableVertexAttribArray(location);
+        gl.vertexAttribPointer(location, size, gl.FLOAT, false, 48, at * 4);
+      });
+      const indices = gl.createBuffer();
+      gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, indices);
+      gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, new Uint32Array(data, step.indices.offset, step.indices.length),
+                    gl.STATIC_DRAW);
+      gl.bindVertexArray(null);
+      return { vao, count: step.indices.length };
+    });
+    return { program, steps };
   }
 
   /// Shows the scene in look `index` (a style over the same data), from a
@@ -263,6 +292,7 @@ export class PageRenderer {
         default: throw new Error(`the page's plan has a pass this runtime does not run: ${pass.name}`);
       }
     }
+    this.overlayPass(view, projection);
     gl.disable(gl.DEPTH_TEST);
     if (!this.locked) {  // a locked F_t stays where it is; F is shared
       this.current = next;
@@ -404,6 +434,36 @@ export class PageRenderer {
     gl.bindVertexArray(this.empty);
     gl.drawArrays(gl.TRIANGLES, 0, 3);
     gl.disable(gl.BLEND);
+  }
+
+  /// The overlay over F where the surface does not hide it (Session::draw_overlay,
+  /// TopologyOverlay::draw): depth test LEQUAL, no depth or alpha writes.
+  private overlayPass(view: mat4, projection: mat4): void {
+    const o = this.overlay;
+    if (!o) return;
+    const step = o.steps[Math.min(this.step, o.steps.length - 1)];
+    if (!step.count) return;
+    const gl = this.gl, s = this.scene, p = o.program, at = (n: string) => locate(gl, p, n);
+    gl.bindFramebuffer(gl.FRAMEBUFFER, this.outputFb);
+    gl.viewport(0, 0, s.width, s.height);
+    gl.enable(gl.DEPTH_TEST);
+    gl.depthFunc(gl.LEQUAL);
+    gl.depthMask(false);
+    gl.colorMask(true, true, true, false);
+    gl.disable(gl.CULL_FACE);
+    gl.useProgram(p);
+    gl.uniformMatrix4fv(at("u_view"), false, view);
+    gl.uniformMatrix4fv(at("u_projection"), false, projection);
+    gl.uniform2f(at("u_viewport"), s.width, s.height);
+    gl.uniform1f(at("u_line_width"), s.overlay!.line_width);
+    gl.uniform1f(at("u_glyph"), s.overlay!.glyph);
+    gl.uniform1f(at("u_lift"), s.overlay!.lift);
+    gl.bindVertexArray(step.vao);
+    gl.drawElements(gl.TRIANGLES, step.count, gl.UNSIGNED_INT, 0);
+    gl.bindVertexArray(null);
+    gl.colorMask(true, true, true, true);
+    gl.depthMask(true);
+    gl.depthFunc(gl.LESS);
   }
 
   /// F onto the canvas (same size).

@@ -196,6 +196,27 @@ test("the scene's orbit turns the camera as in ibfvs render", async () => {
                                       "--orbit", "2"]);
 });
 
+test("the topology overlay draws over the page as over ibfvs render", async () => {
+  // The height on a torus: two saddles (yellow), nodes, and separation
+  // (red) and attachment (blue) lines, with the legend.
+  const scene = ["--mesh", "torus", "--field", "gradient:down:1,0.5,0.137", "--overlay", "topology"];
+  await assertMatchesRender("overlay", scene);
+  const { page, messages } = await open(path.join(out, "overlay.html"));
+  await pauseAt(page, 61);
+  const rgba = await canvasPixels(page);
+  const count = (r, g, b) => {
+    let n = 0;
+    for (let i = 0; i < rgba.length; i += 4)
+      n += Math.abs(rgba[i] - r) < 30 && Math.abs(rgba[i + 1] - g) < 30 && Math.abs(rgba[i + 2] - b) < 30;
+    return n;
+  };
+  assert.deepEqual(messages, []);
+  assert.ok(count(220, 20, 30) > 20, "no separation line");
+  assert.ok(count(30, 90, 255) > 20, "no attachment line");
+  assert.ok(count(255, 221, 0) > 5, "no saddle");
+  await page.close();
+});
+
 test("the page records a WebM of its canvas", async () => {
   const { page, messages } = await open(writePage("cow-record"));
   await frames(page, 5);

@@ -18,9 +18,9 @@ extern "C" {
 #include "ibfvs/core/texture/display.h"
 #include "ibfvs/core/texture/noise.h"
 #include "ibfvs/render/frame_plan.h"
+#include "ibfvs/render/overlay_geometry.h"
 #include "ibfvs/render/pass_settings.h"
 #include "ibfvs/render/shaders.h"
-#include "ibfvs/render/overlay_geometry.h"
 #include "page_json.h"
 
 namespace ibfvs {
@@ -123,9 +123,9 @@ Json overlay(const PreparedScene& p, const page::SceneSteps& d, page::Block& blo
     std::vector<float> corners;
     corners.reserve(g.vertices.size() * 12);
     for (const OverlayVertex& v : g.vertices)
-      corners.insert(corners.end(), {v.point.x, v.point.y, v.point.z, v.other.x, v.other.y,
-                                     v.other.z, v.corner.x, v.corner.y, v.colour.x, v.colour.y,
-                                     v.colour.z, v.shape});
+      corners.insert(corners.end(),
+                     {v.point.x, v.point.y, v.point.z, v.other.x, v.other.y, v.other.z, v.corner.x,
+                      v.corner.y, v.colour.x, v.colour.y, v.colour.z, v.shape});
     steps.push_back({{"vertices", block.add(corners)}, {"indices", block.add(g.indices)}});
   }
   const OverlaySizes sizes = overlay_sizes(p.height);

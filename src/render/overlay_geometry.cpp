@@ -10,7 +10,6 @@
 
 #include <stb/stb_easy_font.h>
 
-
 namespace ibfvs {
 namespace {
 

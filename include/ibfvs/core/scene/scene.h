@@ -198,7 +198,7 @@ struct Scene {
   float orbit = 0.0f;        ///< degrees per frame about the vertical
   int lock_at = kLockNever;  ///< frame to lock the texture at (3.7), or kLockNever / kLockAuto
   std::optional<glm::vec3> lock_camera;  ///< AZ,EL,DIST once locked
-  Overlay overlay = Overlay::None;        ///< drawn over the texture
+  Overlay overlay = Overlay::None;       ///< drawn over the texture
 
   // ---- output
   int width = 512, height = 512;

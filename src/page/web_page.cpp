@@ -126,7 +126,9 @@ Json overlay(const PreparedScene& p, const page::SceneSteps& d, page::Block& blo
       corners.insert(corners.end(),
                      {v.point.x, v.point.y, v.point.z, v.other.x, v.other.y, v.other.z, v.corner.x,
                       v.corner.y, v.colour.x, v.colour.y, v.colour.z, v.shape});
-    steps.push_back({{"vertices", block.add(corners)}, {"indices", block.add(g.indices)}});
+    // Through meshoptimizer's codecs: a quad's corners share most of their values.
+    steps.push_back({{"vertices", block.add_vertices(corners, 12)},
+                     {"indices", block.add_indices(g.indices, g.vertices.size())}});
   }
   const OverlaySizes sizes = overlay_sizes(p.height);
   return {{"vertex", shaders::overlay_vertex_source(shaders::Dialect::Es300)},

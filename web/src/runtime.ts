@@ -10,7 +10,7 @@
 // input, recording, the loop) is page.ts, the scene format format.ts, the
 // WebGL objects webgl.ts.
 import { mat4, vec3 } from "gl-matrix";
-import { type Camera, type Look, type PlannedPass, type SceneHeader, type Uniform, halfToFloat, view }
+import { type Camera, type Look, type PlannedPass, type SceneHeader, type Uniform, f32, halfToFloat, u32, view }
   from "./format";
 import { Surfaces } from "./surfaces";
 import { bindSampler, compile, framebuffer, locate, setUniform, texture } from "./webgl";
@@ -130,8 +130,7 @@ export class PageRenderer {
       gl.bindVertexArray(vao);
       const corners = gl.createBuffer();
       gl.bindBuffer(gl.ARRAY_BUFFER, corners);
-      gl.bufferData(gl.ARRAY_BUFFER, new Float32Array(data, step.vertices.offset, step.vertices.length),
-                    gl.STATIC_DRAW);
+      gl.bufferData(gl.ARRAY_BUFFER, view(data, step.vertices, f32, 4), gl.STATIC_DRAW);
       // point, other, corner, colour, shape
       [[0, 3, 0], [1, 3, 3], [2, 2, 6], [3, 3, 8], [4, 1, 11]].forEach(([location, size, at]) => {
         gl.enableVertexAttribArray(location);
@@ -139,10 +138,10 @@ export class PageRenderer {
       });
       const indices = gl.createBuffer();
       gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, indices);
-      gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, new Uint32Array(data, step.indices.offset, step.indices.length),
-                    gl.STATIC_DRAW);
+      const ids = view(data, step.indices, u32, 4);
+      gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, ids, gl.STATIC_DRAW);
       gl.bindVertexArray(null);
-      return { vao, count: step.indices.length };
+      return { vao, count: ids.length };
     });
     return { program, steps };
   }

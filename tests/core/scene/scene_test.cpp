@@ -77,6 +77,7 @@ Scene busy_scene() {
       {"background", "0.1,0.2,0.3"},
       {"surface_color", "1,0.5,0"},
       {"noise_space", "object"},
+      {"overlay", "topology"},
       {"advect_view", "current"},
       {"init", "random-cells"},
       {"camera", "30,15,1.5"},

@@ -147,7 +147,9 @@ std::vector<int> overlay_reference(const FlowTopology& topology, const glm::mat4
     at = glm::vec3(c) / c.w;
     at = glm::vec3((at.x * 0.5f + 0.5f) * static_cast<float>(size.x),
                    (at.y * 0.5f + 0.5f) * static_cast<float>(size.y), at.z * 0.5f + 0.5f);
-    return true;
+    // Far off the picture (near the eye's plane): left out, and no pixel
+    // index beyond an int.
+    return std::abs(at.x) < 1e6f && std::abs(at.y) < 1e6f;
   };
   const auto paint = [&](int x, int y, float z, int kind) {
     if (x < 0 || y < 0 || x >= size.x || y >= size.y) return;

@@ -393,3 +393,23 @@ def test_topology_of_a_scene_and_its_errors():
         ibfvs.topology(points, tris, np.zeros((3, 3)))
     with pytest.raises(ValueError, match="no such file"):
         ibfvs.topology("no-such-mesh.ply")
+
+
+def test_the_overlay_key_draws_the_topology_in_the_modules_pictures():
+    """overlay="topology" is a scene key like any other: ibfvs.render's
+    picture has the separation line's red and the foci's pink, without it
+    none."""
+    points, tris = uv_sphere(64, 96)
+    axis = np.array([0.0, 1.0, 0.0])
+    z = points @ axis
+    spiral = np.cross(axis, points) - z[:, None] * (axis - z[:, None] * points)
+
+    def count(image, rgb):
+        return int((np.abs(image[..., :3].astype(int) - np.array(rgb)).max(axis=2) < 30).sum())
+
+    kw = dict(size=(200, 200), frames=10, camera="0,20,0")
+    over = ibfvs.render(points, tris, spiral, overlay="topology", **kw)
+    plain = ibfvs.render(points, tris, spiral, **kw)
+    red, pink = ibfvs.KIND_COLOURS[10], ibfvs.KIND_COLOURS[5]
+    assert count(over, red) > 50 and count(over, pink) > 5
+    assert count(plain, red) == 0 and count(plain, pink) == 0

@@ -146,4 +146,16 @@ inline std::vector<glm::vec3> turned(const std::vector<glm::vec3>& points, doubl
   return out;
 }
 
+/// Pixels of `image` within 30 of the colour (r, g, b) in each channel: a
+/// colour the picture should (or should not) show, such as a topology
+/// kind's.
+inline std::size_t pixels_of_colour(const ImageU8& image, int r, int g, int b) {
+  std::size_t n = 0;
+  for (std::size_t i = 0; i + 2 < image.pixels.size();
+       i += static_cast<std::size_t>(image.channels))
+    n += std::abs(image.pixels[i] - r) < 30 && std::abs(image.pixels[i + 1] - g) < 30 &&
+         std::abs(image.pixels[i + 2] - b) < 30;
+  return n;
+}
+
 }  // namespace ibfvs::test

@@ -77,17 +77,10 @@ int run_topology(const SceneOptions& scene_options, const TopologyOptions& optio
     std::snprintf(suffix, sizeof suffix, "_%04zu.vtp", k);
     const fs::path file = base.string() + suffix;
     const StepData step = k == 0 ? StepData{} : prepared.step_data(k);
-    TriMesh moved;
-    const TriMesh* mesh = step.mesh ? step.mesh.get() : prepared.mesh.get();
-    if (!step.mesh && !step.positions.empty()) {
-      moved = *prepared.mesh;
-      moved.positions = step.positions;
-      mesh = &moved;
-    }
     const std::span<const glm::vec3> field = k == 0 ? std::span<const glm::vec3>(prepared.field)
                                                     : std::span<const glm::vec3>(step.field);
-    one_step(*mesh, field, lines, file.string(), prepared.mesh_name + " step " + std::to_string(k),
-             scene.quiet);
+    one_step(step_surface(prepared, step), field, lines, file.string(),
+             prepared.mesh_name + " step " + std::to_string(k), scene.quiet);
     pvd += "    <DataSet timestep=\"" + std::to_string(k) + "\" file=\"" +
            file.filename().string() + "\"/>\n";
   }

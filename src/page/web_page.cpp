@@ -112,14 +112,8 @@ Json overlay(const PreparedScene& p, const page::SceneSteps& d, page::Block& blo
   if (p.scene.overlay != Overlay::Topology) return nullptr;
   Json steps = Json::array();
   for (const StepData& step : d.data) {
-    TriMesh moved;
-    const TriMesh* mesh = step.mesh ? step.mesh.get() : p.mesh.get();
-    if (!step.mesh && !step.positions.empty()) {
-      moved = *p.mesh;
-      moved.positions = step.positions;
-      mesh = &moved;
-    }
-    const OverlayGeometry g = build_overlay(find_topology(*mesh, step.field), {p.width, p.height});
+    const OverlayGeometry g =
+        build_overlay(find_topology(step_surface(p, step), step.field), {p.width, p.height});
     std::vector<float> corners;
     corners.reserve(g.vertices.size() * 12);
     for (const OverlayVertex& v : g.vertices)

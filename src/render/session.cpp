@@ -64,11 +64,7 @@ class Session::StepPlayer {
 
   [[nodiscard]] std::size_t step() const { return step_; }
   // The step shown: its surface (moved where it moves) and field.
-  [[nodiscard]] TriMesh surface() const {
-    TriMesh mesh = mesh_of(current_);
-    if (!current_.positions.empty()) mesh.positions = current_.positions;
-    return mesh;
-  }
+  [[nodiscard]] TriMesh surface() const { return step_surface(scene_, current_); }
   [[nodiscard]] const std::vector<glm::vec3>& field() const { return current_.field; }
 
  private:

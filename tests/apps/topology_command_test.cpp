@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "command_runner.h"
+#include "helpers.h"
 #include "ibfvs/core/image/image.h"
 
 #ifdef IBFVS_HAVE_VTK
@@ -87,17 +88,12 @@ TEST_F(TopologyCommand, RenderDrawsTheOverlay) {
           "--out plain.png -q");
   ASSERT_EQ(plain.status, 0) << plain.err;
   const ImageU8 over = read_png(dir_ / "over.png"), without = read_png(dir_ / "plain.png");
-  const auto count = [](const ImageU8& im, int r, int g, int b) {
-    std::size_t n = 0;
-    for (std::size_t i = 0; i + 2 < im.pixels.size(); i += im.channels)
-      n += std::abs(im.pixels[i] - r) < 30 && std::abs(im.pixels[i + 1] - g) < 30 &&
-           std::abs(im.pixels[i + 2] - b) < 30;
-    return n;
-  };
-  EXPECT_GT(count(over, 220, 20, 30), 30u);  // separation lines
-  EXPECT_GT(count(over, 30, 90, 255), 30u);  // attachment lines
-  EXPECT_GT(count(over, 255, 221, 0), 10u);  // saddles
-  EXPECT_EQ(count(without, 220, 20, 30) + count(without, 255, 221, 0), 0u);
+  EXPECT_GT(test::pixels_of_colour(over, 220, 20, 30), 30u);  // separation lines
+  EXPECT_GT(test::pixels_of_colour(over, 30, 90, 255), 30u);  // attachment lines
+  EXPECT_GT(test::pixels_of_colour(over, 255, 221, 0), 10u);  // saddles
+  EXPECT_EQ(
+      test::pixels_of_colour(without, 220, 20, 30) + test::pixels_of_colour(without, 255, 221, 0),
+      0u);
   // The legend: the box's dark grey at its corner (rows are bottom-up).
   const std::uint8_t* corner = &over.pixels[(5u * over.width + 5u) * over.channels];
   EXPECT_LT(corner[0] + corner[1] + corner[2], 3 * 30);

@@ -291,18 +291,12 @@ TEST_F(ViewCommand, TheTopologyOverlayGoesOnAndOffLive) {
                                    "16 quit\n");
   ASSERT_EQ(v.status, 0) << v.out << v.err;
   // The kinds' colours: the saddles' yellow, the lines' red and blue.
-  const auto count = [](const ImageU8& im, int r, int g, int b) {
-    std::size_t n = 0;
-    for (std::size_t i = 0; i + 2 < im.pixels.size(); i += im.channels)
-      n += std::abs(im.pixels[i] - r) < 30 && std::abs(im.pixels[i + 1] - g) < 30 &&
-           std::abs(im.pixels[i + 2] - b) < 30;
-    return n;
-  };
   for (const char* name : {"off.png", "on.png", "again.png"}) {
     const ImageU8 im = read_png(dir_ / name);
     const bool on = std::string(name) == "on.png";
-    const std::size_t yellow = count(im, 255, 221, 0), red = count(im, 220, 20, 30),
-                      blue = count(im, 30, 90, 255);
+    const std::size_t yellow = test::pixels_of_colour(im, 255, 221, 0),
+                      red = test::pixels_of_colour(im, 220, 20, 30),
+                      blue = test::pixels_of_colour(im, 30, 90, 255);
     if (on) {
       EXPECT_GT(yellow, 10u) << name;
       EXPECT_GT(red, 20u) << name;

@@ -36,6 +36,12 @@ PreparedScene resized(const PreparedScene& prepared, int width, int height) {
   return p;
 }
 
+TriMesh step_surface(const PreparedScene& prepared, const StepData& step) {
+  TriMesh mesh = step.mesh ? *step.mesh : *prepared.mesh;
+  if (!step.mesh && !step.positions.empty()) mesh.positions = step.positions;
+  return mesh;
+}
+
 std::optional<PreparedScene> restyled(const PreparedScene& prepared, Style style) {
   Scene s = prepared.scene;
   apply_style(s, style);

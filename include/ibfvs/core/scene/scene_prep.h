@@ -113,6 +113,12 @@ PreparedScene prepare_states(const Scene& scene, std::vector<TriMesh> states,
 /// SettingError for a size outside 1..16384.
 PreparedScene resized(const PreparedScene& prepared, int width, int height);
 
+/// The surface a step shows: its own mesh where it has one, else the
+/// prepared mesh, with the step's points where it moved (what the
+/// topology of a step is found on: the Session's overlay, `ibfvs
+/// topology`, the page).
+TriMesh step_surface(const PreparedScene& prepared, const StepData& step);
+
 /// The prepared scene with `style`'s look, as the viewer's style keys give it
 /// (the style's defaults over the scene), when that look takes the same data:
 /// what changes is texture settings (key_effect: kLive), the noise scale

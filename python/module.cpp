@@ -94,9 +94,12 @@ class Animation {
  public:
   // A mesh from arrays (mesh set) or the scene's own mesh key.
   Animation(Scene desc, std::optional<TriMesh> mesh, std::string name)
-      : desc_(std::move(desc)), mesh_(std::move(mesh)), name_(std::move(name)) {
+      : desc_(std::move(desc)),
+        mesh_(mesh ? std::make_shared<const TriMesh>(std::move(*mesh)) : nullptr),
+        name_(std::move(name)) {
     const Current current(*this);
-    session_ = std::make_unique<Session>(prepare(desc_));
+    session_ = mesh_ ? std::make_unique<Session>(prepare_scene(desc_, *mesh_, name_), mesh_, name_)
+                     : std::make_unique<Session>(prepare_scene(desc_));
   }
   ~Animation() {
     const Current current(*this);  // the GL objects go with their context current
@@ -128,21 +131,20 @@ class Animation {
 
   py::array texture() {
     const Current current(*this);
-    return top_first<ImageF, float>(session_->renderer().read_texture(), false);
+    return top_first<ImageF, float>(session_->read_texture(), false);
   }
 
   // Any keys, by the session's rules (Session::set, key_effect): texture
   // settings, the step, the noise grid, the tangent mode, the camera and the
   // size change on the running animation; anything else prepares the scene
-  // again (the texture starts afresh).
+  // again, in the session (the texture goes on over the same points).
   void set(const Options& options) {
     Scene desc = desc_;
     std::vector<Setting> settings;
     for (const auto& [key, text] : options) settings.push_back({key, text, ""});
     apply_settings(desc, settings);
     const Current current(*this);
-    if (session_->set(desc) == SetResult::kPrepare)
-      session_ = std::make_unique<Session>(prepare(desc));
+    static_cast<void>(session_->set(desc));
     desc_ = desc;
   }
 
@@ -154,9 +156,8 @@ class Animation {
     if (frames < 0) throw SettingError("frames", "must not be negative");
     py::gil_scoped_release release;
     const Current current(*this);
-    session_->change_data(
-        prepare_change(session_->scene(), mesh, name_.empty() ? "the data" : name_));
-    mesh_ = std::move(mesh);
+    mesh_ = std::make_shared<const TriMesh>(std::move(mesh));
+    session_->change_surface(mesh_, name_.empty() ? "the data" : name_);
     for (int k = 0; k < frames; ++k) session_->render(session_->camera());
   }
 
@@ -189,7 +190,7 @@ class Animation {
     for (int k = 0; k < frames; ++k) {
       session_->advance();
       ImageU8 frame = video.spare();
-      session_->renderer().read_output(frame);
+      session_->read_output(frame);
       video.write(std::move(frame));
     }
     video.close();
@@ -235,14 +236,10 @@ class Animation {
   [[nodiscard]] std::string scene_toml_text() const { return scene_toml(desc_); }
 
  private:
-  PreparedScene prepare(const Scene& desc) const {
-    return mesh_ ? prepare_scene(desc, *mesh_, name_) : prepare_scene(desc);
-  }
-
   mutable std::mutex mutex_;
   mutable gl::HeadlessContext context_;
   Scene desc_;
-  std::optional<TriMesh> mesh_;
+  std::shared_ptr<const TriMesh> mesh_;  // the caller's arrays (null: the scene's mesh key)
   std::string name_;
   std::unique_ptr<Session> session_;
 };
@@ -446,14 +443,14 @@ class HostLayer {
   }
 
   void render(std::array<int, 4> viewport, const Array<double>& view,
-              const Array<double>& projection, double world_per_pixel,
+              const Array<double>& projection, double focal_distance,
               std::array<double, 3> surface_color) {
     HostRender r;
     r.origin = glm::ivec2(viewport[0], viewport[1]);
     r.width = viewport[2];
     r.height = viewport[3];
     r.view = ViewState{mat4_of(view, "view"), mat4_of(projection, "projection")};
-    r.world_per_pixel = world_per_pixel;
+    r.focal_distance = focal_distance;
     r.surface_color = glm::vec3(surface_color[0], surface_color[1], surface_color[2]);
     host_.render(r);
   }
@@ -635,7 +632,7 @@ PYBIND11_MODULE(_ibfvs, m) {
            py::arg("triangles"), py::arg("vectors"), py::arg("colour"), py::arg("name"))
       .def("set_colours", &ibfvs::python::HostLayer::set_colours, py::arg("table"), py::arg("nan"))
       .def("render", &ibfvs::python::HostLayer::render, py::arg("viewport"), py::arg("view"),
-           py::arg("projection"), py::arg("world_per_pixel"), py::arg("surface_color"))
+           py::arg("projection"), py::arg("focal_distance"), py::arg("surface_color"))
       .def("release", &ibfvs::python::HostLayer::release)
       .def_property_readonly("frame", &ibfvs::python::HostLayer::frame);
   py::class_<Animation>(m, "Animation")

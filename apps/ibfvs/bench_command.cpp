@@ -187,7 +187,7 @@ int run_bench(const BenchOptions& o) {
           const auto frame = [&] {
             if (dynamic) camera.orbit(o.orbit);
             session.render(camera);
-            session.renderer().finish();  // the renderer in force (a restart makes a new one)
+            session.finish();  // the renderer in force (a restart makes a new one)
           };
           session.restart();
           for (int k = 0; k < o.warmup; ++k) frame();

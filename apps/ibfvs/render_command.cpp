@@ -280,9 +280,10 @@ int run_render(const Scene& o, const std::string& scene_file) {
 
   // ---- render
   gl::HeadlessContext context;
+  // Read through the session, never a renderer held across the frames (a
+  // restart or a new size makes a new one).
   Session session(std::move(prepared));
-  const IbfvsRenderer& renderer = session.renderer();
-  const TriMesh& mesh = *session.scene().mesh;
+  const std::shared_ptr<const TriMesh> mesh = session.scene().mesh;
   std::unique_ptr<VideoWriter> video;
   if (kind == OutputKind::Video)
     video = std::make_unique<VideoWriter>(out, size.width, size.height, o.fps);
@@ -294,17 +295,17 @@ int run_render(const Scene& o, const std::string& scene_file) {
     session.advance();
     if (kind == OutputKind::Video) {
       ImageU8 frame = video->spare();
-      renderer.read_output(frame);
+      session.read_output(frame);
       video->write(std::move(frame));
     }
     if (kind == OutputKind::PngSequence) {
       const std::string frame_file = frame_path(out.string(), k);
       check_not_input(frame_file, inputs, "--out");
-      write_png(renderer.read_output(), frame_file);
+      write_png(session.read_output(), frame_file);
     }
     progress.update(k + 1);
   }
-  renderer.finish();
+  session.finish();
   context.throw_if_errors();
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -325,10 +326,10 @@ int run_render(const Scene& o, const std::string& scene_file) {
                  InterruptGuard::name(signal), done, frames, what.c_str());
     return 128 + signal;
   }
-  if (kind == OutputKind::Png) write_png(renderer.read_output(), out);
+  if (kind == OutputKind::Png) write_png(session.read_output(), out);
   if (video) video->close();
   if (!o.texture_out.empty()) {
-    write_png16(renderer.read_texture().select_channels(0, 3), o.texture_out);
+    write_png16(session.read_texture().select_channels(0, 3), o.texture_out);
   }
   if (export_page) {
     const WebPageReport report = write_web_page(session.scene(), o.export_model);
@@ -336,7 +337,7 @@ int run_render(const Scene& o, const std::string& scene_file) {
       std::printf("ibfvs: exported %s (%zu bytes)\n", o.export_model.c_str(), report.page);
   } else if (!o.export_model.empty()) {
     // F_t as an 8-bit RGB image and each vertex's position in it (section 3.7).
-    const ExportReport report = export_textured_model(renderer, mesh, o.export_model);
+    const ExportReport report = export_textured_model(session.renderer(), *mesh, o.export_model);
     if (report.outside > 0)
       std::fprintf(stderr,
                    "ibfvs: warning: %zu vertices lie outside the view that made the texture; "
@@ -353,8 +354,8 @@ int run_render(const Scene& o, const std::string& scene_file) {
     std::printf(
         "ibfvs: wrote %s (%d frames, %dx%d) from %s: %zu vertices, %zu triangles, field %s, "
         "dt %.4g (%s %.2f px/frame), %.1f fps on %s\n",
-        out.c_str(), frames, size.width, size.height, mesh_name.c_str(), mesh.vertex_count(),
-        mesh.triangle_count(), field_spec.to_string().c_str(), dt,
+        out.c_str(), frames, size.width, size.height, mesh_name.c_str(), mesh->vertex_count(),
+        mesh->triangle_count(), field_spec.to_string().c_str(), dt,
         o.image_normalize ? "image-normalised, every point" : "max", max_px, frames / seconds,
         context.renderer().c_str());
     if (!o.texture_out.empty())

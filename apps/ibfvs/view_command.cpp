@@ -119,7 +119,7 @@ class Viewer final : public WindowActions {
       window_.framebuffer_size(w, h);
       int ww = 0, wh = 0;
       glfwGetWindowSize(window_.handle(), &ww, &wh);
-      viewer_.renderer().present(w, h, show_panel_ ? ViewerPanel::kWidth * w / std::max(ww, 1) : 0);
+      viewer_.session().present(w, h, show_panel_ ? ViewerPanel::kWidth * w / std::max(ww, 1) : 0);
       draw_interface();
       if (!window_shot_.empty()) {
         write_png(window_.read_pixels(), window_shot_);
@@ -136,7 +136,7 @@ class Viewer final : public WindowActions {
         std::snprintf(title, sizeof title, "ibfvs view - %s - %.1f fps - drag: %s%s",
                       viewer_.scene().mesh_name.c_str(), frames_since_title / seconds,
                       std::string(enum_name(viewer_.drag_mode)).c_str(),
-                      viewer_.renderer().locked() ? " - locked" : "");
+                      viewer_.session().locked() ? " - locked" : "");
         window_.set_title(title);
         fps_ = frames_since_title / seconds;
         frames_since_title = 0;
@@ -192,7 +192,7 @@ class Viewer final : public WindowActions {
     const bool shift = glfwGetKey(w, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS;
     const bool ctrl = glfwGetKey(w, GLFW_KEY_LEFT_CONTROL) == GLFW_PRESS ||
                       glfwGetKey(w, GLFW_KEY_RIGHT_CONTROL) == GLFW_PRESS;
-    std::vector<FlowElement>& elements = viewer_.scene().field_spec.elements;
+    std::vector<FlowElement> elements = viewer_.elements();
     const int selected = viewer_.selected_element;
     if (ctrl && left && !over_panel && !viewer_.dragging() && selected >= 0 &&
         selected < static_cast<int>(elements.size())) {
@@ -202,7 +202,7 @@ class Viewer final : public WindowActions {
         const glm::vec3 half = 0.5f * (e.b - e.a);
         e.a = *p - half;
         e.b = *p + half;
-        viewer_.elements_changed();
+        viewer_.set_elements(std::move(elements));
       }
     } else if ((left || right) && !viewer_.dragging() && !over_panel) {
       viewer_.begin_drag();

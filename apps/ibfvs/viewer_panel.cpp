@@ -75,7 +75,7 @@ void ViewerPanel::draw(ViewerSession& viewer, bool& show, bool& show_help, doubl
   changed |= ImGui::ColorEdit3("surface", &d.surface_color.x, swatch);
   if (changed) viewer.apply_live(d);
   enum_combo("drag", viewer.drag_mode);
-  bool locked = viewer.renderer().locked();
+  bool locked = viewer.session().locked();
   if (ImGui::Checkbox("lock", &locked)) viewer.toggle_lock();
   ImGui::SameLine();
   ImGui::Checkbox("pause", &viewer.paused);
@@ -123,7 +123,7 @@ void ViewerPanel::draw(ViewerSession& viewer, bool& show, bool& show_help, doubl
 
 // Scene file, screenshot, recording, an offscreen render at any size.
 void ViewerPanel::draw_save_and_record(ViewerSession& viewer) {
-  ImGui::Text("frame %d, %zu triangles", viewer.renderer().frame(),
+  ImGui::Text("frame %d, %zu triangles", viewer.frame_count(),
               viewer.scene().mesh->triangle_count());
   char path[256];
   std::snprintf(path, sizeof path, "%s", save_path_.c_str());
@@ -178,7 +178,7 @@ void ViewerPanel::draw_more_parameters(ViewerSession& viewer) {
       viewer.message = std::string("error: ") + e.what();
     }
   }
-  RenderSettings s = viewer.renderer().settings();
+  RenderSettings s = viewer.session().settings();
   if (s.use_color) {
     bool changed = enum_combo(std::string(key_label("color_map")).c_str(), d.color_map);
     if (ImGui::DragFloat2("colour range", &s.color_range.x, 0.01f) &&
@@ -211,7 +211,7 @@ void ViewerPanel::draw_styles_and_files(ViewerSession& viewer) {
 
 // Add, select, move (ctrl + drag on the surface) and shape flow elements.
 void ViewerPanel::draw_elements(ViewerSession& viewer) {
-  std::vector<FlowElement>& elements = viewer.scene().field_spec.elements;
+  std::vector<FlowElement> elements = viewer.elements();
   bool changed = false;
   for (std::size_t i = 0; i < elements.size(); ++i) {
     char label[32];
@@ -254,7 +254,7 @@ void ViewerPanel::draw_elements(ViewerSession& viewer) {
     }
     ImGui::TextUnformatted("ctrl + drag moves it along the surface");
   }
-  if (changed) viewer.elements_changed();
+  if (changed) viewer.set_elements(std::move(elements));
 }
 
 }  // namespace ibfvs::app

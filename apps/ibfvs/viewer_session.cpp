@@ -41,7 +41,7 @@ void ViewerSession::frame() {
   session_->render(camera_.camera());
   if (video_) {
     ImageU8 image = video_->spare();
-    session_->renderer().read_output(image);
+    session_->read_output(image);
     video_->write(std::move(image));
   }
 }
@@ -50,20 +50,10 @@ void ViewerSession::frame() {
 
 bool ViewerSession::reload(const Scene& desc) {
   try {
-    PreparedScene prepared = prepare_scene(desc);
-    for (const std::string& w : prepared.warnings)
-      std::fprintf(stderr, "ibfvs: warning: %s\n", w.c_str());
-    session_ = std::make_unique<Session>(std::move(prepared));
-    desc_ = desc;
-    camera_ = ViewerCamera(mesh_bounds(*scene().mesh), scene().camera, aspect_of(scene()));
-    selected_element = -1;
-    time = 0.0;
-    message = "loaded " + scene().mesh_name;
+    apply_live(desc);
     return true;
-  } catch (const std::exception& e) {
-    message = std::string("error: ") + e.what();
-    std::fprintf(stderr, "ibfvs: %s\n", message.c_str());
-    return false;
+  } catch (const std::exception&) {
+    return false;  // apply_live said why (message)
   }
 }
 
@@ -98,9 +88,18 @@ void ViewerSession::apply_live(const Scene& desc) {
   // The session's rules (Session::set): the viewer keeps only its own
   // camera, made again where the view changed.
   const Camera view = camera_.camera();
-  switch (session_->set(desc, &view)) {
-    case SetResult::kPrepare:
-      if (!reload(desc)) throw InputError(message);
+  SetResult result = SetResult::kApplied;
+  try {
+    result = session_->set(desc, &view);
+  } catch (const std::exception& e) {  // nothing changed: the old scene stays
+    message = std::string("error: ") + e.what();
+    std::fprintf(stderr, "ibfvs: %s\n", message.c_str());
+    throw;
+  }
+  switch (result) {
+    case SetResult::kPrepared:
+      desc_ = desc;
+      prepared_again();
       return;
     case SetResult::kNewView:
       camera_ = ViewerCamera(mesh_bounds(*scene().mesh), scene().camera, aspect_of(scene()));
@@ -110,6 +109,15 @@ void ViewerSession::apply_live(const Scene& desc) {
       break;
   }
   desc_ = desc;
+}
+
+void ViewerSession::prepared_again() {
+  for (const std::string& w : scene().warnings)
+    std::fprintf(stderr, "ibfvs: warning: %s\n", w.c_str());
+  camera_ = ViewerCamera(mesh_bounds(*scene().mesh), scene().camera, aspect_of(scene()));
+  selected_element = -1;
+  time = 0.0;
+  message = "loaded " + scene().mesh_name;
 }
 
 void ViewerSession::restart() {
@@ -154,26 +162,24 @@ void ViewerSession::save_scene(const std::filesystem::path& file) {
 
 void ViewerSession::add_element(const FlowElement& element) {
   element.validate();
-  FieldSpec& spec = scene().field_spec;
-  std::vector<FlowElement> kept =
-      spec.kind == FieldKind::Elements ? spec.elements : std::vector<FlowElement>{};
+  std::vector<FlowElement> kept = elements();
   kept.push_back(element);
-  if (spec.kind != FieldKind::Elements) spec = FieldSpec::parse("elements");
-  spec.elements = kept;
   selected_element = static_cast<int>(kept.size()) - 1;
-  elements_changed();
+  set_elements(std::move(kept));
 }
 
-void ViewerSession::elements_changed() {
-  FieldSpec& spec = scene().field_spec;
-  if (spec.kind != FieldKind::Elements) {
-    spec = FieldSpec::parse("elements");
-    message = "the field is now the flow elements";
-  }
+std::vector<FlowElement> ViewerSession::elements() const {
+  const FieldSpec& spec = scene().field_spec;
+  return spec.kind == FieldKind::Elements ? spec.elements : std::vector<FlowElement>{};
+}
+
+void ViewerSession::set_elements(std::vector<FlowElement> elements) {
+  const bool became = scene().field_spec.kind != FieldKind::Elements;
   try {
-    for (const FlowElement& e : spec.elements) e.validate();
-    session_->set_field(evaluate_field(*scene().mesh, spec, desc_.tangent));  // dt fits it
+    session_->set_elements(std::move(elements));  // dt fits the field
+    if (became) message = "the field is now the flow elements";
     // The typed scene follows, so that saving keeps the edited elements.
+    const FieldSpec& spec = scene().field_spec;
     desc_.field = spec;
     desc_.field->elements.clear();
     desc_.elements = spec.elements;
@@ -226,7 +232,7 @@ std::optional<glm::vec3> ViewerSession::surface_point(glm::vec2 pixel) {
   const int px = static_cast<int>(std::floor(pixel.x));
   const int py = h - 1 - static_cast<int>(std::floor(pixel.y));
   if (px < 0 || py < 0 || px >= w || py >= h) return std::nullopt;
-  const ImageF depth = session_->renderer().read_depth();
+  const ImageF depth = session_->read_depth();
   const float z = depth.pixels[static_cast<std::size_t>(py) * w + px];
   if (z >= 1.0f) return std::nullopt;  // background
   const Camera c = camera_.camera();
@@ -257,7 +263,7 @@ void ViewerSession::screenshot(const std::filesystem::path& file) {
 }
 
 void ViewerSession::write_texture(const std::filesystem::path& file) {
-  write_png16(session_->renderer().read_texture().select_channels(0, 3), file);
+  write_png16(session_->read_texture().select_channels(0, 3), file);
 }
 
 void ViewerSession::toggle_recording() {

@@ -35,14 +35,14 @@ class ViewerSession {
   /// One frame: unless paused, the time of an unsteady field moves on and the
   /// texture takes a step seen by the camera (and goes to the recording).
   void frame();
-  [[nodiscard]] int frame_count() const { return session_->renderer().frame(); }
+  [[nodiscard]] int frame_count() const { return session_->renderer_frame(); }
 
   // ---- what is in force
   [[nodiscard]] const Scene& desc() const { return desc_; }
-  [[nodiscard]] PreparedScene& scene() { return session_->scene(); }
-  /// The renderer, read-only: changes go through the session.
-  [[nodiscard]] const IbfvsRenderer& renderer() const { return session_->renderer(); }
+  /// The scene in force, read-only: it changes through the session.
+  [[nodiscard]] const PreparedScene& scene() const { return session_->scene(); }
   [[nodiscard]] Session& session() { return *session_; }
+  [[nodiscard]] const Session& session() const { return *session_; }
   [[nodiscard]] ViewerCamera& camera() { return camera_; }
   DragMode drag_mode = DragMode::Previous;
   bool paused = false;
@@ -51,9 +51,9 @@ class ViewerSession {
   int selected_element = -1;  ///< the flow element the panel and ctrl + drag edit
 
   // ---- the scene
-  /// Prepares `desc` and, when that succeeds, replaces the current scene
-  /// (styles, loading, settings that change the mesh or the field). Errors go
-  /// to `message`; the old scene stays. Returns whether it replaced it.
+  /// Takes `desc` through the session (styles, loading, settings that change
+  /// the mesh or the field: it prepares the scene again itself). Errors go
+  /// to `message`; the old scene stays. Returns whether it took it.
   bool reload(const Scene& desc);
   void apply_style(Style style);
   /// A mesh, or a scene file (*.toml).
@@ -61,9 +61,9 @@ class ViewerSession {
   /// Any scene key, by the session's rules (Session::set, key_effect):
   /// texture settings, the step, the noise grid, the tangent mode and the
   /// camera change on the running animation; anything else (and the size,
-  /// which is the window's) prepares the scene again. Throws SettingError
-  /// for a bad key or value (nothing changes), InputError when preparing
-  /// fails.
+  /// which is the window's) prepares the scene again, in the session.
+  /// Throws SettingError for a bad key or value (nothing changes),
+  /// InputError when preparing fails.
   void set(const std::string& key, const std::string& value);
   /// The same for a scene with any keys changed (the panel's).
   void apply_live(const Scene& desc);
@@ -79,8 +79,11 @@ class ViewerSession {
 
   // ---- flow elements
   void add_element(const FlowElement& element);
-  /// The elements in scene().field_spec changed: evaluate and upload the field.
-  void elements_changed();
+  /// The flow elements in force (the field's; none for another field).
+  [[nodiscard]] std::vector<FlowElement> elements() const;
+  /// The field becomes these flow elements (Session::set_elements), the
+  /// typed scene following; errors go to `message`.
+  void set_elements(std::vector<FlowElement> elements);
 
   // ---- mouse (section 3.7)
   void begin_drag();
@@ -107,6 +110,8 @@ class ViewerSession {
 
  private:
   void update_dt();
+  // The viewer's own state after the session prepared the scene again.
+  void prepared_again();
 
   Scene desc_;  // the scene in force, typed: panel, script and loads edit it; save writes it
   std::unique_ptr<Session> session_;

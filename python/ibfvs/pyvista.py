@@ -135,15 +135,6 @@ def _vtk_matrix(m):
     return np.array([[m.GetElement(r, c) for c in range(4)] for r in range(4)])
 
 
-def _world_per_pixel(camera, width, height):
-    if camera.GetParallelProjection():
-        extent = 2.0 * camera.GetParallelScale()
-    else:
-        extent = 2.0 * camera.GetDistance() * math.tan(math.radians(camera.GetViewAngle()) / 2)
-    pixels = width if camera.GetUseHorizontalViewAngle() else height
-    return extent / max(pixels, 1)
-
-
 _CLIENT_SIDE = ("ibfvs: the flow texture is drawn by the plotter's OpenGL, on the server; "
                 "client-side rendering (vtk.js: trame's client mode, export_html) draws the "
                 "plain surface. Render on the server (jupyter_backend='server', or trame's "
@@ -364,7 +355,7 @@ class FlowLayer:
                 self._colour_key = key
             colour = self._actor.GetProperty().GetDiffuseColor()
             self._layer.render((int(x0), int(y0), width, height), view, projection,
-                               _world_per_pixel(camera, width, height), colour)
+                               camera.GetDistance(), colour)
             self._problem = None
         except Exception as e:  # noqa: BLE001 - shown once, the plain surface instead
             self._fail(str(e))

@@ -416,6 +416,14 @@ void clear_window(int width, int height, const glm::vec4& rgba) {
 void set_viewport(int width, int height) {
   glViewport(0, 0, width, height);
 }
+void set_viewport(glm::ivec2 origin, int width, int height) {
+  glViewport(origin.x, origin.y, width, height);
+}
+glm::ivec2 viewport_origin() {
+  GLint viewport[4] = {0, 0, 0, 0};
+  glGetIntegerv(GL_VIEWPORT, viewport);
+  return {viewport[0], viewport[1]};
+}
 void set_face_culling(int orientation) {
   if (orientation == 0) {
     glDisable(GL_CULL_FACE);

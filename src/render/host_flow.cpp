@@ -29,19 +29,11 @@ void HostFlow::set_scene(const Scene& next) {
   s.field = scene_.field;
   s.width = scene_.width;
   s.height = scene_.height;
-  {
-    RenderSettings check;  // every value checked before anything changes
-    apply_texture_settings(s, check);
-    check.validate();
-  }
-  // The session's rule (plan_change): what it cannot take on needs the
-  // scene prepared again, and the texture starts afresh.
-  const ChangePlan plan = plan_change(scene_, s, false);
+  static_cast<void>(scene_settings(s, RenderSettings{}));  // every value checked now
+  // A new seed starts the texture afresh on every process alike (the
+  // host's agreement: restart); the session takes the rest of the change.
+  restart_ = restart_ || s.seed != scene_.seed;
   scene_ = std::move(s);
-  prepare_ = prepare_ || plan.prepare;
-  restart_ = restart_ || plan.prepare || plan.reseed;
-  regrid_ = regrid_ || plan.regrid;
-  keys_changed_ = keys_changed_ || plan.any();
 }
 
 void HostFlow::set_frames_per_step(int frames) {
@@ -99,7 +91,6 @@ HostChanges HostFlow::pending(int width, int height) const {
   HostChanges c;
   c.restart = restart_ || (mesh_ && !session_);
   c.resize = std::max(width, 1) != width_ || std::max(height, 1) != height_;
-  c.regrid = regrid_;
   c.changed = data_changed_;
   c.moved = points_moved_;
   c.speed = speed_;
@@ -107,32 +98,30 @@ HostChanges HostFlow::pending(int width, int height) const {
   return c;
 }
 
-// The session made (the first surface, a key that needs preparing),
-// dropped (no surface), or taking on a restart, a new size, the keys or new
-// data, as agreed: the texture goes on from where it is, only a restart
+// The session made (the first surface), dropped (no surface), or taking on
+// a new size, new data, the host's keys (the session's one door: it plans
+// them, and prepares the scene again itself where a key needs it) and a
+// restart, as agreed: the texture goes on from where it is, only a restart
 // starts it afresh.
 void HostFlow::update_session(int width, int height, const HostChanges& all) {
   try {
     if (!mesh_) {
       if (session_ || all.restart) frame_ = 0;
       session_.reset();
-    } else if (!session_ || prepare_) {
-      session_.reset();
+    } else if (!session_) {
       frame_ = 0;
       Scene s = scene_;
       s.width = width;
       s.height = height;
-      session_ = std::make_unique<Session>(prepare_scene(s, *mesh_, name_));
+      session_ = std::make_unique<Session>(prepare_scene(s, *mesh_, name_), mesh_, name_);
       made_in_ = gl::current_context();
     } else {
       if (all.resize) session_->resize(width, height);
-      if (keys_changed_) {
-        Scene s = scene_;
-        s.width = session_->scene().width;
-        s.height = session_->scene().height;
-        static_cast<void>(session_->set(s));  // prepare_ took what it cannot
-      }
-      if (data_changed_) session_->change_data(prepare_change(session_->scene(), *mesh_, name_));
+      if (data_changed_) session_->change_surface(mesh_, name_);
+      Scene s = scene_;
+      s.width = session_->scene().width;
+      s.height = session_->scene().height;
+      if (session_->set(s) == SetResult::kPrepared && session_->frame() == 0) frame_ = 0;
       // Every process starts afresh where one does (a first surface, a new
       // seed): their frame counts stay alike. A new seed has already.
       if (all.restart && session_->frame() > 0) session_->restart();
@@ -145,10 +134,9 @@ void HostFlow::update_session(int width, int height, const HostChanges& all) {
     problem_ = e.what();
     session_.reset();
   }
-  if (all.restart || all.resize || all.regrid) renderer_frame_ = 0;
   width_ = width;
   height_ = height;
-  restart_ = regrid_ = prepare_ = keys_changed_ = data_changed_ = points_moved_ = false;
+  restart_ = data_changed_ = points_moved_ = false;
 }
 
 // The host's view and colours for this render, through the session's door.
@@ -160,7 +148,7 @@ void HostFlow::apply_host(const HostRender& r, const HostChanges& all) {
   session_->set_host_colours(colours);
   // dt: the fastest vector of the whole surface moves `step` pixels at the
   // focal point.
-  session_->follow_host(r.world_per_pixel, all.speed);
+  session_->follow_host(world_per_pixel(r.view.projection, r.focal_distance, r.height), all.speed);
   session_->defer_statistics(r.defer_statistics);
 }
 
@@ -178,11 +166,10 @@ int HostFlow::begin(const HostRender& r, const HostChanges& all) {
 void HostFlow::frame(const ViewState& view) {
   if (session_) session_->render(view);
   ++frame_;
-  ++renderer_frame_;
 }
 
 void HostFlow::finish(glm::ivec2 origin, bool within_surface) {
-  if (session_) session_->renderer().draw_to_host(origin, within_surface);
+  if (session_) session_->draw_to_host(origin, within_surface);
 }
 
 void HostFlow::render(const HostRender& r) {

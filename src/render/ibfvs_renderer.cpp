@@ -125,7 +125,7 @@ void IbfvsRenderer::shift_image(glm::vec2 pixels) {
   noise_shift_ += pixels;
 }
 
-void IbfvsRenderer::present(int window_width, int window_height, int left) const {
+void IbfvsRenderer::present(int window_width, int window_height, int left) {
   gl::clear_window(window_width, window_height, glm::vec4(settings_.background, 1.0f));
   const int area = std::max(window_width - left, 1);
   const float scale = std::min(static_cast<float>(area) / settings_.width,
@@ -419,15 +419,16 @@ std::vector<std::uint8_t> IbfvsRenderer::read_coverage() const {
   return covered;
 }
 
-void IbfvsRenderer::draw_over_output(const std::function<void()>& draw) const {
+void IbfvsRenderer::draw_over_output(const std::function<void()>& draw) {
   targets_.display().bind();
   gl::set_viewport(settings_.width, settings_.height);
   draw();
 }
 
-void IbfvsRenderer::draw_to_host(glm::ivec2 origin, bool interior) const {
+void IbfvsRenderer::draw_to_host(glm::ivec2 origin, bool interior) {
   const gl::SavedState saved;
   gl::prepare_host_draw();
+  gl::set_viewport(origin, settings_.width, settings_.height);  // the host's, put back after
   bind_reads(planned_pass("host"), feedback_.last(), feedback_.now());
   host_pass_.draw(origin, interior, surface_box_);
 }
@@ -474,7 +475,7 @@ void IbfvsRenderer::set_probe_length(float world) {
   probe_ = world;
 }
 
-void IbfvsRenderer::finish() const {
+void IbfvsRenderer::finish() {
   gl::finish();
 }
 

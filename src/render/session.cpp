@@ -133,8 +133,10 @@ float aspect_of(const PreparedScene& s) {
 
 }  // namespace
 
-Session::Session(PreparedScene scene)
+Session::Session(PreparedScene scene, std::shared_ptr<const TriMesh> source, std::string name)
     : scene_(std::move(scene)),
+      source_(std::move(source)),
+      source_name_(std::move(name)),
       camera_(mesh_bounds(*scene_.mesh), scene_.camera, aspect_of(scene_)),
       dt_(scene_.dt) {
   if (scene_.lock_camera)
@@ -183,7 +185,7 @@ void Session::restart() {
 
 void Session::resize(int width, int height) {
   if (width == scene_.width && height == scene_.height) return;
-  scene_ = resized(scene_, width, height);
+  fit_to_size(scene_, width, height);
   camera_.set_aspect(aspect_of(scene_));
   if (lock_camera_) lock_camera_->set_aspect(aspect_of(scene_));
   rebuild(false);
@@ -197,6 +199,7 @@ void Session::fit_dt(const Camera& camera) {
 }
 
 void Session::follow_host(double world_per_pixel, float speed) {
+  if (host_scale_ && *host_scale_ == std::pair(world_per_pixel, speed)) return;
   host_scale_.emplace(world_per_pixel, speed);
   host_camera_.reset();
   refit_dt();
@@ -207,10 +210,8 @@ void Session::refit_dt() {
   if (s.dt > 0.0f) {
     dt_ = s.dt;
   } else if (host_scale_) {
-    // Normalised in image space, any dt > 0 moves every point `step` pixels.
     const auto [world_per_pixel, speed] = *host_scale_;
-    dt_ = s.image_normalize ? (s.step > 0.0f && speed > 0.0f ? 1.0f : 0.0f)
-                            : dt_for_step(s.step, speed, world_per_pixel);
+    dt_ = scene_dt(s, speed, world_per_pixel);
   } else if (const float d = host_camera_ ? dt_for_pixel_step(scene_.mesh->positions, scene_.field,
                                                               host_camera_->view_projection(),
                                                               scene_.width, scene_.height, s.step)
@@ -218,9 +219,9 @@ void Session::refit_dt() {
              d > 0.0f) {
     dt_ = d;
   } else {
-    // The scene's camera, as prepared (and a series' steps, where the
-    // first is at rest).
-    dt_ = resized(scene_, scene_.width, scene_.height).dt;
+    // The scene's camera, as prepared and kept fitted (apply_change,
+    // fit_to_size): a series' steps are not read again here.
+    dt_ = scene_.dt;
   }
 }
 
@@ -273,47 +274,59 @@ void Session::advance() {
 }
 
 SetResult Session::set(const Scene& next, const Camera* seen_by) {
-  const Scene& now = scene_.scene;
-  const ChangePlan plan = plan_change(now, next, scene_.step_count > 1);
-  if (!plan.takes()) return SetResult::kPrepare;
-
-  // Everything checked before anything changes.
-  RenderSettings settings = scene_.settings;
-  apply_texture_settings(next, settings);
-  settings.noise.scale = next.scale;
-  settings.noise.seed = next.seed;
-  if (settings.object_noise && !scene_.settings.object_noise) {
-    // s pixels at the distance of the mesh centre, as prepare_scene does.
-    const Camera& c = seen_by ? *seen_by : host_camera_ ? *host_camera_ : camera_;
-    settings.object_cell = settings.noise.scale * c.world_per_pixel(scene_.height);
+  // The world units a pixel spans at the mesh centre as the frames are
+  // drawn: an object-space noise cell is sized for it.
+  const Camera& seen = seen_by ? *seen_by : host_camera_ ? *host_camera_ : camera_;
+  const ChangePlan plan = apply_change(scene_, next, seen.world_per_pixel(scene_.height));
+  if (plan.prepare) {
+    prepare_again(next);
+    return SetResult::kPrepared;
   }
-  {
-    RenderSettings sized = settings;  // the size too, before anything changes
-    sized.width = next.width;
-    sized.height = next.height;
-    sized.validate();
-  }
-  std::vector<glm::vec3> field;
-  if (plan.tangent) field = evaluate_field(*scene_.mesh, scene_.field_spec, next.tangent);
-
-  scene_.scene = next;
-  scene_.settings = settings;
-  if (plan.camera) {
-    CameraParams params = next.camera;
-    params.up = scene_.camera.up;  // the prepared scene's up (a key of its own)
-    scene_.camera = params;
-    camera_ = Camera(mesh_bounds(*scene_.mesh), params, aspect_of(scene_));
-    if (!plan.size) scene_ = resized(scene_, scene_.width, scene_.height);  // the object cell
-  }
+  if (plan.camera)
+    camera_ = Camera(mesh_bounds(*scene_.mesh), scene_.camera, aspect_of(scene_));
+  else if (plan.size)
+    camera_.set_aspect(aspect_of(scene_));
+  if (plan.size && lock_camera_) lock_camera_->set_aspect(aspect_of(scene_));
   if (plan.camera || plan.size) host_camera_.reset();  // the caller's camera changes: fit_dt
-  if (plan.regrid || plan.reseed)
-    rebuild(plan.reseed);
+  if (plan.regrid || plan.reseed || plan.size)
+    rebuild(plan.reseed);  // the texture resampled to the size and grid (a new seed: afresh)
   else
     apply_host(false);
-  if (plan.tangent) set_field(std::move(field));
-  if (plan.size) resize(next.width, next.height);
+  if (plan.tangent) {
+    ++data_version_;
+    const gl::SavedState saved;
+    renderer_->set_field(scene_.field);
+  }
   if (plan.step || plan.tangent || plan.camera || plan.size) refit_dt();
   return plan.camera || plan.size ? SetResult::kNewView : SetResult::kApplied;
+}
+
+void Session::prepare_again(const Scene& next) {
+  PreparedScene prepared =
+      source_ ? prepare_scene(next, *source_, source_name_) : prepare_scene(next);
+  const gl::SavedState saved;
+  // The texture goes on over the same surface (a new colour array, field or
+  // range); over another surface, or to another start, it starts afresh.
+  const TriMesh &from = *scene_.mesh, &to = *prepared.mesh;
+  const bool carried = renderer_->frame() > 0 && next.init == scene_.scene.init &&
+                       from.triangles == to.triangles && from.positions == to.positions;
+  const ImageF raw = carried ? renderer_->read_texture_raw() : ImageF();
+  const ViewState view = renderer_->last_view();
+  scene_ = std::move(prepared);
+  camera_ = Camera(mesh_bounds(*scene_.mesh), scene_.camera, aspect_of(scene_));
+  lock_camera_.reset();
+  if (scene_.lock_camera)
+    lock_camera_.emplace(mesh_bounds(*scene_.mesh), *scene_.lock_camera, aspect_of(scene_));
+  host_camera_.reset();
+  host_scale_.reset();
+  time_ = 0.0;
+  ++data_version_;
+  dt_ = scene_.dt;
+  load();
+  if (carried)
+    renderer_->take_texture(raw, view);
+  else
+    frame_ = 0;
 }
 
 void Session::set_field(std::vector<glm::vec3> field) {
@@ -321,10 +334,39 @@ void Session::set_field(std::vector<glm::vec3> field) {
     throw InputError("the field has " + std::to_string(field.size()) + " vectors, the mesh " +
                      std::to_string(scene_.mesh->vertex_count()) + " vertices");
   scene_.field = std::move(field);
+  fit_field(scene_);
   ++data_version_;
   const gl::SavedState saved;
   renderer_->set_field(scene_.field);
   refit_dt();
+}
+
+void Session::set_elements(std::vector<FlowElement> elements) {
+  FieldSpec spec = scene_.field_spec.kind == FieldKind::Elements ? scene_.field_spec
+                                                                 : FieldSpec::parse("elements");
+  spec.elements = std::move(elements);
+  for (const FlowElement& e : spec.elements) e.validate();
+  std::vector<glm::vec3> field = evaluate_field(*scene_.mesh, spec, scene_.scene.tangent);
+  scene_.field_spec = std::move(spec);
+  set_field(std::move(field));
+}
+
+void Session::change_surface(std::shared_ptr<const TriMesh> mesh, const std::string& name) {
+  change_data(prepare_change(scene_, *mesh, name));
+  source_ = std::move(mesh);
+  source_name_ = name;
+}
+
+void Session::present(int window_width, int window_height, int left) {
+  renderer_->present(window_width, window_height, left);
+}
+
+void Session::draw_to_host(glm::ivec2 origin, bool interior) {
+  renderer_->draw_to_host(origin, interior);
+}
+
+void Session::finish() {
+  renderer_->finish();
 }
 
 void Session::apply_host(bool upload) {

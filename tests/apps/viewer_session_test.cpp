@@ -42,18 +42,18 @@ TEST_F(ViewerSessionTest, SettingsChangeLiveOrByPreparingTheSceneAgain) {
   ViewerSession v = make();
   for (int k = 0; k < 4; ++k) v.frame();
   v.set("alpha", "0.3");  // live: the texture goes on
-  EXPECT_EQ(v.renderer().settings().alpha, 0.3f);
+  EXPECT_EQ(v.session().settings().alpha, 0.3f);
   EXPECT_EQ(v.desc().alpha, 0.3f);
   v.frame();
   EXPECT_EQ(v.frame_count(), 5);
   v.set("color_map", "bronze");
-  EXPECT_EQ(v.renderer().settings().color_map, ColorMap::Bronze);
+  EXPECT_EQ(v.session().settings().color_map, ColorMap::Bronze);
   v.set("filter", "5");  // the display stage and the warp change live too
   v.set("contrast", "0");
   v.set("resample", "linear");
-  EXPECT_EQ(v.renderer().settings().filter_length, 5.0f);
-  EXPECT_EQ(v.renderer().settings().contrast, 0.0f);
-  EXPECT_EQ(v.renderer().settings().resample, Resample::Linear);
+  EXPECT_EQ(v.session().settings().filter_length, 5.0f);
+  EXPECT_EQ(v.session().settings().contrast, 0.0f);
+  EXPECT_EQ(v.session().settings().resample, Resample::Linear);
   v.frame();
   EXPECT_EQ(v.frame_count(), 6) << "not prepared again";
   v.set("mesh", "torus:1,0.2");  // a new mesh: prepared again, frames from 0
@@ -91,11 +91,11 @@ TEST_F(ViewerSessionTest, FreezeLocksWhileDragging) {
   ViewerSession v = make(DragMode::Freeze);
   v.frame();
   v.begin_drag();
-  EXPECT_TRUE(v.renderer().locked());
+  EXPECT_TRUE(v.session().locked());
   v.drag_by({20.0f, 0.0f}, false);
   EXPECT_EQ(v.camera().params().azimuth_deg, -6.0f);  // 0.3 degrees per pixel
   v.end_drag();
-  EXPECT_FALSE(v.renderer().locked());
+  EXPECT_FALSE(v.session().locked());
 }
 
 // The window's part of a script, recorded.

@@ -18,6 +18,7 @@
 #include <glm/geometric.hpp>
 
 #include "gl_fixture.h"
+#include "ibfvs/core/geometry/displacement.h"
 #include "ibfvs/core/mesh/procedural.h"
 #include "ibfvs/core/scene/camera.h"
 #include "ibfvs/core/support/error.h"
@@ -70,7 +71,7 @@ HostRender host_render(const TriMesh& mesh) {
   r.width = kW;
   r.height = kH;
   r.view = ViewState{camera.view(), camera.projection()};
-  r.world_per_pixel = camera.world_per_pixel(kH);
+  r.focal_distance = camera.distance_world();
   return r;
 }
 
@@ -196,6 +197,31 @@ TEST_F(HostFlowGLTest, SettingsGoOnLiveOrStartAfreshByTheirKeysRules) {
   flow.set_scene(s);
   draw(flow, host, r);
   EXPECT_EQ(flow.frame(), before + 1);
+  // A key that needs the scene prepared again (the vectors reversed): the
+  // session prepares it itself, the same session, the texture going on.
+  const Session* session = flow.session();
+  const ImageF texture = session->read_texture();
+  s.reverse = true;
+  flow.set_scene(s);
+  EXPECT_EQ(flow.session()->read_texture().pixels, texture.pixels);  // nothing before the render
+  draw(flow, host, r);
+  EXPECT_EQ(flow.session(), session);
+  EXPECT_TRUE(flow.session()->scene().scene.reverse);
+  EXPECT_EQ(flow.frame(), before + 2);
+  EXPECT_EQ(flow.session()->frame(), before + 2);
+  // dt: the fastest vector moves the step at the focal point, in the
+  // host's projection (world_per_pixel, the one rule).
+  const Camera camera(
+      mesh_bounds(mesh),
+      [] {
+        CameraParams p;
+        p.elevation_deg = 35.0f;
+        return p;
+      }(),
+      static_cast<float>(kW) / kH);
+  float speed = 0.0f;
+  for (const glm::vec3& v : mesh.vectors) speed = std::max(speed, glm::length(v));
+  EXPECT_FLOAT_EQ(flow.session()->dt(), dt_for_step(s.step, speed, camera.world_per_pixel(kH)));
   s.seed = 99;  // a new seed: afresh
   flow.set_scene(s);
   draw(flow, host, r);
@@ -224,7 +250,6 @@ TEST_F(HostFlowGLTest, SeveralProcessesRenderInStepsAsOneRenders) {
       const HostChanges mine = f->pending(r.width, r.height);
       all.restart |= mine.restart;
       all.resize |= mine.resize;
-      all.regrid |= mine.regrid;
       all.changed |= mine.changed;
       all.moved |= mine.moved;
       all.speed = std::max(all.speed, mine.speed);

@@ -473,10 +473,10 @@ TEST_F(RendererGLTest, DeferredPassEqualsTheSinglePass) {
   // colour scalars keep the surface colour.
   constexpr int w = 128, h = 128;
   const Scene s = sphere_scene("rotate:0.3,1,0", TangentMode::Project);
-  RenderSettings settings;
-  settings.width = w;
-  settings.height = h;
-  ibfvs::apply_texture_settings(ibfvs::Scene{}, settings);
+  RenderSettings base;
+  base.width = w;
+  base.height = h;
+  RenderSettings settings = ibfvs::scene_settings(ibfvs::Scene{}, base);
   ASSERT_TRUE(shaders::deferred_pass(shaders::features_for(settings, false, false, false)));
   settings.use_color = true;
   settings.color_range = {-1.0f, 1.0f};

@@ -143,9 +143,9 @@ TEST_F(SessionGLTest, LocksAtItsFrameAndMovesToTheLockCamera) {
   EXPECT_EQ(session.renderer().read_texture().pixels, before.pixels);
 }
 
-// Session::set, the one set of rules the viewer and Python follow: what the
-// running animation takes (the texture going on) and what it leaves to a
-// new session.
+// Session::set, the one set of rules every front end follows: what the
+// running animation takes (the texture going on), and the scene prepared
+// again in the session where a key needs it.
 TEST_F(SessionGLTest, SettingsChangeOnTheRunningAnimationByTheKeysRules) {
   Session session(prepare_scene(small_scene()));
   for (int k = 0; k < 6; ++k) session.advance();
@@ -184,10 +184,24 @@ TEST_F(SessionGLTest, SettingsChangeOnTheRunningAnimationByTheKeysRules) {
   // A new seed: the texture starts afresh.
   ASSERT_EQ(changed("seed", "7"), SetResult::kApplied);
   EXPECT_EQ(session.frame(), 0);
-  // Keys that need the scene prepared again, and values that are not
-  // valid: nothing changes.
-  EXPECT_EQ(changed("color_by", "speed"), SetResult::kPrepare);
-  EXPECT_TRUE(session.scene().scene.color_by.empty());
+  // A key that needs the scene prepared again: the session prepares it,
+  // and over the same points the texture goes on from where it is.
+  for (int k = 0; k < 4; ++k) session.advance();
+  const ImageF before = session.read_texture();
+  EXPECT_EQ(changed("color_by", "speed"), SetResult::kPrepared);
+  EXPECT_EQ(session.scene().scene.color_by, "speed");
+  EXPECT_TRUE(session.settings().use_color);
+  EXPECT_EQ(session.frame(), 4);
+  EXPECT_EQ(session.read_texture().pixels, before.pixels);
+  // Over other points (a subdivided mesh) it starts afresh.
+  EXPECT_EQ(changed("subdivide", "1"), SetResult::kPrepared);
+  EXPECT_EQ(session.frame(), 0);
+  EXPECT_GT(session.scene().mesh->vertex_count(),
+            prepare_scene(small_scene()).mesh->vertex_count());
+  // Values that are not valid, and data that cannot be prepared: nothing
+  // changes.
+  EXPECT_THROW(changed("mesh", "/no/such/mesh.ply"), InputError);
+  EXPECT_EQ(session.scene().scene.subdivide, 1);
   Scene bad = session.scene().scene;
   bad.alpha = 1.5f;
   EXPECT_THROW(session.set(bad), SettingError);
@@ -195,6 +209,60 @@ TEST_F(SessionGLTest, SettingsChangeOnTheRunningAnimationByTheKeysRules) {
   EXPECT_EQ(session.scene().scene.alpha, 0.3f);
   // Keys read only by a front end change nothing on the texture.
   EXPECT_EQ(changed("frames", "99"), SetResult::kApplied);
+}
+
+// A new step fits dt from the speed the preparation found: a series' steps
+// are not read again (the viewer's step slider, a host's Step), nor is the
+// prepared scene copied; a new field fits it again.
+TEST_F(SessionGLTest, ANewStepReadsNoStepOfASeries) {
+  PreparedScene p = prepare_scene(small_scene());
+  int reads = 0;
+  const std::vector<glm::vec3> field = p.field;
+  p.step_count = 3;
+  p.step_data = [&reads, field](std::size_t) {
+    ++reads;
+    StepData d;
+    d.field = field;
+    return d;
+  };
+  Session session(std::move(p));
+  session.advance();
+  const int read = reads;
+  const float dt = session.dt();
+  Scene next = session.scene().scene;
+  for (int k = 1; k <= 5; ++k) {
+    next.step = static_cast<float>(k);
+    ASSERT_EQ(session.set(next), SetResult::kApplied);
+    EXPECT_FLOAT_EQ(session.dt(), dt * static_cast<float>(k) / small_scene().step);
+  }
+  EXPECT_EQ(reads, read);
+  std::vector<glm::vec3> faster = field;
+  for (glm::vec3& v : faster) v *= 2.0f;
+  session.set_field(faster);
+  EXPECT_FLOAT_EQ(session.dt(), 0.5f * dt * 5.0f / small_scene().step);
+}
+
+// What a front end reads goes to the renderer in force: a restart, a new
+// size or noise grid and a scene prepared again each make a new one (a
+// reference to the old one held across them, as `ibfvs render` once held,
+// would be left dangling).
+TEST_F(SessionGLTest, ReadsFollowTheRendererInForce) {
+  Session session(prepare_scene(small_scene()));
+  for (int k = 0; k < 3; ++k) session.advance();
+  session.resize(48, 40);
+  EXPECT_EQ(session.read_output().width, 48);
+  EXPECT_EQ(session.read_texture().height, 40);
+  EXPECT_EQ(session.read_depth().width, 48);
+  Scene next = session.scene().scene;
+  next.scale = 4.0f;
+  ASSERT_EQ(session.set(next), SetResult::kApplied);
+  EXPECT_EQ(session.settings().noise.scale, 4.0f);
+  session.restart();
+  EXPECT_EQ(session.renderer_frame(), 0);
+  session.advance();
+  EXPECT_EQ(session.renderer_frame(), 1);
+  EXPECT_EQ(session.read_output().height, 40);
+  session.finish();
 }
 
 // The one restart (the viewer's button, Python's restart(), a host's):
@@ -240,12 +308,12 @@ TEST_F(SessionGLTest, DtFitsTheStepInTheViewItIsDrawnWith) {
   next.step = 2.0f * next.step;  // a new step keeps the host's camera
   ASSERT_EQ(session.set(next), SetResult::kApplied);
   EXPECT_FLOAT_EQ(session.dt(), 2.0f * near);
-  // A host's world units per pixel: normalised in image space (the
-  // default), any dt moves every point `step` pixels: 1 where anything
-  // moves.
+  // A host's world units per pixel: the fastest vector moves `step` pixels
+  // at its focal point (normalised in image space, the default, every
+  // point does whatever dt is: > 0 where anything moves).
   ASSERT_TRUE(session.scene().scene.image_normalize);
   session.follow_host(0.01, 2.0f);
-  EXPECT_EQ(session.dt(), 1.0f);
+  EXPECT_FLOAT_EQ(session.dt(), dt_for_step(session.scene().scene.step, 2.0f, 0.01));
   session.follow_host(0.01, 0.0f);
   EXPECT_EQ(session.dt(), 0.0f);
   // The scene's own dt wins over every view.

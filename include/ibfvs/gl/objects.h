@@ -179,6 +179,11 @@ class Program : public Object<delete_program> {
 
 /// Global render state for the IBFVS passes.
 void set_viewport(int width, int height);
+/// The viewport at `origin` (its lower left corner in the bound framebuffer).
+void set_viewport(glm::ivec2 origin, int width, int height);
+/// The current viewport's lower left corner (where a host draws this view
+/// in its framebuffer: a tile of its window).
+[[nodiscard]] glm::ivec2 viewport_origin();
 /// Binds the default framebuffer (the window), sets the viewport to all of it
 /// and clears it to `rgba`.
 void clear_window(int width, int height, const glm::vec4& rgba);

@@ -36,10 +36,12 @@ namespace ibfvs {
 
 /// One render of the host.
 struct HostRender {
-  int width = 1, height = 1;   ///< its viewport, pixels
-  glm::ivec2 origin{0, 0};     ///< the viewport's lower left corner in its framebuffer
-  ViewState view;              ///< its camera (and the actor's matrix) and projection
-  double world_per_pixel = 0;  ///< world units a pixel spans at the focal point
+  int width = 1, height = 1;  ///< its viewport, pixels
+  glm::ivec2 origin{0, 0};    ///< the viewport's lower left corner in its framebuffer
+  ViewState view;             ///< its camera (and the actor's matrix) and projection
+  /// World units from the camera to its focal point (perspective: where
+  /// world_per_pixel measures a pixel; ignored for a parallel projection).
+  double focal_distance = 0;
   glm::vec3 surface_color{1.0f};
   /// The contrast statistics wait for the host (it composites the images
   /// of several processes first).
@@ -50,9 +52,8 @@ struct HostRender {
 /// agreed into one (any flag of any, the fastest vector, the bounds of all
 /// pieces) that they all take alike.
 struct HostChanges {
-  bool restart = false;  ///< the texture starts afresh (a new seed, a first surface)
+  bool restart = false;  ///< the texture starts afresh (a restart, a first surface)
   bool resize = false;   ///< the view's size changed
-  bool regrid = false;   ///< the noise grid changed
   bool changed = false;  ///< the surface changed
   bool moved = false;    ///< and its points moved
   float speed = 0.0f;    ///< the fastest vector
@@ -71,11 +72,11 @@ class HostFlow {
   HostFlow(const HostFlow&) = delete;
   HostFlow& operator=(const HostFlow&) = delete;
 
-  /// The texture keys of `scene` (alpha, beta, scale, step, seed, ...), by
-  /// the session's rule (Session::set, plan_change): live on the running
-  /// texture, a new noise grid under it, a new start (a new seed), or the
-  /// scene prepared again. Throws SettingError for a value that is not
-  /// valid, changing nothing.
+  /// The keys of `scene` (alpha, beta, scale, step, seed, ...), checked now
+  /// (scene_settings: throws SettingError for a value that is not valid,
+  /// changing nothing). The host's context is current only in its render:
+  /// the next render hands them to the session's one door (Session::set),
+  /// which plans and takes the change there, once.
   void set_scene(const Scene& scene);
   [[nodiscard]] const Scene& scene() const { return scene_; }
   /// At least this many texture frames for each change of the surface
@@ -122,11 +123,7 @@ class HostFlow {
 
   /// Texture frames since the texture last started afresh.
   [[nodiscard]] int frame() const { return frame_; }
-  /// Texture frames since the session's renderer was made (a new size or
-  /// noise grid makes one): the contrast statistics' schedule.
-  [[nodiscard]] int renderer_frame() const { return renderer_frame_; }
   [[nodiscard]] int frames_per_step() const { return pacer_.frames_per_step(); }
-  [[nodiscard]] bool has_surface() const { return mesh_ != nullptr; }
   /// Why the last begin() left no session with a surface to draw; empty otherwise.
   [[nodiscard]] const std::string& problem() const { return problem_; }
   /// The running session (null before the first render, for an empty
@@ -150,9 +147,9 @@ class HostFlow {
   std::unique_ptr<Session> session_;
   const void* made_in_ = nullptr;  // the context the session's objects are in
   int width_ = 0, height_ = 0;
-  int frame_ = 0, renderer_frame_ = 0;
-  bool restart_ = true, regrid_ = false, prepare_ = false, keys_changed_ = false;
-  bool data_changed_ = false, points_moved_ = false;
+  int frame_ = 0;
+  // The host's own: a restart asked for, and its piece changed (moved).
+  bool restart_ = true, data_changed_ = false, points_moved_ = false;
 };
 
 }  // namespace ibfvs

@@ -71,9 +71,6 @@
 
 namespace ibfvs {
 
-/// One camera state: world to eye, eye to clip (a host's camera's too).
-using ViewState = HostView;
-
 /// The IBFVS engine. Needs a current OpenGL 4.5 context for its whole life.
 class IbfvsRenderer {
  public:
@@ -197,21 +194,21 @@ class IbfvsRenderer {
   /// Draws the last output F into the window's framebuffer, scaled to fit the
   /// part of a window of that size right of `left` pixels (a side panel) with
   /// its aspect kept, the rest in the background colour.
-  void present(int window_width, int window_height, int left = 0) const;
+  void present(int window_width, int window_height, int left = 0);
   /// Runs `draw` with F and the last frame's depth bound as the framebuffer
   /// over the whole image (an overlay drawn over the frame: it shows in
   /// read_output and present, not in F_t).
-  void draw_over_output(const std::function<void()>& draw) const;
+  void draw_over_output(const std::function<void()>& draw);
   /// Draws the last frame into the framebuffer bound now (a host's, such as
-  /// ParaView's) over its viewport, which must be the image size and start at
-  /// `origin`: F where the surface is, with the surface's depth, so that the
+  /// ParaView's) over the image's size at `origin` (the viewport set to
+  /// it, whatever the host's was): F where the surface is, with the surface's depth, so that the
   /// host's other objects hide it and it hides them as their own would; the
   /// rest of the host's picture stays. Leaves the host's state as it was.
   /// `interior` draws only the pixels whose 3x3 neighbourhood but two corners
   /// is surface too: the texture again over a host's image-space
   /// antialiasing (FXAA), which blurs its lines, leaving the host's
   /// smoothing of the silhouettes.
-  void draw_to_host(glm::ivec2 origin, bool interior = false) const;
+  void draw_to_host(glm::ivec2 origin, bool interior = false);
   /// Replaces F_t (as read_texture_raw gives it: same size and channels), for
   /// the depth compositing of a distributed render (core/image/composite.h).
   void write_texture_raw(const ImageF& texture);
@@ -246,7 +243,7 @@ class IbfvsRenderer {
   /// several processes take the whole mesh's, so that they advect alike.
   void set_probe_length(float world);
   /// Blocks until the GPU has finished every submitted frame.
-  void finish() const;
+  void finish();
 
  private:
   // One compiled program per combination of features in use (see

@@ -10,10 +10,11 @@
 //
 // It is the one door to a running animation: every front end (the viewer,
 // Python, both VTK mappers through HostFlow) changes it only here: keys by
-// one rule (set: plan_change), one restart, a host's view (the camera it
-// draws with or the world units a pixel spans: dt by the one rule,
-// dt_for_step), a host's colours and its compositing. The renderer is only
-// seen through it, read-only.
+// one rule (set: apply_change's plan, prepared again here where a key needs
+// it), new data, one restart, a host's view (the camera it draws with or
+// the world units a pixel spans: dt by the one rule, scene_dt), a host's
+// colours and its compositing. Its images are read through it; the
+// renderer itself is seen read-only, by the few that measure it.
 //
 // It needs a current OpenGL 4.5 context for its whole life and never makes
 // one: ibfvs's own (gl::HeadlessContext, the viewer's window) or the host's
@@ -49,12 +50,14 @@ struct HostColours {
   bool operator==(const HostColours&) const = default;
 };
 
-/// What Session::set did with a changed scene (plan_change).
+/// What Session::set did with a changed scene (apply_change's plan).
 enum class SetResult {
-  kPrepare,  ///< nothing: a key needs the scene prepared again (a new Session)
-  kApplied,  ///< taken on the running animation
-  kNewView,  ///< taken, and the camera or the image size changed: a caller
-             ///< with its own camera makes it again and tells fit_dt
+  kApplied,   ///< taken on the running animation
+  kNewView,   ///< taken, and the camera or the image size changed: a caller
+              ///< with its own camera makes it again and tells fit_dt
+  kPrepared,  ///< a key needed the scene prepared again, and the session did:
+              ///< new data, camera and time 0; the texture goes on where the
+              ///< surface is the same (else it starts afresh)
 };
 
 /// Texture frames a host gives each change of its data (a time step) at
@@ -115,8 +118,12 @@ double session_time(double t, std::size_t steps, bool loop);
 class Session {
  public:
   /// Uploads the mesh, field, scalars and surface image and initialises F_t
-  /// (the scene's init). Throws GraphicsError without a current context.
-  explicit Session(PreparedScene scene);
+  /// (the scene's init). `source`, `name`: the mesh `scene` was prepared
+  /// from where the caller gave one (a host's, Python's arrays), which a key
+  /// that needs the scene prepared again prepares it from; null: the
+  /// scene's own files. Throws GraphicsError without a current context.
+  explicit Session(PreparedScene scene, std::shared_ptr<const TriMesh> source = nullptr,
+                   std::string name = {});
   ~Session();
   Session(const Session&) = delete;
   Session& operator=(const Session&) = delete;
@@ -140,12 +147,19 @@ class Session {
 
   /// Frames rendered so far.
   [[nodiscard]] int frame() const { return frame_; }
+  /// The scene as prepared and changed: read-only (changes go through set,
+  /// set_elements, change_surface, ...).
   [[nodiscard]] const PreparedScene& scene() const { return scene_; }
-  [[nodiscard]] PreparedScene& scene() { return scene_; }
-  /// The renderer, to read its images and state (the changes go through the
-  /// Session). A restart, a new size or a new noise grid makes a new one: a
-  /// reference held across them is left dangling.
+  /// The renderer, read-only, for what measures it (quality, export). A
+  /// restart, a new size or noise grid or a scene prepared again makes a
+  /// new one: a reference held across them is left dangling; the reads
+  /// below ask the one in force.
   [[nodiscard]] const IbfvsRenderer& renderer() const { return *renderer_; }
+  /// Texture frames the renderer in force has drawn (its contrast
+  /// statistics' schedule).
+  [[nodiscard]] int renderer_frame() const { return renderer_->frame(); }
+  /// The settings on the renderer (the scene's, with a host's colours).
+  [[nodiscard]] const RenderSettings& settings() const { return renderer_->settings(); }
   /// The camera advance() uses (the scene's, orbiting; the lock camera once locked).
   [[nodiscard]] Camera& camera() { return camera_; }
   /// World units per frame, by the one rule (dt_for_step): the scene's own
@@ -170,13 +184,18 @@ class Session {
   /// size resamples the texture. The texture goes on through each of these.
   /// `seen_by`: the camera the frames are drawn with, where the caller has
   /// its own (the viewer): an object-space noise cell is sized for it.
-  /// Returns kPrepare, changing nothing, when a key needs the scene prepared
-  /// again (the mesh, the field, a scalar, a percentile range, ...): the
-  /// caller makes a new Session from prepare_scene(next). Throws
-  /// SettingError, changing nothing, for settings that are not valid.
+  /// A key that needs the scene prepared again (the mesh, the field, a
+  /// scalar, a percentile range, ...) prepares it here, from the scene's
+  /// files or the source mesh (kPrepared). Throws SettingError or
+  /// InputError, changing nothing, for settings that are not valid or data
+  /// that cannot be prepared.
   SetResult set(const Scene& next, const Camera* seen_by = nullptr);
   /// Replaces the field (same vertex count), keeping the texture; dt fits it.
   void set_field(std::vector<glm::vec3> field);
+  /// The flow elements of an element field (the viewer's editing): the
+  /// field evaluated again with them, the texture going on. Throws
+  /// InputError for an element that is not valid, changing nothing.
+  void set_elements(std::vector<FlowElement> elements);
   /// Goes on with new data: a host's next time step, moved points, a changed
   /// array, another mesh; `next` is the scene prepared for it
   /// (prepare_change). The texture goes on from where it is: with the same
@@ -186,6 +205,10 @@ class Session {
   /// until the flow takes it on. The next frame shows the new data; a host
   /// owes the texture a few frames at a change (kDefaultFramesPerStep).
   void change_data(PreparedScene next);
+  /// The next state of the source mesh, as the caller has it (a host's time
+  /// step, Python's update): prepare_change on the scene, then change_data;
+  /// a key that needs preparing later prepares from it.
+  void change_surface(std::shared_ptr<const TriMesh> mesh, const std::string& name);
   /// A new image size: the texture is resampled to it and goes on.
   void resize(int width, int height);
   /// The one restart (the viewer's button, Python's restart(), a host's
@@ -228,8 +251,31 @@ class Session {
   [[nodiscard]] const FlowTopology* overlay_topology() const {
     return overlay_ ? &overlay_topology_ : nullptr;
   }
-  /// The displayed image F, RGBA, rows bottom-up.
+  // ---- its images, read (rows bottom-up; IbfvsRenderer's reads)
+  /// The displayed image F, RGBA 8-bit.
   [[nodiscard]] ImageU8 read_output() const { return renderer_->read_output(); }
+  /// The same into `image` (its size), reusing its storage (a video's frames).
+  void read_output(ImageU8& image) const { renderer_->read_output(image); }
+  /// F_t as 16-bit-ready floats, RGBA (the texture image, --texture-out).
+  [[nodiscard]] ImageF read_texture() const { return renderer_->read_texture(); }
+  /// The surface's depth per pixel (1 where no surface is).
+  [[nodiscard]] ImageF read_depth() const { return renderer_->read_depth(); }
+  /// F_t and F as compositing takes them (take_composited).
+  [[nodiscard]] ImageF read_texture_raw() const { return renderer_->read_texture_raw(); }
+  [[nodiscard]] ImageF read_output_raw() const { return renderer_->read_output_raw(); }
+  /// Whether the last frame left its contrast statistics to take_composited.
+  [[nodiscard]] bool statistics_due() const { return renderer_->statistics_due(); }
+
+  // ---- its images, drawn
+  /// F scaled into the bound window's framebuffer (the viewer), `left`
+  /// pixels kept for a panel.
+  void present(int window_width, int window_height, int left = 0);
+  /// F and its depth into a host's bound framebuffer, its viewport at
+  /// `origin` the image's size (IbfvsRenderer::draw_to_host); the host's
+  /// viewport is left as it was.
+  void draw_to_host(glm::ivec2 origin, bool interior = false);
+  /// Blocks until the GPU has finished every frame (a benchmark's clock).
+  void finish();
 
  private:
   class StepPlayer;
@@ -240,13 +286,19 @@ class Session {
   // The scene's settings with the host's overrides (its colours, a drag's
   // advect view) onto the renderer; `upload`: the colour positions too.
   void apply_host(bool upload);
-  // dt by the rule in force (dt()).
+  // dt by the rule in force (dt()): the one place dt changes, called where
+  // one of its inputs did (the step or dt key, the field, the camera, the
+  // size, a host's view).
   void refit_dt();
+  // The scene prepared again for `next`: from the source mesh or the files.
+  void prepare_again(const Scene& next);
   // The scene's overlay over the frame just drawn with `view`: its
   // features found again where the data, the step or the size changed.
   void draw_overlay(const ViewState& view);
 
   PreparedScene scene_;
+  std::shared_ptr<const TriMesh> source_;  // the caller's mesh (null: the scene's files)
+  std::string source_name_;
   std::unique_ptr<IbfvsRenderer> renderer_;
   std::unique_ptr<StepPlayer> player_;
   double time_ = 0.0;  // the last seek

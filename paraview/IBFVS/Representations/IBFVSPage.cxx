@@ -6,7 +6,8 @@
 #include <cmath>
 #include <string_view>
 
-#include "ibfvs/core/geometry/displacement.h"
+#include "ibfvs/core/scene/camera.h"
+#include "ibfvs/core/scene/scene_prep.h"
 #include "ibfvs/core/support/error.h"
 
 namespace ibfvs::paraview {
@@ -85,11 +86,14 @@ ibfvs::PreparedScene page_scene(std::vector<std::vector<PageLayer>> steps, const
            m.vectors == first.vectors && m.scalars == first.scalars;
   };
   if (std::all_of(states.begin() + 1, states.end(), same)) states.resize(1);
-  // dt as the mapper's (the one rule, dt_for_step): the fastest vector of
-  // all times moves Step pixels at the focal point (normalised in image
-  // space, the page's own fit from the step).
-  scene.dt =
-      scene.image_normalize ? 0.0f : ibfvs::dt_for_step(scene.step, speed, view.world_per_pixel);
+  // dt as the mapper's (the one rule, scene_dt): the fastest vector of all
+  // times moves Step pixels at the focal point. Normalised in image space
+  // the scene takes no dt key (every point moves Step pixels whatever dt
+  // is): the page fits one from the step.
+  if (!scene.image_normalize)
+    scene.dt = ibfvs::scene_dt(
+        scene, speed,
+        ibfvs::world_per_pixel(view.camera.projection, view.focal_distance, view.height));
 
   ibfvs::PreparedScene p = ibfvs::prepare_states(scene, std::move(states), name);
   p.settings.color_table = table;

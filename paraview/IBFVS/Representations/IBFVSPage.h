@@ -33,9 +33,9 @@ struct PageLayer {
 
 /// The view the page starts from.
 struct PageView {
-  ibfvs::HostView camera;        ///< ParaView's matrices
-  glm::vec3 focal{0.0f};         ///< the camera's focal point (the page turns about it)
-  double world_per_pixel = 0.0;  ///< at the focal point
+  ibfvs::ViewState camera;      ///< ParaView's matrices
+  glm::vec3 focal{0.0f};        ///< the camera's focal point (the page turns about it)
+  double focal_distance = 0.0;  ///< from the camera to the focal point, world units
   int width = 0, height = 0;
 };
 

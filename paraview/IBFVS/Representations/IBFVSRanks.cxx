@@ -29,7 +29,6 @@ enum Slot {
   kBad,
   kRestart,
   kResize,
-  kRegrid,
   kChanged,
   kMoved,
   kSpeed,
@@ -44,7 +43,7 @@ constexpr double kNone = -1e300;
 Agreement agree(const Agreement& mine, vtkMultiProcessController* controller) {
   double slots[kSize];
   const ibfvs::HostChanges& c = mine.changes;
-  const bool flags[] = {mine.bad, c.restart, c.resize, c.regrid, c.changed, c.moved};
+  const bool flags[] = {mine.bad, c.restart, c.resize, c.changed, c.moved};
   for (int k = 0; k < kSpeed; ++k) slots[k] = flags[k] ? 1.0 : 0.0;
   slots[kSpeed] = c.speed;
   for (int k = 0; k < 3; ++k) {
@@ -58,8 +57,7 @@ Agreement agree(const Agreement& mine, vtkMultiProcessController* controller) {
   }
   Agreement out;
   ibfvs::HostChanges& all = out.changes;
-  bool* const out_flags[] = {&out.bad,    &all.restart, &all.resize,
-                             &all.regrid, &all.changed, &all.moved};
+  bool* const out_flags[] = {&out.bad, &all.restart, &all.resize, &all.changed, &all.moved};
   for (int k = 0; k < kSpeed; ++k) *out_flags[k] = slots[k] > 0.0;
   all.speed = static_cast<float>(slots[kSpeed]);
   if (slots[kMaxX] > kNone) {
@@ -74,16 +72,21 @@ Agreement agree(const Agreement& mine, vtkMultiProcessController* controller) {
 }
 
 void composite_frame(vtkMultiProcessController* controller, ibfvs::Session* session, int width,
-                     int height, bool statistics) {
+                     int height) {
   const ibfvs::gl::SavedState saved;  // the reads bind the library's framebuffers
   const int w = width, h = height;
-  ibfvs::ImageF depth = session ? session->renderer().read_depth() : ibfvs::ImageF(w, h, 1, 1.0f);
-  ibfvs::ImageF texture = session ? session->renderer().read_texture_raw()
+  // The statistics where any process's renderer left them due (its frame
+  // plan: pass_runs), F composited for them by all alike.
+  int due = session && session->statistics_due() ? 1 : 0, any = 0;
+  controller->AllReduce(&due, &any, 1, vtkCommunicator::MAX_OP);
+  const bool statistics = any > 0;
+  ibfvs::ImageF depth = session ? session->read_depth() : ibfvs::ImageF(w, h, 1, 1.0f);
+  ibfvs::ImageF texture = session ? session->read_texture_raw()
                                   : ibfvs::ImageF(w, h, ibfvs::IbfvsRenderer::kRawChannels, 0.0f);
   ibfvs::ImageF output;
   std::vector<ibfvs::ImageF*> images{&texture};
   if (statistics) {
-    output = session ? session->renderer().read_output_raw() : ibfvs::ImageF(w, h, 4, 0.0f);
+    output = session ? session->read_output_raw() : ibfvs::ImageF(w, h, 4, 0.0f);
     images.push_back(&output);
   }
   ibfvs::CompositeGroup group;

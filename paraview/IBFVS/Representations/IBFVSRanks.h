@@ -30,12 +30,13 @@ struct Agreement {
 /// alone, `mine`.
 Agreement agree(const Agreement& mine, vtkMultiProcessController* controller);
 
-/// After a frame: F_t (and F, where `statistics`, the contrast statistics,
-/// are due) composited by nearest depth across the processes, written back,
-/// and the statistics run on the composite. `session` is null for an empty
-/// piece, which takes part with empty images of width x height. Collective.
+/// After a frame: F_t (and F, where the contrast statistics are due in any
+/// process's renderer: its frame plan, pass_runs) composited by nearest
+/// depth across the processes, written back, and the statistics run on the
+/// composite. `session` is null for an empty piece, which takes part with
+/// empty images of width x height. Collective.
 void composite_frame(vtkMultiProcessController* controller, ibfvs::Session* session, int width,
-                     int height, bool statistics);
+                     int height);
 
 /// Every process's piece (null: an empty one) as one mesh on process 0, in
 /// the processes' order (ibfvs::append_mesh); the others get an empty mesh.

@@ -8,7 +8,6 @@
 
 #include "vtkActor.h"
 #include "vtkCamera.h"
-#include "vtkMath.h"
 #include "vtkMatrix3x3.h"
 #include "vtkMatrix4x4.h"
 #include "vtkOpenGLActor.h"
@@ -36,7 +35,7 @@ glm::mat4 to_glm(vtkMatrix4x4* m) {
   return out;
 }
 
-ibfvs::HostView view_at_size(vtkRenderer* ren, int width, int height) {
+ibfvs::ViewState view_at_size(vtkRenderer* ren, int width, int height) {
   vtkCamera* camera = ren->GetActiveCamera();
   const double aspect = static_cast<double>(std::max(width, 1)) / std::max(height, 1);
   return {to_glm(camera->GetModelViewTransformMatrix()),
@@ -56,17 +55,6 @@ ibfvs::ViewState view_of(vtkRenderer* ren, vtkActor* actor) {
     view.view = view.view * from_vtk_transposed(mcwc);
   }
   return view;
-}
-
-double world_per_pixel(vtkRenderer* ren, int width, int height) {
-  vtkCamera* camera = ren->GetActiveCamera();
-  const double extent =
-      camera->GetParallelProjection()
-          ? 2.0 * camera->GetParallelScale()
-          : 2.0 * camera->GetDistance() *
-                std::tan(vtkMath::RadiansFromDegrees(camera->GetViewAngle()) / 2.0);
-  const double pixels = camera->GetUseHorizontalViewAngle() ? width : height;
-  return extent / std::max(pixels, 1.0);
 }
 
 }  // namespace ibfvs::paraview

@@ -20,15 +20,10 @@ ibfvs::ViewState view_of(vtkRenderer* ren, vtkActor* actor);
 /// The renderer's active camera as the library's view and projection for an
 /// image of width x height pixels (a page of the view: the view's size, not
 /// necessarily its window's).
-ibfvs::HostView view_at_size(vtkRenderer* ren, int width, int height);
+ibfvs::ViewState view_at_size(vtkRenderer* ren, int width, int height);
 
 /// A VTK matrix (row-major, on column vectors) as glm's.
 glm::mat4 to_glm(vtkMatrix4x4* m);
-
-/// World units a pixel spans at the camera's focal point, in a viewport of
-/// width x height pixels (perspective or parallel projection, with the view
-/// angle vertical or horizontal as the camera has it).
-double world_per_pixel(vtkRenderer* ren, int width, int height);
 
 }  // namespace ibfvs::paraview
 

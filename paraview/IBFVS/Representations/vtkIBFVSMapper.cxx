@@ -11,8 +11,6 @@
 #include "IBFVSSurface.h"
 #include "IBFVSView.h"
 
-#include <epoxy/gl.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -33,12 +31,14 @@
 #include "ibfvs/core/scene/scene.h"
 #include "ibfvs/core/scene/scene_prep.h"
 #include "ibfvs/core/support/error.h"
+#include "ibfvs/gl/context.h"
 #include "ibfvs/gl/objects.h"
 #include "ibfvs/render/host_flow.h"
 #include "ibfvs/render/session.h"
 
 #include "vtkActor.h"
 #include "vtkCallbackCommand.h"
+#include "vtkCamera.h"
 #include "vtkCommand.h"
 #include "vtkDataObject.h"
 #include "vtkMultiProcessController.h"
@@ -79,7 +79,6 @@ class vtkIBFVSMapper::Internals {
   std::shared_ptr<ibfvs::TriMesh> page_mesh;  // null: this process's own piece
 
   // ---- drawing
-  int width = 0, height = 0;
   vtkWeakPointer<vtkOpenGLRenderWindow> window;
   std::string warned;  // the last problem warned about
   std::string last_problem;
@@ -239,12 +238,9 @@ void vtkIBFVSMapper::RedrawAfterFXAA() {
   volumes->InitTraversal(it);
   while (vtkVolume* volume = volumes->GetNextVolume(it))
     if (volume->GetVisibility()) return;
-  // The filter leaves its own viewport; the texture's is the frame's.
-  GLint viewport[4] = {0, 0, 0, 0};
-  glGetIntegerv(GL_VIEWPORT, viewport);
-  glViewport(in.origin.x, in.origin.y, in.width, in.height);
+  // The filter leaves its own viewport; the texture is drawn at the frame's
+  // (finish sets it and puts the filter's back).
   in.flow.finish(in.origin, true);
-  glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
   in.window->GetState()->Reset();
 }
 
@@ -334,9 +330,9 @@ void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor) {
     in.colour_key = colour_key;
     this->GiveSurface(actor, colour_array);
   }
-  if (in.problem.empty() && epoxy_gl_version() < 45) {
-    in.problem = "needs OpenGL 4.5 (this context has " + std::to_string(epoxy_gl_version() / 10) +
-                 "." + std::to_string(epoxy_gl_version() % 10) + ")";
+  if (const int version = ibfvs::gl::current_gl_version(); in.problem.empty() && version < 45) {
+    in.problem = "needs OpenGL 4.5 (this context has " + std::to_string(version / 10) + "." +
+                 std::to_string(version % 10) + ")";
   }
 
   int width = 0, height = 0, x0 = 0, y0 = 0;
@@ -402,7 +398,7 @@ void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor) {
   r.width = width;
   r.height = height;
   r.view = ibfvs::paraview::view_of(ren, actor);
-  r.world_per_pixel = ibfvs::paraview::world_per_pixel(ren, width, height);
+  r.focal_distance = ren->GetActiveCamera()->GetDistance();
   double diffuse[3];
   actor->GetProperty()->GetDiffuseColor(diffuse);
   r.surface_color = glm::vec3(diffuse[0], diffuse[1], diffuse[2]);
@@ -413,21 +409,13 @@ void vtkIBFVSMapper::Render(vtkRenderer* ren, vtkActor* actor) {
   if (!in.flow.problem().empty()) in.problem = in.flow.problem();
 
   // ---- the frames, each composited under MPI (every rank renders alike)
-  const bool contrast = in.flow.scene().contrast > 0.0f;
   for (int k = 0; k < frames; ++k) {
-    const bool statistics =
-        contrast && in.flow.renderer_frame() % ibfvs::IbfvsRenderer::kStatsEvery == 0;
     in.flow.frame(r.view);
-    if (ranks > 1)
-      ibfvs::paraview::composite_frame(controller, in.flow.session(), width, height, statistics);
+    if (ranks > 1) ibfvs::paraview::composite_frame(controller, in.flow.session(), width, height);
   }
 
   if (in.flow.session()) {
-    GLint viewport[4] = {0, 0, 0, 0};
-    glGetIntegerv(GL_VIEWPORT, viewport);
-    in.origin = glm::ivec2(viewport[0], viewport[1]);
-    in.width = width;
-    in.height = height;
+    in.origin = ibfvs::gl::viewport_origin();
     in.flow.finish(in.origin);
     this->ObserveRenderer(ren);
     in.redraw = ranks == 1 && ren->GetUseFXAA();

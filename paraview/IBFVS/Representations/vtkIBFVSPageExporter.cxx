@@ -91,7 +91,7 @@ void vtkIBFVSPageExporter::AddTimeStep() {
   double focal[3];
   ren->GetActiveCamera()->GetFocalPoint(focal);
   in.view.focal = glm::vec3(focal[0], focal[1], focal[2]);
-  in.view.world_per_pixel = ibfvs::paraview::world_per_pixel(ren, width, height);
+  in.view.focal_distance = ren->GetActiveCamera()->GetDistance();
   in.view.width = width;
   in.view.height = height;
   double background[3];

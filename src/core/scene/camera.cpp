@@ -33,14 +33,16 @@ float Camera::distance_world() const {
   return 1.03f * radius / std::sin(std::min(half_v, half_h));
 }
 
+double world_per_pixel(const glm::mat4& p, double focal_distance, int height) {
+  // Half the image's height at the focal point's depth: 1 / P[1][1] of the
+  // projection, times that depth in perspective (P[3][3] is 0).
+  const double half = (p[3][3] == 0.0f ? focal_distance : 1.0) / static_cast<double>(p[1][1]);
+  return 2.0 * std::abs(half) / static_cast<double>(std::max(height, 1));
+}
+
 float Camera::world_per_pixel(int height) const {
-  if (const std::optional<HostView>& host = params_.host) {
-    // Half the image's height at the focal point's depth: 1 / P[1][1] of
-    // the projection, times that depth in perspective (P[3][3] is 0).
-    const glm::mat4& p = host->projection;
-    const float half = (p[3][3] == 0.0f ? distance_world() : 1.0f) / p[1][1];
-    return 2.0f * std::abs(half) / static_cast<float>(std::max(height, 1));
-  }
+  if (const std::optional<ViewState>& host = params_.host)
+    return static_cast<float>(ibfvs::world_per_pixel(host->projection, distance_world(), height));
   return 2.0f * distance_world() * std::tan(glm::radians(params_.fov_deg) * 0.5f) /
          static_cast<float>(std::max(height, 1));
 }
@@ -71,7 +73,7 @@ glm::vec3 Camera::eye() const {
 }
 
 glm::mat4 Camera::view() const {
-  if (const std::optional<HostView>& host = params_.host) {
+  if (const std::optional<ViewState>& host = params_.host) {
     if (params_.azimuth_deg == 0.0f) return host->view;
     // An orbit: the world turned about the vertical through the focal point.
     const glm::vec3 pivot = bounds_.centre() + params_.target;

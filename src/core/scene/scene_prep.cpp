@@ -27,12 +27,21 @@ namespace fs = std::filesystem;
 
 using namespace prep;
 
-PreparedScene resized(const PreparedScene& prepared, int width, int height) {
+void fit_to_size(PreparedScene& prepared, int width, int height) {
   if (width < 1 || height < 1 || width > kMaxImageSide || height > kMaxImageSide)
     throw SettingError("size", "width and height must be between 1 and " +
                                    std::to_string(kMaxImageSide) + " pixels");
+  fit_to_image(prepared, width, height);
+}
+
+void fit_field(PreparedScene& prepared) {
+  fit_speed(prepared);
+  fit_dt(prepared);
+}
+
+PreparedScene resized(const PreparedScene& prepared, int width, int height) {
   PreparedScene p = prepared;
-  fit_to_image(p, width, height);
+  fit_to_size(p, width, height);
   return p;
 }
 
@@ -42,25 +51,55 @@ TriMesh step_surface(const PreparedScene& prepared, const StepData& step) {
   return mesh;
 }
 
+ChangePlan apply_change(PreparedScene& p, const Scene& next, float world_per_pixel) {
+  const ChangePlan plan = plan_change(p.scene, next, p.step_count > 1);
+  if (!plan.takes()) return plan;
+
+  // Everything checked before anything changes: the settings at the new size.
+  RenderSettings settings = p.settings;
+  settings.width = next.width;
+  settings.height = next.height;
+  settings = scene_settings(next, settings);
+  settings.width = p.settings.width;
+  settings.height = p.settings.height;
+  if (settings.object_noise && !p.settings.object_noise) {
+    // s pixels at the distance of the mesh centre, as prepare_scene does.
+    settings.object_cell = settings.noise.scale * world_per_pixel;
+  }
+  std::vector<glm::vec3> field;
+  if (plan.tangent) field = evaluate_field(*p.mesh, p.field_spec, next.tangent);
+
+  p.scene = next;
+  p.settings = settings;
+  if (plan.tangent) p.field = std::move(field);
+  if (plan.camera) {
+    const glm::vec3 up = p.camera.up;  // the prepared scene's up (a key of its own)
+    p.camera = next.camera;
+    p.camera.up = up;
+  }
+  if (plan.camera || plan.size)
+    fit_to_image(p, next.width, next.height);  // dt, and the object cell for the view
+  else if (plan.tangent)
+    fit_speed(p);
+  if (plan.step || plan.tangent) fit_dt(p);
+  return plan;
+}
+
 std::optional<PreparedScene> restyled(const PreparedScene& prepared, Style style) {
   Scene s = prepared.scene;
   apply_style(s, style);
-  // The keys a restyle carries (plan_change): texture settings, the noise
-  // grid and the step (dt is computed again below), over the same field,
-  // camera and size.
-  const ChangePlan plan = plan_change(prepared.scene, s, prepared.step_count > 1);
-  if (plan.prepare || plan.tangent || plan.camera || plan.size) return std::nullopt;
+  // The keys a restyle carries: texture settings, the noise grid and the
+  // step (dt follows), over the same field, camera and size.
+  if (changed_keys(prepared.scene, s).empty()) return prepared;
   PreparedScene p = prepared;
-  p.scene = s;
-  apply_texture_settings(s, p.settings);
-  p.settings.noise.scale = s.scale;
-  p.settings.noise.seed = s.seed;
-  p.settings.validate();
-  fit_to_image(p, p.width, p.height);
+  const Camera camera(mesh_bounds(*p.mesh), p.camera,
+                      static_cast<float>(p.width) / static_cast<float>(p.height));
+  const ChangePlan plan = apply_change(p, s, camera.world_per_pixel(p.height));
+  if (plan.prepare || plan.tangent || plan.camera || plan.size) return std::nullopt;
   return p;
 }
 
-void apply_texture_settings(const Scene& s, RenderSettings& settings) {
+RenderSettings scene_settings(const Scene& s, RenderSettings settings) {
   settings.alpha = s.alpha;
   settings.beta = s.beta;
   settings.image_step = s.image_normalize ? s.step : 0.0f;
@@ -71,6 +110,8 @@ void apply_texture_settings(const Scene& s, RenderSettings& settings) {
   settings.noise.profile = s.profile;
   settings.noise.rate = s.vg;
   settings.noise.spike_width = s.spike_width;
+  settings.noise.scale = s.scale;
+  settings.noise.seed = s.seed;
   settings.inject = s.inject;
   settings.background = s.background;
   settings.surface_color = s.surface_color;
@@ -82,6 +123,16 @@ void apply_texture_settings(const Scene& s, RenderSettings& settings) {
     settings.color_range = {s.color_range->lo, s.color_range->hi};
   if (s.beta_range && !s.beta_range->percentile)
     settings.beta_range = {s.beta_range->lo, s.beta_range->hi};
+  settings.validate();
+  return settings;
+}
+
+float scene_dt(const Scene& s, float pixel_speed) {
+  return s.dt > 0.0f ? s.dt : dt_for_step(s.step, pixel_speed);
+}
+
+float scene_dt(const Scene& s, float world_speed, double world_per_pixel) {
+  return s.dt > 0.0f ? s.dt : dt_for_step(s.step, world_speed, world_per_pixel);
 }
 
 glm::vec3 thinnest_axis(const TriMesh& mesh) {

@@ -114,7 +114,7 @@ TEST(Camera, AHostsMatricesActAsTheOrbitCameraTheyCameFrom) {
     params.target = glm::vec3(0.1f, -0.2f, 0.05f);
     const Camera orbit(b, params, 1.5f);
     CameraParams host;
-    host.host = HostView{orbit.view(), orbit.projection()};
+    host.host = ViewState{orbit.view(), orbit.projection()};
     host.target = params.target;
     const Camera hosted(b, host, 1.0f);  // the aspect is the host's, in its projection
     EXPECT_EQ(hosted.view(), orbit.view());

@@ -115,18 +115,16 @@ TEST(SceneKeys, EveryKeyIsSetByTheBusySceneAndReadsBack) {
 }
 
 // The rules for changing a key on a running animation (key_effect): every
-// key is in the table; each live key is one that apply_texture_settings
-// carries to the renderer (its busy value gives other settings), and each
-// key that apply_texture_settings carries is live, a step or the noise grid.
+// key is in the table; each live key is one that scene_settings carries to
+// the renderer (its busy value gives other settings), and each key that
+// scene_settings carries is live, a step or the noise grid.
 TEST(SceneKeys, EveryKeyHasItsEffectAndTheLiveOnesReachTheRenderer) {
   const Scene busy = busy_scene();
-  RenderSettings plain;
-  apply_texture_settings(Scene{}, plain);
+  const RenderSettings plain = scene_settings(Scene{}, RenderSettings{});
   for (const SceneKey& key : scene_keys()) {
     Scene one;
     for (const std::string& t : key.get(busy)) key.set(one, t);
-    RenderSettings settings;
-    apply_texture_settings(one, settings);
+    const RenderSettings settings = scene_settings(one, RenderSettings{});
     const KeyEffect effect = key_effect(key.name);
     const bool percentile = (key.name == "color_range" || key.name == "beta_range") &&
                             key.get(busy).front().front() == 'p';

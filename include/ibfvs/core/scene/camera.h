@@ -12,12 +12,20 @@
 
 namespace ibfvs {
 
-/// A host application's own camera (ParaView's view): the matrices it draws
-/// with, world to eye and eye to clip, in OpenGL's conventions.
-struct HostView {
+/// One camera state: the matrices a frame is drawn with, world to eye and
+/// eye to clip, in OpenGL's conventions (ibfvs's own camera's, or a host
+/// application's: ParaView's view, PyVista's plotter).
+struct ViewState {
   glm::mat4 view{1.0f};
   glm::mat4 projection{1.0f};
 };
+
+/// World units a pixel spans `focal_distance` in front of a camera with
+/// `projection` (perspective; anywhere for a parallel projection), in an
+/// image `height` pixels high: the one rule for a host's camera (the VTK
+/// mappers' dt, Camera::world_per_pixel of a host's view).
+[[nodiscard]] double world_per_pixel(const glm::mat4& projection, double focal_distance,
+                                     int height);
 
 /// Camera settings. The default looks at the centre of the bounding box from
 /// +Z with +Y up and fits the whole mesh in the image.
@@ -34,7 +42,7 @@ struct CameraParams {
   /// elevation, distance, framing and depth range; the aspect is the
   /// host's). `target` then is its focal point minus the box centre, and an
   /// orbit turns its view about the vertical through that point.
-  std::optional<HostView> host;
+  std::optional<ViewState> host;
 };
 
 /// Position and projection for one frame.

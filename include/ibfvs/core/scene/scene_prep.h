@@ -62,18 +62,35 @@ struct PreparedScene {
   std::vector<float> color_scalar, beta_scalar;
   CameraParams camera;
   std::optional<CameraParams> lock_camera;
-  float dt = 0.0f;                    ///< world units per frame
-  float max_px = 0.0f;                ///< pixels per frame of the fastest vertex
+  float dt = 0.0f;      ///< world units per frame
+  float max_px = 0.0f;  ///< pixels per frame of the fastest vertex
+  /// The fastest vertex's pixels per unit of dt in the scene's camera at its
+  /// size, over the steps played (0: nothing moves): a new step fits dt from
+  /// it without reading the steps again (scene_dt).
+  float pixel_speed = 0.0f;
   ImageU8 surface_image;              ///< read once; empty: none
   std::vector<std::string> warnings;  ///< repaired input, slow settings: for the front end to show
 };
 
-/// The scene's texture settings (alpha, beta, noise profile, rate and spike
-/// width, inject, colours, colour map, advect view, noise space, fixed
-/// colour and beta ranges) copied onto `settings`: what a renderer takes
-/// live, without a rebuild. Percentile ranges and the object-noise cell,
-/// which need the mesh and camera, are left as they are.
-void apply_texture_settings(const Scene& scene, RenderSettings& settings);
+/// The one way a scene becomes renderer settings: its texture settings
+/// (alpha, beta, noise profile, rate and spike width, inject, colours,
+/// colour map, advect view, noise space, fixed colour and beta ranges), its
+/// image-space step (image_normalize: every point moves `step` pixels), its
+/// noise scale and seed, over `base` (what a preparation found: the size,
+/// percentile ranges, the object-noise cell). Throws SettingError naming the
+/// key of a value that is not valid.
+[[nodiscard]] RenderSettings scene_settings(const Scene& scene, RenderSettings base);
+
+/// dt by the one rule: the scene's dt key where it gives one, else the time
+/// step that moves the fastest vertex, `pixel_speed` pixels per unit of dt,
+/// the scene's step in pixels (dt_for_step; 0 where nothing moves).
+/// Normalised in image space (image_normalize) every point moves `step`
+/// pixels whatever dt is: it then only has to be > 0, which this gives
+/// where anything moves.
+[[nodiscard]] float scene_dt(const Scene& scene, float pixel_speed);
+/// The same for a host that knows its fastest vector in world units and
+/// the world units a pixel spans at its focal point.
+[[nodiscard]] float scene_dt(const Scene& scene, float world_speed, double world_per_pixel);
 
 /// Checks the scene and prepares it. Throws InputError naming the file, or
 /// SettingError naming the key whose value is wrong.
@@ -112,6 +129,30 @@ PreparedScene prepare_states(const Scene& scene, std::vector<TriMesh> states,
 /// scene gives dt) and the object-noise cell for that size. Throws
 /// SettingError for a size outside 1..16384.
 PreparedScene resized(const PreparedScene& prepared, int width, int height);
+/// The same in place (nothing copied): the size, the fastest vertex's
+/// speed in the scene's camera (every step played is read again), dt and
+/// the object-noise cell.
+void fit_to_size(PreparedScene& prepared, int width, int height);
+
+/// The fastest vertex's speed again for a new field (every step played is
+/// read again), and dt from it: what a caller that replaced `field` owes
+/// the prepared scene.
+void fit_field(PreparedScene& prepared);
+
+/// Takes `next`, the prepared scene's scene with some keys changed, the
+/// way a running animation does: the one change plan (plan_change: each
+/// changed key's effect, one table for every front end) applied to the
+/// prepared scene where the animation can take it. Texture settings and the
+/// noise grid go into its settings (scene_settings); a new tangent mode
+/// evaluates the field again; the camera keys move its camera; a new size
+/// and a new camera fit it again (fit_to_size); a new step or field fits dt
+/// (scene_dt). `world_per_pixel`: world units a pixel spans at the mesh
+/// centre as the frames are drawn, for an object-space noise cell turned on.
+/// Returns the plan; with plan.prepare (a key needs the scene prepared
+/// again: the mesh, the field, a scalar, a percentile range) it changes
+/// nothing. Everything is checked before anything changes: throws
+/// SettingError for settings that are not valid.
+ChangePlan apply_change(PreparedScene& prepared, const Scene& next, float world_per_pixel);
 
 /// The surface a step shows: its own mesh where it has one, else the
 /// prepared mesh, with the step's points where it moved (what the

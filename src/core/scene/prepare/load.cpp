@@ -17,13 +17,10 @@ void settings(Preparation& c) {
   p.frames = s.frames;
   p.lock_at = s.lock_at;
 
-  RenderSettings& settings = p.settings;
-  settings.width = s.width;
-  settings.height = s.height;
-  apply_texture_settings(s, settings);
-  settings.noise.scale = s.scale;
-  settings.noise.seed = s.seed;
-  settings.validate();
+  RenderSettings base;
+  base.width = s.width;
+  base.height = s.height;
+  p.settings = scene_settings(s, base);
 
   std::optional<FieldSpec>& field_spec = c.field_spec;
   field_spec = s.field;

@@ -119,5 +119,10 @@ void check(const Scene& s);
 // The image size and what follows from it with the scene's camera; returns
 // the fastest vertex's pixels per unit of dt (0: nothing moves).
 float fit_to_image(PreparedScene& p, int width, int height);
+// The fastest vertex's speed at the size and camera as they are (every step
+// played read again: p.pixel_speed), and dt from it (fit_dt).
+void fit_speed(PreparedScene& p);
+// dt and max_px from p.pixel_speed by the one rule (scene_dt): no step read.
+void fit_dt(PreparedScene& p);
 
 }  // namespace ibfvs::prep

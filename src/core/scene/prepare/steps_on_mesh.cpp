@@ -214,33 +214,45 @@ void check(const Scene& s) {
     throw SettingError("frames", "0 (automatic) needs lock_at auto");
 }
 
+// The fastest vertex's pixels per unit of dt in the scene's camera, over
+// the steps played (not only the first: a run from rest has no flow
+// there; normalised in image space, dt only needs a step that has flow).
+void fit_speed(PreparedScene& p) {
+  const Scene& s = p.scene;
+  const Camera camera(mesh_bounds(*p.mesh), p.camera,
+                      static_cast<float>(p.width) / static_cast<float>(p.height));
+  float speed =
+      max_pixel_speed(p.mesh->positions, p.field, camera.view_projection(), p.width, p.height);
+  for (std::size_t k = 1; k < steps_played(p) && p.step_data; ++k) {
+    if (s.image_normalize && speed > 0.0f) break;
+    const StepData d = p.step_data(k);
+    speed = std::max(speed, max_pixel_speed(step_positions(d, *p.mesh), d.field,
+                                            camera.view_projection(), p.width, p.height));
+  }
+  p.pixel_speed = speed;
+}
+
+void fit_dt(PreparedScene& p) {
+  const Scene& s = p.scene;
+  p.dt = scene_dt(s, p.pixel_speed);
+  p.max_px = s.image_normalize && p.pixel_speed > 0.0f ? s.step : p.pixel_speed * p.dt;
+}
+
 // Sets the image size and what follows from it with the scene's camera: dt
 // from the step in pixels (unless the scene gives dt), the fastest vertex's
 // pixels per frame, the object-noise cell (s pixels at the mesh centre).
 // Returns the fastest vertex's pixels per unit of dt (0: nothing moves).
 float fit_to_image(PreparedScene& p, int width, int height) {
-  const Scene& s = p.scene;
   p.width = p.settings.width = width;
   p.height = p.settings.height = height;
-  const Camera camera(mesh_bounds(*p.mesh), p.camera,
-                      static_cast<float>(width) / static_cast<float>(height));
-  // The fastest vertex of the steps played, not only of the first (a run
-  // from rest has no flow there); normalised in image space, dt only needs
-  // a step that has flow.
-  float speed =
-      max_pixel_speed(p.mesh->positions, p.field, camera.view_projection(), width, height);
-  for (std::size_t k = 1; k < steps_played(p) && p.step_data; ++k) {
-    if (s.image_normalize && speed > 0.0f) break;
-    const StepData d = p.step_data(k);
-    speed = std::max(speed, max_pixel_speed(step_positions(d, *p.mesh), d.field,
-                                            camera.view_projection(), width, height));
-  }
-  p.dt = s.dt > 0.0f ? s.dt : dt_for_step(s.step, speed);
-  p.max_px = s.image_normalize && speed > 0.0f ? s.step : speed * p.dt;
+  fit_speed(p);
+  fit_dt(p);
   if (p.settings.object_noise) {
+    const Camera camera(mesh_bounds(*p.mesh), p.camera,
+                        static_cast<float>(width) / static_cast<float>(height));
     p.settings.object_cell = p.settings.noise.scale * camera.world_per_pixel(height);
   }
-  return speed;
+  return p.pixel_speed;
 }
 
 }  // namespace ibfvs::prep

@@ -181,12 +181,12 @@ class Animation {
   // containers); returns the path.
   std::string write_video(const std::string& path, int frames, double fps) {
     if (frames < 1) throw SettingError("frames", "a video needs at least one frame");
-    if (!app::is_video_path(path))
+    if (!is_video_path(path))
       throw InputError(path + ": not a video file name (.mp4 .mkv .webm .mov .avi .gif)");
     py::gil_scoped_release release;
     const Current current(*this);
     const PreparedScene& p = session_->scene();
-    app::VideoWriter video(path, p.width, p.height, fps);
+    VideoWriter video(path, p.width, p.height, fps);
     for (int k = 0; k < frames; ++k) {
       session_->advance();
       ImageU8 frame = video.spare();

@@ -88,7 +88,7 @@ void ViewerSession::apply_live(const Scene& desc) {
   // The session's rules (Session::set): the viewer keeps only its own
   // camera, made again where the view changed.
   const Camera view = camera_.camera();
-  SetResult result = SetResult::kApplied;
+  SetResult result = SetResult::Applied;
   try {
     result = session_->set(desc, &view);
   } catch (const std::exception& e) {  // nothing changed: the old scene stays
@@ -97,15 +97,15 @@ void ViewerSession::apply_live(const Scene& desc) {
     throw;
   }
   switch (result) {
-    case SetResult::kPrepared:
+    case SetResult::Prepared:
       desc_ = desc;
       prepared_again();
       return;
-    case SetResult::kNewView:
+    case SetResult::NewView:
       camera_ = ViewerCamera(mesh_bounds(*scene().mesh), scene().camera, aspect_of(scene()));
       update_dt();
       break;
-    case SetResult::kApplied:
+    case SetResult::Applied:
       break;
   }
   desc_ = desc;

@@ -44,12 +44,13 @@ Json facts_json(const PassFacts& facts) {
   return {{"image_noise", facts.image_noise}, {"taps", facts.taps}, {"contrast", facts.contrast}};
 }
 
-// The look's own controls, by the session's rules for a running texture
-// (plan_change): alpha and beta set their uniforms; the step sets the
-// image-space step where the look normalises, else the speed scales its
-// dt; the noise scale makes a coarser grid (the phases cover the look's
-// own and finer ones only). Each spans its key's range and is named by its
-// label (the keys' table).
+// The look's own controls: four keys chosen here, the ones a page can take
+// live (alpha and beta set their uniforms; the step sets the image-space
+// step where the look normalises, else the speed scales its dt; the noise
+// scale makes a coarser grid, the phases covering the look's own and finer
+// ones only). They are not derived from the change plan (plan_change):
+// the runtime takes these four alone. Each spans its key's range and is
+// named by its label (the keys' table).
 Json controls(const PreparedScene& q, const std::vector<shaders::UniformValue>& uniforms) {
   const auto has = [&](std::string_view name) {
     return std::any_of(uniforms.begin(), uniforms.end(),

@@ -121,7 +121,7 @@ void HostFlow::update_session(int width, int height, const HostChanges& all) {
       Scene s = scene_;
       s.width = session_->scene().width;
       s.height = session_->scene().height;
-      if (session_->set(s) == SetResult::kPrepared && session_->frame() == 0) frame_ = 0;
+      if (session_->set(s) == SetResult::Prepared && session_->frame() == 0) frame_ = 0;
       // Every process starts afresh where one does (a first surface, a new
       // seed): their frame counts stay alike. A new seed has already.
       if (all.restart && session_->frame() > 0) session_->restart();

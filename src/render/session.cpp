@@ -280,7 +280,7 @@ SetResult Session::set(const Scene& next, const Camera* seen_by) {
   const ChangePlan plan = apply_change(scene_, next, seen.world_per_pixel(scene_.height));
   if (plan.prepare) {
     prepare_again(next);
-    return SetResult::kPrepared;
+    return SetResult::Prepared;
   }
   if (plan.camera)
     camera_ = Camera(mesh_bounds(*scene_.mesh), scene_.camera, aspect_of(scene_));
@@ -298,7 +298,7 @@ SetResult Session::set(const Scene& next, const Camera* seen_by) {
     renderer_->set_field(scene_.field);
   }
   if (plan.step || plan.tangent || plan.camera || plan.size) refit_dt();
-  return plan.camera || plan.size ? SetResult::kNewView : SetResult::kApplied;
+  return plan.camera || plan.size ? SetResult::NewView : SetResult::Applied;
 }
 
 void Session::prepare_again(const Scene& next) {

@@ -15,7 +15,7 @@ extern "C" {
 #include "ibfvs/core/support/error.h"
 #include "ibfvs/core/support/file_names.h"
 
-namespace ibfvs::app {
+namespace ibfvs {
 
 VideoEncoder::VideoEncoder(const std::filesystem::path& path, int width, int height, double fps,
                            std::string name)
@@ -160,4 +160,4 @@ void VideoEncoder::finish() {
   }
 }
 
-}  // namespace ibfvs::app
+}  // namespace ibfvs

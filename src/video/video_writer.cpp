@@ -14,7 +14,7 @@
 #include "ibfvs/core/support/error.h"
 #include "ibfvs/core/support/file_names.h"
 
-namespace ibfvs::app {
+namespace ibfvs {
 namespace {
 
 bool program_on_path(const std::string& name) {
@@ -226,4 +226,4 @@ void VideoWriter::close() {
   pending_.commit();
 }
 
-}  // namespace ibfvs::app
+}  // namespace ibfvs

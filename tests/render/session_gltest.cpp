@@ -156,8 +156,8 @@ TEST_F(SessionGLTest, SettingsChangeOnTheRunningAnimationByTheKeysRules) {
     return session.set(next);
   };
   // Texture settings: the next frame takes them; the texture is as it was.
-  ASSERT_EQ(changed("alpha", "0.3"), SetResult::kApplied);
-  ASSERT_EQ(changed("filter", "8"), SetResult::kApplied);
+  ASSERT_EQ(changed("alpha", "0.3"), SetResult::Applied);
+  ASSERT_EQ(changed("filter", "8"), SetResult::Applied);
   EXPECT_EQ(session.renderer().settings().alpha, 0.3f);
   EXPECT_EQ(session.renderer().settings().filter_length, 8.0f);
   EXPECT_EQ(session.renderer().read_texture().pixels, texture.pixels);
@@ -165,36 +165,36 @@ TEST_F(SessionGLTest, SettingsChangeOnTheRunningAnimationByTheKeysRules) {
   // The step: dt follows it.
   const float dt = session.dt();
   ASSERT_EQ(changed("step", std::to_string(2.0f * session.scene().scene.step).c_str()),
-            SetResult::kApplied);
+            SetResult::Applied);
   EXPECT_FLOAT_EQ(session.dt(), 2.0f * dt);
   // A new noise grid: the texture goes on.
-  ASSERT_EQ(changed("scale", "3"), SetResult::kApplied);
+  ASSERT_EQ(changed("scale", "3"), SetResult::Applied);
   EXPECT_EQ(session.renderer().settings().noise.scale, 3.0f);
   EXPECT_EQ(session.renderer().read_texture().pixels, texture.pixels);
   // The camera: the view moves, dt is the step's for it.
-  ASSERT_EQ(changed("camera", "60,10,0"), SetResult::kNewView);
+  ASSERT_EQ(changed("camera", "60,10,0"), SetResult::NewView);
   EXPECT_EQ(session.camera().params().azimuth_deg, 60.0f);
   EXPECT_GT(session.dt(), 0.0f);
   EXPECT_NE(session.dt(), 2.0f * dt);
   // A new size: the texture resampled to it.
-  ASSERT_EQ(changed("size", "64x48"), SetResult::kNewView);
+  ASSERT_EQ(changed("size", "64x48"), SetResult::NewView);
   EXPECT_EQ(session.renderer().read_texture().width, 64);
   EXPECT_EQ(session.renderer().read_texture().height, 48);
   EXPECT_EQ(session.frame(), 6);
   // A new seed: the texture starts afresh.
-  ASSERT_EQ(changed("seed", "7"), SetResult::kApplied);
+  ASSERT_EQ(changed("seed", "7"), SetResult::Applied);
   EXPECT_EQ(session.frame(), 0);
   // A key that needs the scene prepared again: the session prepares it,
   // and over the same points the texture goes on from where it is.
   for (int k = 0; k < 4; ++k) session.advance();
   const ImageF before = session.read_texture();
-  EXPECT_EQ(changed("color_by", "speed"), SetResult::kPrepared);
+  EXPECT_EQ(changed("color_by", "speed"), SetResult::Prepared);
   EXPECT_EQ(session.scene().scene.color_by, "speed");
   EXPECT_TRUE(session.settings().use_color);
   EXPECT_EQ(session.frame(), 4);
   EXPECT_EQ(session.read_texture().pixels, before.pixels);
   // Over other points (a subdivided mesh) it starts afresh.
-  EXPECT_EQ(changed("subdivide", "1"), SetResult::kPrepared);
+  EXPECT_EQ(changed("subdivide", "1"), SetResult::Prepared);
   EXPECT_EQ(session.frame(), 0);
   EXPECT_GT(session.scene().mesh->vertex_count(),
             prepare_scene(small_scene()).mesh->vertex_count());
@@ -208,7 +208,7 @@ TEST_F(SessionGLTest, SettingsChangeOnTheRunningAnimationByTheKeysRules) {
   EXPECT_EQ(session.renderer().settings().alpha, 0.3f);
   EXPECT_EQ(session.scene().scene.alpha, 0.3f);
   // Keys read only by a front end change nothing on the texture.
-  EXPECT_EQ(changed("frames", "99"), SetResult::kApplied);
+  EXPECT_EQ(changed("frames", "99"), SetResult::Applied);
 }
 
 // A new step fits dt from the speed the preparation found: a series' steps
@@ -232,7 +232,7 @@ TEST_F(SessionGLTest, ANewStepReadsNoStepOfASeries) {
   Scene next = session.scene().scene;
   for (int k = 1; k <= 5; ++k) {
     next.step = static_cast<float>(k);
-    ASSERT_EQ(session.set(next), SetResult::kApplied);
+    ASSERT_EQ(session.set(next), SetResult::Applied);
     EXPECT_FLOAT_EQ(session.dt(), dt * static_cast<float>(k) / small_scene().step);
   }
   EXPECT_EQ(reads, read);
@@ -255,7 +255,7 @@ TEST_F(SessionGLTest, ReadsFollowTheRendererInForce) {
   EXPECT_EQ(session.read_depth().width, 48);
   Scene next = session.scene().scene;
   next.scale = 4.0f;
-  ASSERT_EQ(session.set(next), SetResult::kApplied);
+  ASSERT_EQ(session.set(next), SetResult::Applied);
   EXPECT_EQ(session.settings().noise.scale, 4.0f);
   session.restart();
   EXPECT_EQ(session.renderer_frame(), 0);
@@ -276,7 +276,7 @@ TEST_F(SessionGLTest, OneRestartStartsFromTheScenesInitialState) {
   Session session(prepare_scene(s));
   Scene next = session.scene().scene;
   next.alpha = 0.2f;
-  ASSERT_EQ(session.set(next), SetResult::kApplied);
+  ASSERT_EQ(session.set(next), SetResult::Applied);
   const float dt = session.dt();
   for (int k = 0; k < 5; ++k) session.advance();
   session.lock();
@@ -306,7 +306,7 @@ TEST_F(SessionGLTest, DtFitsTheStepInTheViewItIsDrawnWith) {
   const float near = session.dt();
   Scene next = session.scene().scene;
   next.step = 2.0f * next.step;  // a new step keeps the host's camera
-  ASSERT_EQ(session.set(next), SetResult::kApplied);
+  ASSERT_EQ(session.set(next), SetResult::Applied);
   EXPECT_FLOAT_EQ(session.dt(), 2.0f * near);
   // A host's world units per pixel: the fastest vector moves `step` pixels
   // at its focal point (normalised in image space, the default, every

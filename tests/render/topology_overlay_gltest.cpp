@@ -96,8 +96,8 @@ bool near_kind(const std::vector<int>& ref, int x, int y, int kind, int r) {
 TEST_F(TopologyOverlayGLTest, DrawsWhatItsReferenceSeesAndLeavesTheTexture) {
   const Drawn with = draw(Overlay::Topology, 12);
   const Drawn without = draw(Overlay::None, 12);
-  ASSERT_EQ(with.topology.count(LineKind::separation), 1u);
-  ASSERT_EQ(with.topology.count(CriticalKind::repelling_focus), 2u);
+  ASSERT_EQ(with.topology.count(LineKind::Separation), 1u);
+  ASSERT_EQ(with.topology.count(CriticalKind::RepellingFocus), 2u);
   const std::vector<int> ref =
       overlay_reference(with.topology, with.view.view, with.view.projection, {kW, kH}, with.depth);
   // The legend's box, from the geometry: left alone below.
@@ -154,10 +154,10 @@ TEST_F(TopologyOverlayGLTest, DrawsWhatItsReferenceSeesAndLeavesTheTexture) {
 TEST_F(TopologyOverlayGLTest, TheGeometryHasAQuadForEachPieceAndALegend) {
   FlowTopology t;
   CriticalPoint p;
-  p.kind = CriticalKind::saddle;
+  p.kind = CriticalKind::Saddle;
   t.critical.points = {p, p};
   FeatureLine closed;
-  closed.kind = LineKind::attachment;
+  closed.kind = LineKind::Attachment;
   closed.closed = true;
   closed.points.resize(5);
   t.lines.lines = {closed};

@@ -52,12 +52,12 @@ struct HostColours {
 
 /// What Session::set did with a changed scene (apply_change's plan).
 enum class SetResult {
-  kApplied,   ///< taken on the running animation
-  kNewView,   ///< taken, and the camera or the image size changed: a caller
-              ///< with its own camera makes it again and tells fit_dt
-  kPrepared,  ///< a key needed the scene prepared again, and the session did:
-              ///< new data, camera and time 0; the texture goes on where the
-              ///< surface is the same (else it starts afresh)
+  Applied,   ///< taken on the running animation
+  NewView,   ///< taken, and the camera or the image size changed: a caller
+             ///< with its own camera makes it again and tells fit_dt
+  Prepared,  ///< a key needed the scene prepared again, and the session did:
+             ///< new data, camera and time 0; the texture goes on where the
+             ///< surface is the same (else it starts afresh)
 };
 
 /// Texture frames a host gives each change of its data (a time step) at
@@ -186,7 +186,7 @@ class Session {
   /// its own (the viewer): an object-space noise cell is sized for it.
   /// A key that needs the scene prepared again (the mesh, the field, a
   /// scalar, a percentile range, ...) prepares it here, from the scene's
-  /// files or the source mesh (kPrepared). Throws SettingError or
+  /// files or the source mesh (Prepared). Throws SettingError or
   /// InputError, changing nothing, for settings that are not valid or data
   /// that cannot be prepared.
   SetResult set(const Scene& next, const Camera* seen_by = nullptr);

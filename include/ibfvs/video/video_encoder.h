@@ -13,7 +13,7 @@ struct AVStream;
 struct AVFrame;
 struct AVPacket;
 
-namespace ibfvs::app {
+namespace ibfvs {
 
 class VideoEncoder {
  public:
@@ -50,4 +50,4 @@ class VideoEncoder {
   bool finished_ = false;
 };
 
-}  // namespace ibfvs::app
+}  // namespace ibfvs

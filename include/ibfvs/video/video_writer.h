@@ -26,7 +26,7 @@
 #include "ibfvs/video/video_encoder.h"
 #endif
 
-namespace ibfvs::app {
+namespace ibfvs {
 
 /// True when `path` has a video extension (.mp4, .mkv, .webm, .mov, .avi, .gif).
 bool is_video_path(const std::filesystem::path& path);
@@ -83,4 +83,4 @@ class VideoWriter {
   std::thread writer_;
 };
 
-}  // namespace ibfvs::app
+}  // namespace ibfvs

@@ -133,8 +133,8 @@ std::optional<Classified> classify(const glm::dvec3& w, const glm::dmat3& j3, co
   const int along = s0 <= s1 ? 0 : 1;
   if (std::min(s0, s1) > 0.5) return std::nullopt;  // not parallel: off the locus
   const double la = e->value[along], lb = e->value[1 - along];
-  if (lb < 0.0 && lb < la) return Classified{LineKind::separation, -lb};
-  if (lb > 0.0 && lb > la) return Classified{LineKind::attachment, lb};
+  if (lb < 0.0 && lb < la) return Classified{LineKind::Separation, -lb};
+  if (lb > 0.0 && lb > la) return Classified{LineKind::Attachment, lb};
   return std::nullopt;
 }
 
@@ -151,7 +151,7 @@ struct Segment {
 }  // namespace
 
 const char* kind_name(LineKind kind) {
-  return kind == LineKind::separation ? "separation line" : "attachment line";
+  return kind == LineKind::Separation ? "separation line" : "attachment line";
 }
 
 FeatureLines find_feature_lines(const TriMesh& mesh, std::span<const glm::vec3> vectors,
@@ -208,7 +208,7 @@ FeatureLines find_feature_lines(const TriMesh& mesh, std::span<const glm::vec3> 
   // Chains of segments of one kind through the edges they share.
   std::unordered_map<std::uint64_t, std::vector<std::size_t>> at;  // (edge, kind) -> segments
   const auto node = [](std::uint64_t edge, LineKind kind) {
-    return edge * 2 + (kind == LineKind::attachment ? 1 : 0);
+    return edge * 2 + (kind == LineKind::Attachment ? 1 : 0);
   };
   for (std::size_t i = 0; i < segments.size(); ++i)
     for (const std::uint64_t e : segments[i].end) at[node(e, segments[i].kind)].push_back(i);

@@ -52,7 +52,7 @@ void classify(double a, double b, double c, double d, CriticalPoint& p) {
   const double disc = trace * trace - 4.0 * det;
   if (det < 0.0) {
     const double root = std::sqrt(disc);
-    p.kind = CriticalKind::saddle;
+    p.kind = CriticalKind::Saddle;
     p.index = -1;
     p.eigen_real = {0.5 * (trace - root), 0.5 * (trace + root)};
     p.eigen_imag = {0.0, 0.0};
@@ -61,7 +61,7 @@ void classify(double a, double b, double c, double d, CriticalPoint& p) {
   p.index = 1;
   if (disc >= 0.0) {
     const double root = std::sqrt(disc);
-    p.kind = trace < 0.0 ? CriticalKind::attracting_node : CriticalKind::repelling_node;
+    p.kind = trace < 0.0 ? CriticalKind::AttractingNode : CriticalKind::RepellingNode;
     p.eigen_real = {0.5 * (trace - root), 0.5 * (trace + root)};
     p.eigen_imag = {0.0, 0.0};
     return;
@@ -73,9 +73,9 @@ void classify(double a, double b, double c, double d, CriticalPoint& p) {
   // what the discrete field makes of a pure turning (1.6e-4 on the jittered
   // globe of the tests, its vectors tangent to the vertex normals).
   if (std::abs(0.5 * trace) <= 1e-3 * im)
-    p.kind = CriticalKind::centre;
+    p.kind = CriticalKind::Centre;
   else
-    p.kind = trace < 0.0 ? CriticalKind::attracting_focus : CriticalKind::repelling_focus;
+    p.kind = trace < 0.0 ? CriticalKind::AttractingFocus : CriticalKind::RepellingFocus;
 }
 
 }  // namespace
@@ -96,17 +96,17 @@ std::span<const KindStyle> kind_styles() {
 
 const char* kind_name(CriticalKind kind) {
   switch (kind) {
-    case CriticalKind::saddle:
+    case CriticalKind::Saddle:
       return "saddle";
-    case CriticalKind::attracting_node:
+    case CriticalKind::AttractingNode:
       return "attracting node";
-    case CriticalKind::repelling_node:
+    case CriticalKind::RepellingNode:
       return "repelling node";
-    case CriticalKind::attracting_focus:
+    case CriticalKind::AttractingFocus:
       return "attracting focus";
-    case CriticalKind::repelling_focus:
+    case CriticalKind::RepellingFocus:
       return "repelling focus";
-    case CriticalKind::centre:
+    case CriticalKind::Centre:
       return "centre";
   }
   return "unknown";

@@ -12,9 +12,9 @@
 namespace ibfvs {
 namespace {
 
-constexpr CriticalKind kPointKinds[] = {
-    CriticalKind::saddle,           CriticalKind::attracting_node, CriticalKind::repelling_node,
-    CriticalKind::attracting_focus, CriticalKind::repelling_focus, CriticalKind::centre};
+constexpr CriticalKind kPointKinds[] = {CriticalKind::Saddle,         CriticalKind::AttractingNode,
+                                        CriticalKind::RepellingNode,  CriticalKind::AttractingFocus,
+                                        CriticalKind::RepellingFocus, CriticalKind::Centre};
 
 std::string counted(std::size_t n, const std::string& one) {
   // "1 saddle", "2 saddles", "2 attracting foci", "3 centres".
@@ -42,8 +42,8 @@ std::string topology_summary(const FlowTopology& t, const TriMesh& mesh) {
     if (t.count(k) > 0) kinds += (kinds.empty() ? "" : ", ") + counted(t.count(k), kind_name(k));
   std::string s = counted(t.critical.points.size(), "critical point") +
                   (kinds.empty() ? "" : " (" + kinds + ")") + ", " +
-                  counted(t.count(LineKind::separation), "separation line") + ", " +
-                  counted(t.count(LineKind::attachment), "attachment line") + "; index sum " +
+                  counted(t.count(LineKind::Separation), "separation line") + ", " +
+                  counted(t.count(LineKind::Attachment), "attachment line") + "; index sum " +
                   std::to_string(t.critical.index_sum);
   // Poincare-Hopf holds on closed surfaces; an open one's boundary takes part.
   const Topology shape = analyze_topology(mesh);

@@ -20,7 +20,7 @@ std::string_view key_label(std::string_view name) {
 
 KeyEffect key_effect(std::string_view name) {
   const SceneKey* key = find_scene_key(name);
-  return key ? key->effect : KeyEffect::kPrepare;
+  return key ? key->effect : KeyEffect::Prepare;
 }
 
 KeyEffect change_effect(std::string_view name, const Scene& next, bool unsteady) {
@@ -30,8 +30,8 @@ KeyEffect change_effect(std::string_view name, const Scene& next, bool unsteady)
   const KeyEffect effect = key_effect(name);
   if ((name == "color_range" && by_percentile(next.color_range)) ||
       (name == "beta_range" && by_percentile(next.beta_range)) ||
-      (effect == KeyEffect::kTangent && unsteady))
-    return KeyEffect::kPrepare;
+      (effect == KeyEffect::Tangent && unsteady))
+    return KeyEffect::Prepare;
   return effect;
 }
 
@@ -46,27 +46,27 @@ ChangePlan plan_change(const Scene& now, const Scene& next, bool unsteady) {
   ChangePlan plan;
   for (const std::string_view key : changed_keys(now, next)) {
     switch (change_effect(key, next, unsteady)) {
-      case KeyEffect::kLive:
+      case KeyEffect::Live:
         plan.live = true;
         break;
-      case KeyEffect::kStep:
+      case KeyEffect::Step:
         plan.step = true;
         break;
-      case KeyEffect::kNoise:
+      case KeyEffect::Noise:
         (key == "seed" ? plan.reseed : plan.regrid) = true;
         break;
-      case KeyEffect::kTangent:
+      case KeyEffect::Tangent:
         plan.tangent = true;
         break;
-      case KeyEffect::kCamera:
+      case KeyEffect::Camera:
         plan.camera = true;
         break;
-      case KeyEffect::kSize:
+      case KeyEffect::Size:
         plan.size = true;
         break;
-      case KeyEffect::kNone:
+      case KeyEffect::None:
         break;
-      case KeyEffect::kPrepare:
+      case KeyEffect::Prepare:
         plan.prepare = true;
         break;
     }

@@ -62,7 +62,7 @@ ChangePlan apply_change(PreparedScene& p, const Scene& next, float world_per_pix
   settings = scene_settings(next, settings);
   settings.width = p.settings.width;
   settings.height = p.settings.height;
-  if (settings.object_noise && !p.settings.object_noise) {
+  if (settings.object_noise && (!p.settings.object_noise || plan.regrid)) {
     // s pixels at the distance of the mesh centre, as prepare_scene does.
     settings.object_cell = settings.noise.scale * world_per_pixel;
   }
@@ -151,7 +151,7 @@ PreparedScene prepare(const Scene& s, std::optional<LoadedMesh> given) {
   check(s);
   Preparation c(s, std::move(given));
   for (void (*step)(Preparation&) :
-       {settings, load, series, orient, surface_scalars, field, fit_camera, colours})
+       {settings, load, series, orient, surface_scalars, field, pace, colours})
     step(c);
   c.p.mesh = std::move(c.mesh);
   c.p.field_spec = *c.field_spec;

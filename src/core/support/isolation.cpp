@@ -30,11 +30,11 @@ namespace {
 
 // What the child writes first: how its work ended.
 enum class Outcome : char {
-  kOk = 'O',
-  kInputError = 'E',
-  kOutOfMemory = 'M',
-  kOther = 'X',
-  kDied = 'D'  // then the last words, and the child ends by its signal
+  Ok = 'O',
+  InputError = 'E',
+  OutOfMemory = 'M',
+  Other = 'X',
+  Died = 'D'  // then the last words, and the child ends by its signal
 };
 
 // What the child last reported (last_words), for its fatal-signal handler:
@@ -83,7 +83,7 @@ bool restart_result() {
   try {
     if (const std::exception_ptr e = std::current_exception()) std::rethrow_exception(e);
   } catch (const std::bad_alloc&) {
-    const char tag = static_cast<char>(Outcome::kOutOfMemory);
+    const char tag = static_cast<char>(Outcome::OutOfMemory);
     if (restart_result() && ::write(g_result_fd, &tag, 1) == 1) ::_exit(0);
   } catch (...) {
   }
@@ -91,7 +91,7 @@ bool restart_result() {
 }
 
 void on_fatal_signal(int sig) {
-  char tag = static_cast<char>(Outcome::kDied);
+  char tag = static_cast<char>(Outcome::Died);
   if (restart_result() && ::write(g_result_fd, &tag, 1) == 1 && g_last_words_size > 0) {
     [[maybe_unused]] const ssize_t n = ::write(g_result_fd, g_last_words, g_last_words_size);
   }
@@ -130,27 +130,27 @@ void on_fatal_signal(int sig) {
   }
   // The result goes straight into the buffer after its tag; on a failure
   // the buffer is emptied and says what went wrong instead.
-  Outcome outcome = Outcome::kOk;
+  Outcome outcome = Outcome::Ok;
   std::string message;
-  const char ok_tag = static_cast<char>(Outcome::kOk);
+  const char ok_tag = static_cast<char>(Outcome::Ok);
   try {
     if (!write_all(fd, &ok_tag, 1)) ::_exit(3);
     ByteWriter out(fd);
     work(out);
     out.flush();
   } catch (const InputError& e) {
-    outcome = Outcome::kInputError;
+    outcome = Outcome::InputError;
     message = e.what();
   } catch (const std::bad_alloc&) {
-    outcome = Outcome::kOutOfMemory;
+    outcome = Outcome::OutOfMemory;
   } catch (const std::exception& e) {
-    outcome = Outcome::kOther;
+    outcome = Outcome::Other;
     message = e.what();
   } catch (...) {
-    outcome = Outcome::kOther;
+    outcome = Outcome::Other;
     message = "an unknown error";
   }
-  if (outcome != Outcome::kOk) {
+  if (outcome != Outcome::Ok) {
     const char tag = static_cast<char>(outcome);
     if (!restart_result() || !write_all(fd, &tag, 1) ||
         !write_all(fd, message.data(), message.size()))
@@ -306,7 +306,7 @@ IsolatedBytes run_isolated(const std::string& subject, const std::string& who,
   const std::string_view bytes = said.view();
   if (WIFSIGNALED(status)) {
     const int sig = WTERMSIG(status);
-    const std::string last = bytes.size() > 1 && bytes[0] == static_cast<char>(Outcome::kDied)
+    const std::string last = bytes.size() > 1 && bytes[0] == static_cast<char>(Outcome::Died)
                                  ? std::string(bytes.substr(1))
                                  : std::string();
     if (sig == SIGXCPU) throw ran_too_long(limits.cpu_seconds, "CPU time");
@@ -322,20 +322,20 @@ IsolatedBytes run_isolated(const std::string& subject, const std::string& who,
     throw InputError(subject + ": " + who + " stopped on it without an answer (exit status " +
                      std::to_string(code) +
                      "; out of memory, or a failed check; IBFVS_READER_STDERR=1 shows its output)");
-  const std::string payload(bytes.size() > 1 && bytes[0] != static_cast<char>(Outcome::kOk)
+  const std::string payload(bytes.size() > 1 && bytes[0] != static_cast<char>(Outcome::Ok)
                                 ? bytes.substr(1)
                                 : std::string_view());
   switch (static_cast<Outcome>(bytes[0])) {
-    case Outcome::kOk:
+    case Outcome::Ok:
       return std::move(said).after(1);
-    case Outcome::kInputError:
+    case Outcome::InputError:
       throw InputError(payload);
-    case Outcome::kOutOfMemory:
+    case Outcome::OutOfMemory:
       throw InputError(subject + ": too large to read (it needs more than " +
                        format_bytes(static_cast<double>(limits.memory_bytes)) + " of memory)");
-    case Outcome::kOther:
+    case Outcome::Other:
       throw InputError(subject + ": " + payload);
-    case Outcome::kDied:  // only with a signal, above
+    case Outcome::Died:  // only with a signal, above
       break;
   }
   throw InputError(subject + ": " + who + " gave an answer that cannot be read");

@@ -71,8 +71,8 @@ TEST(CriticalPoints, HeightOnASphereFlowsFromASourceToASink) {
   EXPECT_EQ(c.index_sum, euler_characteristic(m));
   EXPECT_EQ(euler_characteristic(m), 2);
   const double edge = mean_edge(m);
-  const auto sink = of_kind(c, CriticalKind::attracting_node);
-  const auto source = of_kind(c, CriticalKind::repelling_node);
+  const auto sink = of_kind(c, CriticalKind::AttractingNode);
+  const auto source = of_kind(c, CriticalKind::RepellingNode);
   ASSERT_EQ(sink.size(), 1u);
   ASSERT_EQ(source.size(), 1u);
   expect_near(sink[0].position, axis, 0.1 * edge);
@@ -94,12 +94,12 @@ TEST(CriticalPoints, ATurningAndASpiralOnASphere) {
     ASSERT_EQ(c.points.size(), 2u) << pull;
     EXPECT_EQ(c.index_sum, 2) << pull;
     const double edge = mean_edge(m);
-    const CriticalKind at_axis = pull == 0.0f  ? CriticalKind::centre
-                                 : pull > 0.0f ? CriticalKind::attracting_focus
-                                               : CriticalKind::repelling_focus;
-    const CriticalKind opposite = pull == 0.0f  ? CriticalKind::centre
-                                  : pull > 0.0f ? CriticalKind::repelling_focus
-                                                : CriticalKind::attracting_focus;
+    const CriticalKind at_axis = pull == 0.0f  ? CriticalKind::Centre
+                                 : pull > 0.0f ? CriticalKind::AttractingFocus
+                                               : CriticalKind::RepellingFocus;
+    const CriticalKind opposite = pull == 0.0f  ? CriticalKind::Centre
+                                  : pull > 0.0f ? CriticalKind::RepellingFocus
+                                                : CriticalKind::AttractingFocus;
     for (const CriticalPoint& p : c.points) {
       const bool top = glm::dot(p.position, axis) > 0.0f;
       EXPECT_EQ(p.kind, top ? at_axis : opposite) << pull << ": " << kind_name(p.kind);
@@ -131,9 +131,9 @@ TEST(CriticalPoints, HeightOnATorusHasTwoNodesAndTwoSaddles) {
   EXPECT_EQ(c.index_sum, 0);
   ASSERT_EQ(c.points.size(), 4u);
   const double edge = mean_edge(m);
-  const auto saddles = of_kind(c, CriticalKind::saddle);
-  const auto sinks = of_kind(c, CriticalKind::attracting_node);
-  const auto sources = of_kind(c, CriticalKind::repelling_node);
+  const auto saddles = of_kind(c, CriticalKind::Saddle);
+  const auto sinks = of_kind(c, CriticalKind::AttractingNode);
+  const auto sources = of_kind(c, CriticalKind::RepellingNode);
   ASSERT_EQ(saddles.size(), 2u);
   ASSERT_EQ(sinks.size(), 1u);
   ASSERT_EQ(sources.size(), 1u);
@@ -158,10 +158,10 @@ TEST(CriticalPoints, ZerosOnEdgesOfASymmetricMeshAreFoundOnce) {
   const CriticalPoints c = find_critical_points(m, v);
   ASSERT_EQ(c.points.size(), 4u);
   EXPECT_EQ(c.index_sum, 0);
-  EXPECT_EQ(of_kind(c, CriticalKind::saddle).size(), 2u);
+  EXPECT_EQ(of_kind(c, CriticalKind::Saddle).size(), 2u);
   EXPECT_EQ(c.degenerate_triangles, 0u);  // the top and bottom rings: constant, no zero
   for (const CriticalPoint& p : c.points)
-    EXPECT_NEAR(std::abs(glm::dot(p.position, up)), p.kind == CriticalKind::saddle ? 0.6 : 1.4,
+    EXPECT_NEAR(std::abs(glm::dot(p.position, up)), p.kind == CriticalKind::Saddle ? 0.6 : 1.4,
                 0.01);
 }
 
@@ -237,8 +237,8 @@ TEST(FeatureLines, ASpiralOntoACircleIsAClosedSeparationLineAndItsReverseAnAttac
   const glm::vec3 axis = glm::normalize(glm::vec3(0.3f, 0.2f, 0.93f));
   for (const float k : {1.0f, -1.0f}) {
     const FeatureLines lines = find_feature_lines(m, spiral_onto_circle(m, axis, k));
-    const LineKind want = k > 0 ? LineKind::separation : LineKind::attachment;
-    const LineKind other = k > 0 ? LineKind::attachment : LineKind::separation;
+    const LineKind want = k > 0 ? LineKind::Separation : LineKind::Attachment;
+    const LineKind other = k > 0 ? LineKind::Attachment : LineKind::Separation;
     const Coverage c = coverage(lines, want, axis);
     EXPECT_LT(c.farthest, 0.2 * edge) << k;  // radians on the unit sphere: arc length
     EXPECT_GT(c.covered, 0.97) << k;

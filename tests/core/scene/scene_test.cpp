@@ -128,15 +128,15 @@ TEST(SceneKeys, EveryKeyHasItsEffectAndTheLiveOnesReachTheRenderer) {
     const KeyEffect effect = key_effect(key.name);
     const bool percentile = (key.name == "color_range" || key.name == "beta_range") &&
                             key.get(busy).front().front() == 'p';
-    if (effect == KeyEffect::kLive && !percentile) {
+    if (effect == KeyEffect::Live && !percentile) {
       EXPECT_NE(settings, plain) << key.name << " is live but the renderer does not take it";
-    } else if (effect != KeyEffect::kStep && effect != KeyEffect::kNoise) {
+    } else if (effect != KeyEffect::Step && effect != KeyEffect::Noise) {
       EXPECT_EQ(settings, plain) << key.name << " reaches the renderer but is not live";
     }
   }
-  EXPECT_EQ(key_effect("mesh"), KeyEffect::kPrepare);
-  EXPECT_EQ(key_effect("alpha"), KeyEffect::kLive);
-  EXPECT_EQ(key_effect("no such key"), KeyEffect::kPrepare);
+  EXPECT_EQ(key_effect("mesh"), KeyEffect::Prepare);
+  EXPECT_EQ(key_effect("alpha"), KeyEffect::Live);
+  EXPECT_EQ(key_effect("no such key"), KeyEffect::Prepare);
   Scene a, b;
   apply_setting(b, "filter", "8");
   apply_setting(b, "mesh", "torus");
@@ -149,13 +149,13 @@ TEST(SceneKeys, EveryKeyHasItsEffectAndTheLiveOnesReachTheRenderer) {
 TEST(SceneKeys, APercentileRangeOrAnUnsteadyTangentPreparesAgain) {
   Scene s;
   apply_setting(s, "color_range", "0,2");
-  EXPECT_EQ(change_effect("color_range", s, false), KeyEffect::kLive);
+  EXPECT_EQ(change_effect("color_range", s, false), KeyEffect::Live);
   apply_setting(s, "color_range", "p5,p95");
-  EXPECT_EQ(change_effect("color_range", s, false), KeyEffect::kPrepare);
-  EXPECT_EQ(change_effect("beta_range", Scene{}, false), KeyEffect::kPrepare);  // unset: p1,p99
-  EXPECT_EQ(change_effect("tangent", s, false), KeyEffect::kTangent);
-  EXPECT_EQ(change_effect("tangent", s, true), KeyEffect::kPrepare);
-  EXPECT_EQ(change_effect("alpha", s, true), KeyEffect::kLive);
+  EXPECT_EQ(change_effect("color_range", s, false), KeyEffect::Prepare);
+  EXPECT_EQ(change_effect("beta_range", Scene{}, false), KeyEffect::Prepare);  // unset: p1,p99
+  EXPECT_EQ(change_effect("tangent", s, false), KeyEffect::Tangent);
+  EXPECT_EQ(change_effect("tangent", s, true), KeyEffect::Prepare);
+  EXPECT_EQ(change_effect("alpha", s, true), KeyEffect::Live);
 }
 
 // A host (ParaView) sets a key by its host name with a number: kept to the

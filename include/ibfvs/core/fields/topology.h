@@ -47,12 +47,12 @@ namespace ibfvs {
 
 /// The kinds of issue 64's `kind` array (1-6: critical points).
 enum class CriticalKind : int {
-  saddle = 1,
-  attracting_node = 2,
-  repelling_node = 3,
-  attracting_focus = 4,
-  repelling_focus = 5,
-  centre = 6,
+  Saddle = 1,
+  AttractingNode = 2,
+  RepellingNode = 3,
+  AttractingFocus = 4,
+  RepellingFocus = 5,
+  Centre = 6,
 };
 
 /// The name of a kind ("saddle", "attracting node", ...).
@@ -62,7 +62,7 @@ struct CriticalPoint {
   glm::vec3 position{0.0f};
   glm::vec3 normal{0.0f, 0.0f, 1.0f};  ///< its triangle's
   std::size_t triangle = 0;            ///< the triangle it was found in
-  CriticalKind kind = CriticalKind::saddle;
+  CriticalKind kind = CriticalKind::Saddle;
   int index = 1;  ///< Poincare index: -1 for a saddle, +1 otherwise
   /// The Jacobian's eigenvalues, real and imaginary parts (1/time in the
   /// field's units per the mesh's length).
@@ -90,7 +90,7 @@ std::vector<glm::vec3> tangent_vectors(const TriMesh& mesh, std::span<const glm:
 CriticalPoints find_critical_points(const TriMesh& mesh, std::span<const glm::vec3> vectors);
 
 /// Issue 64's `kind` for lines.
-enum class LineKind : int { separation = 10, attachment = 11 };
+enum class LineKind : int { Separation = 10, Attachment = 11 };
 
 /// "separation line" or "attachment line".
 const char* kind_name(LineKind kind);
@@ -104,7 +104,7 @@ struct LinePoint {
 };
 
 struct FeatureLine {
-  LineKind kind = LineKind::separation;
+  LineKind kind = LineKind::Separation;
   std::vector<LinePoint> points;  ///< in order; a closed line repeats no point
   bool closed = false;
   double strength = 0.0;  ///< mean transverse rate along it (1/time, as the eigenvalues)

@@ -229,14 +229,14 @@ enum class KeyKind {
 /// What a running animation does when a key changes (Session::set), for
 /// the viewer, Python and the restyling of a page alike.
 enum class KeyEffect {
-  kLive,     ///< a texture or display setting the next frame takes (alpha, filter, colours, ...)
-  kStep,     ///< dt follows the new step
-  kNoise,    ///< a new noise grid (scale, seed); the texture goes on (a new seed: afresh)
-  kTangent,  ///< the field evaluated again; the texture goes on
-  kCamera,   ///< the view moves (camera, look_at, ortho, fov, orbit)
-  kSize,     ///< the texture resampled to the new image size
-  kNone,     ///< read as the animation runs or only by a front end (frames, out, style, ...)
-  kPrepare,  ///< the scene prepared again (mesh, field, scalars, ...): the texture starts afresh
+  Live,     ///< a texture or display setting the next frame takes (alpha, filter, colours, ...)
+  Step,     ///< dt follows the new step
+  Noise,    ///< a new noise grid (scale, seed); the texture goes on (a new seed: afresh)
+  Tangent,  ///< the field evaluated again; the texture goes on
+  Camera,   ///< the view moves (camera, look_at, ortho, fov, orbit)
+  Size,     ///< the texture resampled to the new image size
+  None,     ///< read as the animation runs or only by a front end (frames, out, style, ...)
+  Prepare,  ///< the scene prepared again (mesh, field, scalars, ...): the texture starts afresh
 };
 /// The span of a number key, for every front end: the command line's and
 /// the scene files' checks, RenderSettings::validate, the viewer's
@@ -269,7 +269,7 @@ struct SceneKey {
   /// optional value or a false flag). set() of each gives the same scene.
   std::vector<std::string> (*get)(const Scene&);
   /// What a running animation does when the key changes.
-  KeyEffect effect = KeyEffect::kPrepare;
+  KeyEffect effect = KeyEffect::Prepare;
   /// A number key's span (none: any value its check takes).
   std::optional<KeyRange> range = std::nullopt;
   /// An enumeration key's values, in its name table's order (else empty).
@@ -298,11 +298,11 @@ std::string host_setting(const SceneKey& key, double value);
 /// Key `name`'s label (SceneKey::label; its name where the key has none,
 /// or for a name that is no key).
 std::string_view key_label(std::string_view name);
-/// The effect of changing key `name` (kPrepare for a name that is no key).
+/// The effect of changing key `name` (Prepare for a name that is no key).
 KeyEffect key_effect(std::string_view name);
 /// The effect of a change of key `name` to its value in `next`: key_effect,
 /// but a percentile range (or an unset one, p1,p99) needs the scalars again,
-/// and a tangent mode an unsteady field's steps (`unsteady`): kPrepare. One
+/// and a tangent mode an unsteady field's steps (`unsteady`): Prepare. One
 /// rule for Session::set and the page's restyling.
 KeyEffect change_effect(std::string_view name, const Scene& next, bool unsteady);
 /// The keys whose values differ between two scenes, in table order.

@@ -162,7 +162,7 @@ TriMesh step_surface(const PreparedScene& prepared, const StepData& step);
 
 /// The prepared scene with `style`'s look, as the viewer's style keys give it
 /// (the style's defaults over the scene), when that look takes the same data:
-/// what changes is texture settings (key_effect: kLive), the noise scale
+/// what changes is texture settings (key_effect: Live), the noise scale
 /// and seed and the step (dt follows). Empty when the style needs other data:
 /// curvature colours, a field of its own (the particles and principal styles
 /// are pictures of the principal directions), random cells, its own camera.

@@ -1,5 +1,6 @@
-// A preparation's camera: the height axis and the camera's keys (orient), then dt for the image,
-// its warnings and the automatic lock (fit_camera).
+// A preparation's camera: the height axis and the camera's keys (orient), then
+// its pace: dt for the image, the warnings about it and the automatic lock
+// frame (pace).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -47,7 +48,7 @@ void orient(Preparation& c) {
                                  std::nullopt};
 }
 
-void fit_camera(Preparation& c) {
+void pace(Preparation& c) {
   const Scene& s = c.s;
   PreparedScene& p = c.p;
   TriMesh& mesh = *c.mesh;

@@ -1,13 +1,15 @@
 #pragma once
 // Inside prepare_scene (scene_prep.cpp): its one context, the Preparation,
-// and its steps in the order it runs them, each in a file of its own in
-// this folder: the settings; load (the mesh); series (a series' steps);
-// orient (the height axis and the camera's keys); surface_scalars (netCDF
-// scalars, curvature, displacement); field (the field, and the data of each
-// step); fit_camera (dt, the warnings about it, the automatic lock);
+// and its eight steps in the order it runs them, in four files of this
+// folder: load.cpp: settings (scene_settings), load (the mesh), series (a
+// series' steps); camera.cpp: orient (the height axis and the camera's
+// keys), pace (dt, the warnings about it, the automatic lock frame);
+// scalars.cpp: surface_scalars (netCDF scalars, curvature, displacement),
 // colours (the colour and beta scalars and their ranges, the surface
-// image). Also what they share with prepare_change and resized: a step's
-// data on the prepared mesh, and the fit to an image.
+// image); field.cpp: field (the field, and the data of each step). Also
+// (steps_on_mesh.cpp) what they share with prepare_change, resized and
+// apply_change: a step's data on the prepared mesh, and the fit to an
+// image (its size, the fastest vertex's speed, dt).
 
 #include <cstdint>
 #include <functional>
@@ -54,7 +56,7 @@ void series(Preparation& c);
 void orient(Preparation& c);
 void surface_scalars(Preparation& c);
 void field(Preparation& c);
-void fit_camera(Preparation& c);
+void pace(Preparation& c);
 void colours(Preparation& c);
 
 // Runs `f`, turning a plain InputError into a SettingError of `key`.

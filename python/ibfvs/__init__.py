@@ -225,7 +225,8 @@ class Animation(_ibfvs.Animation):
     def set(self, **options):
         """Change settings on the running animation where they allow it (texture
         settings, step, scale, seed, tangent, camera, size: the session's rules,
-        as the viewer's); others prepare the scene again (the texture restarts)."""
+        as the viewer's); others prepare the scene again, the texture going on over
+        the same surface (another surface starts it afresh)."""
         self._set(_options(options))
 
     def frames(self, count, *, alpha=False):

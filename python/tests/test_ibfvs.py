@@ -123,7 +123,11 @@ def test_live_settings_keep_the_animation_and_others_rebuild():
     assert (anim.image()[0, 0, :3] == 0).all()  # the new background, live
     anim.set(scale=4)  # a new noise grid: the texture goes on (as in the viewer)
     assert anim.frame == 5
-    anim.set(color_by="speed")  # the scene prepared again: the texture starts afresh
+    texture = anim.texture()
+    anim.set(color_by="speed")  # the scene prepared again, over the same surface:
+    assert anim.frame == 5  # the texture goes on from where it is
+    assert np.array_equal(anim.texture(), texture)
+    anim.set(subdivide=1)  # over another surface: the texture starts afresh
     assert anim.frame == 0
     with pytest.raises(ValueError, match="alpha"):
         anim.set(alpha=7)

@@ -29,9 +29,21 @@ void HostFlow::set_scene(const Scene& next) {
   s.field = scene_.field;
   s.width = scene_.width;
   s.height = scene_.height;
-  static_cast<void>(scene_settings(s, RenderSettings{}));  // every value checked now
+  if (session_) {
+    // The session's one door, now: it checks, plans and takes the change
+    // (throwing SettingError, changing nothing); the GPU's part waits for
+    // the host's next render, where its context is current.
+    Scene at = s;
+    at.width = session_->scene().width;
+    at.height = session_->scene().height;
+    if (session_->set(at, nullptr, Apply::AtNextFrame) == SetResult::Prepared &&
+        session_->frame() == 0)
+      frame_ = 0;  // prepared again over another surface: afresh
+  } else {
+    static_cast<void>(scene_settings(s, RenderSettings{}));  // checked; the first session's
+  }
   // A new seed starts the texture afresh on every process alike (the
-  // host's agreement: restart); the session takes the rest of the change.
+  // host's agreement: restart), those with an empty piece too.
   restart_ = restart_ || s.seed != scene_.seed;
   scene_ = std::move(s);
 }
@@ -98,11 +110,10 @@ HostChanges HostFlow::pending(int width, int height) const {
   return c;
 }
 
-// The session made (the first surface), dropped (no surface), or taking on
-// a new size, new data, the host's keys (the session's one door: it plans
-// them, and prepares the scene again itself where a key needs it) and a
-// restart, as agreed: the texture goes on from where it is, only a restart
-// starts it afresh.
+// The session made (the first surface, with the keys set so far), dropped
+// (no surface), or taking on a new size, new data and a restart, as
+// agreed: the texture goes on from where it is, only a restart starts it
+// afresh. The keys went to the session when they were set (set_scene).
 void HostFlow::update_session(int width, int height, const HostChanges& all) {
   try {
     if (!mesh_) {
@@ -118,10 +129,6 @@ void HostFlow::update_session(int width, int height, const HostChanges& all) {
     } else {
       if (all.resize) session_->resize(width, height);
       if (data_changed_) session_->change_surface(mesh_, name_);
-      Scene s = scene_;
-      s.width = session_->scene().width;
-      s.height = session_->scene().height;
-      if (session_->set(s) == SetResult::Prepared && session_->frame() == 0) frame_ = 0;
       // Every process starts afresh where one does (a first surface, a new
       // seed): their frame counts stay alike. A new seed has already.
       if (all.restart && session_->frame() > 0) session_->restart();

@@ -140,7 +140,7 @@ void GridPass::apply(const NoiseParams& noise) const {
   program_.set(seed_, noise.seed);
 }
 
-void GridPass::run(float noise_time, glm::ivec4 box) const {
+void GridPass::run(float noise_time, glm::ivec4 box) {
   framebuffer_.bind();
   gl::set_viewport(grid_.width(), grid_.height());
   gl::enable_depth_test(false);
@@ -175,7 +175,7 @@ void StatsPass::clear() {
   framebuffer_.clear_color(0, glm::vec4(0.0f));
 }
 
-void StatsPass::run(bool grey, glm::ivec2 size, int frame, float weight) const {
+void StatsPass::run(bool grey, glm::ivec2 size, int frame, float weight) {
   const Program& p = programs_[grey ? 1 : 0];
   framebuffer_.bind();
   gl::set_viewport(stats_.width(), stats_.height());
@@ -200,7 +200,7 @@ HostPass::HostPass()
   interior_ = program_.location("u_interior");
 }
 
-void HostPass::draw(glm::ivec2 origin, bool interior, glm::ivec4 box) const {
+void HostPass::draw(glm::ivec2 origin, bool interior, glm::ivec4 box) {
   program_.use();
   program_.set(origin_, origin);
   program_.set(interior_, interior ? 1 : 0);

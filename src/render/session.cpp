@@ -180,10 +180,12 @@ void Session::rebuild(bool restart) {
 }
 
 void Session::restart() {
+  settle();
   rebuild(true);
 }
 
 void Session::resize(int width, int height) {
+  settle();
   if (width == scene_.width && height == scene_.height) return;
   fit_to_size(scene_, width, height);
   camera_.set_aspect(aspect_of(scene_));
@@ -226,6 +228,7 @@ void Session::refit_dt() {
 }
 
 void Session::seek(double t) {
+  settle();
   time_ = session_time(t, scene_.step_count, scene_.scene.loop);
   player_->seek(time_, *renderer_);
 }
@@ -235,6 +238,7 @@ void Session::render(const Camera& camera) {
 }
 
 void Session::render(const ViewState& view) {
+  settle();
   const gl::SavedState saved;
   renderer_->render_frame(view, dt_);
   draw_overlay(view);
@@ -273,13 +277,14 @@ void Session::advance() {
   render(camera_);
 }
 
-SetResult Session::set(const Scene& next, const Camera* seen_by) {
+SetResult Session::set(const Scene& next, const Camera* seen_by, Apply when) {
   // The world units a pixel spans at the mesh centre as the frames are
   // drawn: an object-space noise cell is sized for it.
   const Camera& seen = seen_by ? *seen_by : host_camera_ ? *host_camera_ : camera_;
   const ChangePlan plan = apply_change(scene_, next, seen.world_per_pixel(scene_.height));
   if (plan.prepare) {
     prepare_again(next);
+    if (when == Apply::Now) settle();
     return SetResult::Prepared;
   }
   if (plan.camera)
@@ -288,30 +293,27 @@ SetResult Session::set(const Scene& next, const Camera* seen_by) {
     camera_.set_aspect(aspect_of(scene_));
   if (plan.size && lock_camera_) lock_camera_->set_aspect(aspect_of(scene_));
   if (plan.camera || plan.size) host_camera_.reset();  // the caller's camera changes: fit_dt
-  if (plan.regrid || plan.reseed || plan.size)
-    rebuild(plan.reseed);  // the texture resampled to the size and grid (a new seed: afresh)
-  else
-    apply_host(false);
-  if (plan.tangent) {
-    ++data_version_;
-    const gl::SavedState saved;
-    renderer_->set_field(scene_.field);
-  }
+  // The texture resampled to the size and grid (a new seed: afresh).
+  owed_.rebuild = owed_.rebuild || plan.regrid || plan.reseed || plan.size;
+  owed_.restart = owed_.restart || plan.reseed;
+  owed_.settings = true;
+  owed_.field = owed_.field || plan.tangent;
+  if (plan.reseed) frame_ = 0;
+  if (plan.tangent) ++data_version_;
   if (plan.step || plan.tangent || plan.camera || plan.size) refit_dt();
+  if (when == Apply::Now) settle();
   return plan.camera || plan.size ? SetResult::NewView : SetResult::Applied;
 }
 
 void Session::prepare_again(const Scene& next) {
   PreparedScene prepared =
       source_ ? prepare_scene(next, *source_, source_name_) : prepare_scene(next);
-  const gl::SavedState saved;
   // The texture goes on over the same surface (a new colour array, field or
   // range); over another surface, or to another start, it starts afresh.
   const TriMesh &from = *scene_.mesh, &to = *prepared.mesh;
-  const bool carried = renderer_->frame() > 0 && next.init == scene_.scene.init &&
-                       from.triangles == to.triangles && from.positions == to.positions;
-  const ImageF raw = carried ? renderer_->read_texture_raw() : ImageF();
-  const ViewState view = renderer_->last_view();
+  const bool carried = frame_ > 0 && (!owed_.load || owed_.carry) &&
+                       next.init == scene_.scene.init && from.triangles == to.triangles &&
+                       from.positions == to.positions;
   scene_ = std::move(prepared);
   camera_ = Camera(mesh_bounds(*scene_.mesh), scene_.camera, aspect_of(scene_));
   lock_camera_.reset();
@@ -322,11 +324,32 @@ void Session::prepare_again(const Scene& next) {
   time_ = 0.0;
   ++data_version_;
   dt_ = scene_.dt;
-  load();
-  if (carried)
-    renderer_->take_texture(raw, view);
-  else
-    frame_ = 0;
+  owed_ = Owed{};
+  owed_.load = true;
+  owed_.carry = carried;
+  if (!carried) frame_ = 0;
+}
+
+void Session::settle() {
+  const Owed owed = owed_;
+  owed_ = Owed{};
+  if (owed.load) {
+    // A new renderer for the scene prepared again, the texture carried.
+    const gl::SavedState saved;
+    const ImageF raw = owed.carry ? renderer_->read_texture_raw() : ImageF();
+    const ViewState view = renderer_->last_view();
+    load();
+    if (owed.carry) renderer_->take_texture(raw, view);
+    return;
+  }
+  if (owed.rebuild)
+    rebuild(owed.restart);
+  else if (owed.settings)
+    apply_host(false);
+  if (owed.field) {
+    const gl::SavedState saved;
+    renderer_->set_field(scene_.field);
+  }
 }
 
 void Session::set_field(std::vector<glm::vec3> field) {
@@ -336,6 +359,7 @@ void Session::set_field(std::vector<glm::vec3> field) {
   scene_.field = std::move(field);
   fit_field(scene_);
   ++data_version_;
+  settle();
   const gl::SavedState saved;
   renderer_->set_field(scene_.field);
   refit_dt();
@@ -387,6 +411,7 @@ void Session::apply_host(bool upload) {
 }
 
 void Session::lock() {
+  settle();
   renderer_->lock();
 }
 
@@ -422,6 +447,7 @@ void Session::defer_statistics(bool on) {
 }
 
 void Session::take_composited(const ImageF& texture, const ImageF* output) {
+  settle();
   const gl::SavedState saved;
   renderer_->write_texture_raw(texture);
   if (output) {
@@ -457,6 +483,7 @@ int FramePacer::next(bool changed, bool restart, bool moved, bool carried) {
 }
 
 void Session::change_data(PreparedScene next) {
+  settle();
   if (!next.mesh) throw InputError("change_data: no mesh");
   const gl::SavedState saved;
   ++data_version_;

@@ -160,7 +160,7 @@ void SurfaceBuffers::frame_drawn(float mix) {
   drawn_this_mesh_ = true;
 }
 
-void SurfaceBuffers::draw() const {
+void SurfaceBuffers::draw() {
   vao_.bind();
   gl::draw_triangles(index_count_, true);
 }

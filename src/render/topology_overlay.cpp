@@ -29,8 +29,7 @@ void TopologyOverlay::set(const FlowTopology& topology, glm::ivec2 size) {
   vao_.index_buffer(indices_);
 }
 
-void TopologyOverlay::draw(const glm::mat4& view, const glm::mat4& projection,
-                           glm::ivec2 size) const {
+void TopologyOverlay::draw(const glm::mat4& view, const glm::mat4& projection, glm::ivec2 size) {
   if (index_count_ == 0) return;
   program_.use();
   program_.set(program_.location("u_view"), view);

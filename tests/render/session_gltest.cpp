@@ -211,6 +211,37 @@ TEST_F(SessionGLTest, SettingsChangeOnTheRunningAnimationByTheKeysRules) {
   EXPECT_EQ(changed("frames", "99"), SetResult::Applied);
 }
 
+// A host's change is taken when it is made (checked, planned, dt refitted)
+// and drawn with its context: the GPU's part waits for the next frame.
+TEST_F(SessionGLTest, AHostsChangeIsTakenNowAndDrawnAtTheNextFrame) {
+  Session session(prepare_scene(small_scene()));
+  for (int k = 0; k < 3; ++k) session.advance();
+  const float dt = session.dt();
+  Scene next = session.scene().scene;
+  next.alpha = 0.3f;
+  next.scale = 5.0f;
+  next.step = 2.0f * next.step;
+  ASSERT_EQ(session.set(next, nullptr, Apply::AtNextFrame), SetResult::Applied);
+  EXPECT_EQ(session.scene().settings.noise.scale, 5.0f);
+  EXPECT_FLOAT_EQ(session.dt(), 2.0f * dt);
+  EXPECT_NE(session.settings().alpha, 0.3f);  // the renderer: at the next frame
+  Scene bad = next;
+  bad.beta = 3.0f;
+  EXPECT_THROW(session.set(bad, nullptr, Apply::AtNextFrame), SettingError);
+  session.advance();
+  EXPECT_EQ(session.settings().alpha, 0.3f);
+  EXPECT_EQ(session.settings().noise.scale, 5.0f);
+  EXPECT_EQ(session.frame(), 4);  // a new grid: the texture went on
+  // A key that needs preparing: prepared now, drawn over the same surface.
+  next.color_by = "speed";
+  ASSERT_EQ(session.set(next, nullptr, Apply::AtNextFrame), SetResult::Prepared);
+  EXPECT_EQ(session.scene().scene.color_by, "speed");
+  EXPECT_FALSE(session.settings().use_color);
+  session.advance();
+  EXPECT_TRUE(session.settings().use_color);
+  EXPECT_EQ(session.frame(), 5);
+}
+
 // A new step fits dt from the speed the preparation found: a series' steps
 // are not read again (the viewer's step slider, a host's Step), nor is the
 // prepared scene copied; a new field fits it again.

@@ -72,11 +72,13 @@ class HostFlow {
   HostFlow(const HostFlow&) = delete;
   HostFlow& operator=(const HostFlow&) = delete;
 
-  /// The keys of `scene` (alpha, beta, scale, step, seed, ...), checked now
-  /// (scene_settings: throws SettingError for a value that is not valid,
-  /// changing nothing). The host's context is current only in its render:
-  /// the next render hands them to the session's one door (Session::set),
-  /// which plans and takes the change there, once.
+  /// The keys of `scene` (alpha, beta, scale, step, seed, ...), through the
+  /// session's one door now (Session::set: checked, planned and taken once,
+  /// the scene prepared again there where a key needs it; its GPU part at
+  /// the next render, where the host's context is current). Before the
+  /// first render they are checked (scene_settings) and the first session
+  /// is made with them. Throws SettingError for a value that is not valid,
+  /// changing nothing.
   void set_scene(const Scene& scene);
   [[nodiscard]] const Scene& scene() const { return scene_; }
   /// At least this many texture frames for each change of the surface

@@ -37,7 +37,7 @@ class GridPass {
   void apply(const NoiseParams& noise) const;
   /// G of the frame at noise time v_g k, in the cells of `box` (x, y,
   /// columns, rows: the cells the surface can read).
-  void run(float noise_time, glm::ivec4 box) const;
+  void run(float noise_time, glm::ivec4 box);
   [[nodiscard]] const gl::Texture2D& values() const { return grid_; }
   [[nodiscard]] const gl::Texture2D& phases() const { return phases_; }
   [[nodiscard]] glm::ivec2 size() const { return {grid_.width(), grid_.height()}; }
@@ -112,7 +112,7 @@ class StatsPass {
   /// One pass over F_t and F (whose alpha holds D before the contrast
   /// stage), bound by the plan, of an image of `size`; `grey`: F_t holds
   /// grey values. `weight`: of this pass in the running average.
-  void run(bool grey, glm::ivec2 size, int frame, float weight) const;
+  void run(bool grey, glm::ivec2 size, int frame, float weight);
   [[nodiscard]] const gl::Texture2D& result() const { return stats_; }
 
  private:
@@ -135,7 +135,7 @@ class HostPass {
   /// surface too. `box`: the pixels the surface can cover (the pass writes
   /// gl_FragDepth, so no depth test spares the rest). The caller saves and
   /// prepares the host's state.
-  void draw(glm::ivec2 origin, bool interior, glm::ivec4 box) const;
+  void draw(glm::ivec2 origin, bool interior, glm::ivec4 box);
 
  private:
   gl::Program program_;

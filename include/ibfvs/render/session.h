@@ -60,6 +60,12 @@ enum class SetResult {
              ///< surface is the same (else it starts afresh)
 };
 
+/// When Session::set does the GPU's part of a change: now (the caller's
+/// context current: the viewer, Python), or at the next frame (a host
+/// such as ParaView or PyVista, whose context is current only in its
+/// render). The change itself is checked, planned and taken now either way.
+enum class Apply { Now, AtNextFrame };
+
 /// Texture frames a host gives each change of its data (a time step) at
 /// least, where its renders since the last change fell short (ParaView's
 /// Frames Per Step): enough for the texture to take on the new flow, as
@@ -188,8 +194,9 @@ class Session {
   /// scalar, a percentile range, ...) prepares it here, from the scene's
   /// files or the source mesh (Prepared). Throws SettingError or
   /// InputError, changing nothing, for settings that are not valid or data
-  /// that cannot be prepared.
-  SetResult set(const Scene& next, const Camera* seen_by = nullptr);
+  /// that cannot be prepared. `when`: the GPU's part now, or at the next
+  /// frame (Apply).
+  SetResult set(const Scene& next, const Camera* seen_by = nullptr, Apply when = Apply::Now);
   /// Replaces the field (same vertex count), keeping the texture; dt fits it.
   void set_field(std::vector<glm::vec3> field);
   /// The flow elements of an element field (the viewer's editing): the
@@ -292,11 +299,21 @@ class Session {
   void refit_dt();
   // The scene prepared again for `next`: from the source mesh or the files.
   void prepare_again(const Scene& next);
+  // The GPU's part of the changes set() took for the next frame
+  // (Apply::AtNextFrame): done before anything else draws.
+  void settle();
   // The scene's overlay over the frame just drawn with `view`: its
   // features found again where the data, the step or the size changed.
   void draw_overlay(const ViewState& view);
 
   PreparedScene scene_;
+  // What set() left the GPU for the next frame: a scene prepared again
+  // (`carry`: the texture goes on over it), a new renderer (`restart`:
+  // afresh), the settings, the field.
+  struct Owed {
+    bool load = false, carry = false, rebuild = false, restart = false, settings = false;
+    bool field = false;
+  } owed_;
   std::shared_ptr<const TriMesh> source_;  // the caller's mesh (null: the scene's files)
   std::string source_name_;
   std::unique_ptr<IbfvsRenderer> renderer_;

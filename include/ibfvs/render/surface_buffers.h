@@ -47,7 +47,7 @@ class SurfaceBuffers {
   /// Per-vertex (colour, beta) scalars; either may be empty (zeros).
   void set_scalars(std::span<const float> color, std::span<const float> beta);
 
-  void draw() const;
+  void draw();
   [[nodiscard]] std::size_t vertex_count() const { return vertex_count_; }
   [[nodiscard]] bool empty() const { return index_count_ == 0; }
   /// The box of the surface, and of its way between two steps where it moves.

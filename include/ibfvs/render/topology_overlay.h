@@ -19,7 +19,7 @@ class TopologyOverlay {
   /// Replaces what is drawn.
   void set(const FlowTopology& topology, glm::ivec2 size);
   [[nodiscard]] bool empty() const { return index_count_ == 0; }
-  void draw(const glm::mat4& view, const glm::mat4& projection, glm::ivec2 size) const;
+  void draw(const glm::mat4& view, const glm::mat4& projection, glm::ivec2 size);
 
  private:
   gl::Program program_;

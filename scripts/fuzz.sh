@@ -3,7 +3,7 @@
 # cmake --build build/fuzz -j2) for SECONDS each, JOBS at a time, from their
 # committed seeds, and prints what each did: executions, coverage, and the
 # inputs that crashed, leaked, hung or ran out of memory (kept under
-# build/fuzz/campaign/NAME/artifacts). Unlike the 30-second CTest runs, a run
+# build/fuzz/campaign/NAME/artifacts). Unlike the 12-second CTest runs, a run
 # here goes on after a finding (libFuzzer's fork mode), so one campaign lists
 # them all.
 #   scripts/fuzz.sh [SECONDS=600] [JOBS=1] [NAME...]   (NAME: off, ply, vtk, ...)

@@ -309,7 +309,7 @@ class Video:
 def widget(source=None, triangles=None, vectors=None, **options):
     """The live notebook widget (docs/python.md): an Animation, or the
     arguments that make one, shown by the web page's runtime in Jupyter.
-    Its traits alpha, beta, step, scale, style, playing, ... follow the
+    Its traits alpha, beta, step, scale, look, playing, ... follow the
     page's sliders and move them; `set(**keys)` takes any scene key.
     Needs anywidget (pip install 'ibfvs[notebook]')."""
     if isinstance(source, Animation):

@@ -89,7 +89,6 @@ void apply_style(Scene& s, Style style) {
       // borders, then seen obliquely.
       s.alpha = 0.0f;
       s.init = InitMode::RandomCells;
-      s.scale = 4.0f;     // the colour cells of the figure
       s.contrast = 0.0f;  // colours, not a grey texture
       s.filter = 0.0f;
       s.sharpen = 0.0f;
@@ -106,7 +105,7 @@ void apply_style(Scene& s, Style style) {
       s.lock_camera = glm::vec3(20.0f, 35.0f, 0.0f);
       s.frames = 0;
       s.beta = 0.85f;
-      s.scale = 6.0f;
+      s.scale = 6.0f;  // the colour cells, in pixels
       break;
   }
 }

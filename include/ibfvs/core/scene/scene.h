@@ -78,7 +78,7 @@ struct EnumNames<Style> {
   static constexpr EnumName<Style> table[] = {
       {Style::Flow, "flow", "dense moving texture (figures 1, 5)"},
       {Style::Crisp, "crisp",
-       "the sharpest streaks: Catmull-Rom warp, longer and sharper display filter"},
+       "the longest unbroken streaks: a display filter of 24 px (the defaults' 16)"},
       {Style::Paper, "paper",
        "the 2003 paper's look and cost (Table 1): scale 4, square profile, no display stage"},
       {Style::Particles, "particles", "bright particles along kappa_min (figure 8a)"},

@@ -13,7 +13,8 @@ set(ibfvs_optimised_only
     CurvatureIrregular.AtLeastAsAccurateAsCgalJetFitting core
     Curvature.RealMeshesAreWellFormed core
     SceneCommand.EveryExampleSceneRenders apps
-    QualityGLTest.RedBackgroundDoesNotBleedIntoTheSphere gl)
+    QualityGLTest.RedBackgroundDoesNotBleedIntoTheSphere gl
+    StatedNumbers.StatedPageSizesAreThePrograms apps)
 while(ibfvs_optimised_only)
   list(POP_FRONT ibfvs_optimised_only test label)
   set_tests_properties(${test} PROPERTIES LABELS "${label};optimised" COST 60)

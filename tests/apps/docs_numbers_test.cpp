@@ -85,12 +85,14 @@ class StatedNumbers : public test::CommandTest {
 TEST_F(StatedNumbers, StatedPageSizesAreThePrograms) {
   if (!with_data()) GTEST_SKIP() << "fetched data missing (scripts/fetch_data.sh)";
   const std::string web = source_file("docs/web.md");
-  const std::string begin = "<!-- page sizes: checked by StatedNumbers.StatedPageSizesAreThePrograms -->";
+  const std::string begin =
+      "<!-- page sizes: checked by StatedNumbers.StatedPageSizesAreThePrograms -->";
   const std::size_t a = web.find(begin), b = web.find("<!-- end of page sizes -->");
   ASSERT_NE(a, std::string::npos);
   ASSERT_NE(b, std::string::npos);
   const std::string table = web.substr(a + begin.size(), b - a - begin.size());
-  static const std::regex row(R"(\| ([^|]+) \| `ibfvs ([^`]+)` \|[^|]+\|([^|]+)\|([^|]+)\|([^|]+)\|)");
+  static const std::regex row(
+      R"(\| ([^|]+) \| `ibfvs ([^`]+)` \|[^|]+\|([^|]+)\|([^|]+)\|([^|]+)\|)");
   int rows = 0;
   for (auto it = std::sregex_iterator(table.begin(), table.end(), row);
        it != std::sregex_iterator(); ++it) {
@@ -139,8 +141,8 @@ TEST(StatedCounts, OptimisedRunsAreAsManyAsTheDocsSay) {
     ++labelled;
   const int all = listed + labelled;
   EXPECT_GE(listed, 5);
-  const std::map<std::string, int> words{{"five", 5},   {"six", 6},     {"seven", 7},
-                                         {"eight", 8},  {"nine", 9},    {"ten", 10},
+  const std::map<std::string, int> words{{"five", 5},    {"six", 6},     {"seven", 7},
+                                         {"eight", 8},   {"nine", 9},    {"ten", 10},
                                          {"eleven", 11}, {"twelve", 12}, {"thirteen", 13}};
   const auto stated = [&](const std::string& page, const std::string& pattern) {
     std::smatch m;
@@ -214,11 +216,13 @@ TEST(StatedCounts, EachStylesRowStatesTheNumbersItSets) {
       const SceneKey* k = find_scene_key(key);
       if (!k || k->kind != KeyKind::Number) continue;
       for (const std::string& value : k->get(styled)) {
-        const std::regex number("(^|[^0-9.])" + std::regex_replace(value, std::regex(R"(\.)"), R"(\.)") +
+        const std::regex number("(^|[^0-9.])" +
+                                std::regex_replace(value, std::regex(R"(\.)"), R"(\.)") +
                                 "([^0-9.]|$)");
         EXPECT_TRUE(std::regex_search(row, number))
             << "docs/cli.md's row of style " << style.name << " does not state " << key << " "
-            << value << ":\n" << row;
+            << value << ":\n"
+            << row;
       }
     }
     ++rows;

@@ -1,6 +1,9 @@
 // read_lonlat_grid (wind: fields, relief: meshes) on every variable of a
-// netCDF file (the first four), at its first and last time index: netCDF-C
-// in its child process (core/support/isolation.h) and the way back.
+// netCDF file (the first four), at its first and last time index, and its
+// time axis made dates (the units and calendar are the file's text):
+// netCDF-C in its child process (core/support/isolation.h) and the way back.
+
+#include <algorithm>
 
 #include "fuzz_support.h"
 #include "ibfvs/core/fields/lonlat_grid.h"
@@ -28,6 +31,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         (void)g.sample(10.0, 20.0);
       });
     }
+    fuzz::expect_clean_failure(path.string(), [&] {
+      const TimeAxis axis = netcdf_time_axis(path, name);
+      const std::size_t n = std::min<std::size_t>(axis.values.size(), 4);
+      if (n > 0 && time_labels(axis, 0, n - 1).size() != n) fuzz::fail("a label missing");
+    });
   }
   return 0;
 }

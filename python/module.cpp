@@ -228,6 +228,9 @@ class Animation {
     return {session_->scene().width, session_->scene().height};
   }
   [[nodiscard]] std::size_t step_count() const { return session_->scene().step_count; }
+  [[nodiscard]] std::vector<std::string> step_labels() const {
+    return session_->scene().step_labels;
+  }
   [[nodiscard]] std::string renderer_name() const {
     const Current current(*this);
     return context_.renderer();
@@ -478,8 +481,8 @@ std::shared_ptr<py::object> held(py::object fn) {
 // The netCDF reader of builds without netCDF-C (the pip package): Python's
 // functions (ibfvs/__init__.py, through xarray), their errors one InputError
 // naming the file.
-void set_netcdf_reader(py::object variables, py::object read) {
-  if (variables.is_none() || read.is_none()) {
+void set_netcdf_reader(py::object variables, py::object read, py::object time_axis) {
+  if (variables.is_none() || read.is_none() || time_axis.is_none()) {
     set_lonlat_reader({});
     return;
   }
@@ -516,6 +519,26 @@ void set_netcdf_reader(py::object variables, py::object read) {
       throw fail(path, e);
     } catch (const py::cast_error& e) {
       throw InputError(path.string() + ": the netCDF reader returned no grid (" + e.what() + ")");
+    }
+  };
+  reader.time_axis = [fn = held(std::move(time_axis)), fail](const std::filesystem::path& path,
+                                                             const std::string& variable) {
+    py::gil_scoped_acquire gil;
+    try {
+      // (values, units, calendar)
+      const py::tuple r = (*fn)(path.string(), variable);
+      if (r.size() != 3)
+        throw InputError(path.string() + ": the netCDF reader returned no time axis");
+      TimeAxis axis;
+      axis.values = r[0].cast<std::vector<double>>();
+      axis.units = r[1].cast<std::string>();
+      axis.calendar = r[2].cast<std::string>();
+      return axis;
+    } catch (const py::error_already_set& e) {
+      throw fail(path, e);
+    } catch (const py::cast_error& e) {
+      throw InputError(path.string() + ": the netCDF reader returned no time axis (" + e.what() +
+                       ")");
     }
   };
   set_lonlat_reader(std::move(reader));
@@ -563,10 +586,11 @@ PYBIND11_MODULE(_ibfvs, m) {
   // own packages (imageio-ffmpeg's ffmpeg, xarray).
   m.attr("has_libav") = IBFVS_HAVE_LIBAV != 0;
   m.attr("has_netcdf") = netcdf_built_in();
-  m.def(
-      "set_netcdf_reader", &ibfvs::python::set_netcdf_reader, py::arg("variables"), py::arg("read"),
-      "Where the build has no netCDF-C: VARIABLES(path) -> names and READ(path, variable,\n"
-      "time_index) -> (lon, lat, values, units, time_steps) read netCDF files (None, None: none).");
+  m.def("set_netcdf_reader", &ibfvs::python::set_netcdf_reader, py::arg("variables"),
+        py::arg("read"), py::arg("time_axis"),
+        "Where the build has no netCDF-C: VARIABLES(path) -> names, READ(path, variable,\n"
+        "time_index) -> (lon, lat, values, units, time_steps) and TIME_AXIS(path, variable) ->\n"
+        "(values, units, calendar) read netCDF files (None, None, None: none).");
   m.def(
       "topology",
       [](const std::string& scene_file, const ibfvs::python::Options& options, double min_strength,
@@ -694,6 +718,9 @@ PYBIND11_MODULE(_ibfvs, m) {
       .def_property_readonly("frame", &Animation::frame)
       .def_property_readonly("size", &Animation::size)
       .def_property_readonly("step_count", &Animation::step_count)
+      .def_property_readonly("step_labels", &Animation::step_labels,
+                             "The time of each step as the data states it (a netCDF field's "
+                             "dates), else [].")
       .def_property_readonly("renderer", &Animation::renderer_name)
       .def_property_readonly("warnings", &Animation::warnings)
       .def("scene_toml", &Animation::scene_toml_text, "The scene in force as a scene file (TOML).");

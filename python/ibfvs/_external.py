@@ -7,7 +7,8 @@
 - netCDF files are read with xarray (its netCDF4, h5netcdf or scipy engine),
   as the Debian build reads them with netCDF-C: the last two dimensions
   latitude and longitude, an optional leading time, missing values NaN,
-  scale_factor and add_offset applied.
+  scale_factor and add_offset applied; the time axis's values, units and
+  calendar as the file states them (the library makes them dates).
 The Debian build (which has both) uses neither.
 """
 
@@ -81,9 +82,27 @@ def netcdf_grid(path, variable, time_index):
                 str(v.attrs.get("units", "")), steps)
 
 
+def netcdf_time_axis(path, variable):
+    """(values, units, calendar) of the coordinate variable of the variable's
+    leading (time) dimension, as the file states them; ([], "", "") where
+    there is none (a 2-D variable, a time dimension without coordinates)."""
+    with _open(path) as ds:
+        if variable not in ds.variables:
+            raise ValueError(f"no variable '{variable}' (the file has: {', '.join(map(str, ds.variables))})")
+        v = ds[variable]
+        if v.ndim != 3:
+            return [], "", ""
+        t = v.dims[0]
+        if t not in ds.variables or ds[t].ndim != 1 or ds[t].dims[0] != t:
+            return [], "", ""
+        axis = ds[t]
+        return (np.asarray(axis.values, dtype=np.float64).tolist(), str(axis.attrs.get("units", "")),
+                str(axis.attrs.get("calendar", "")))
+
+
 def install() -> None:
     """Gives a build without netCDF-C the xarray reader, taken back at exit
     while Python still runs (the library holds it past the interpreter)."""
     if not _ibfvs.has_netcdf:
-        _ibfvs.set_netcdf_reader(netcdf_variables, netcdf_grid)
-        atexit.register(_ibfvs.set_netcdf_reader, None, None)
+        _ibfvs.set_netcdf_reader(netcdf_variables, netcdf_grid, netcdf_time_axis)
+        atexit.register(_ibfvs.set_netcdf_reader, None, None, None)

@@ -137,7 +137,7 @@ def test_animation_writes_a_video(tmp_path):
 def test_netcdf_is_read_through_xarray_as_the_debian_build_reads_it(tmp_path):
     """The earth's winds (the paper's figure 6 data): the wheel reads them
     with xarray, the Debian build's command with netCDF-C, and both draw the
-    same picture."""
+    same picture and date the months alike."""
     pytest.importorskip("xarray")
     source = os.environ.get("IBFVS_SOURCE_DIR", "")
     winds = os.path.join(source, "data", "earth", "monthly_navy_winds.cdf")
@@ -147,15 +147,19 @@ def test_netcdf_is_read_through_xarray_as_the_debian_build_reads_it(tmp_path):
     field = f"wind:{winds}:UWND:VWND"
     ours = ibfvs.render("globe", field=field, time=6, size=(96, 96), frames=20, camera=(80, 10, 0))
     png = tmp_path / "debian.png"
-    subprocess.run([debian, "render", "--mesh", "globe", "--field", field, "--time", "6",
-                    "--size", "96x96", "--frames", "20", "--camera", "80,10,0", "--out", str(png)],
-                   check=True, capture_output=True)
+    done = subprocess.run([debian, "render", "--mesh", "globe", "--field", field, "--time", "6",
+                           "--size", "96x96", "--frames", "20", "--camera", "80,10,0", "--out",
+                           str(png)], check=True, capture_output=True, text=True)
     from PIL import Image
 
     theirs = np.asarray(Image.open(png).convert("RGB")).astype(int)
     difference = np.abs(ours.astype(int) - theirs)
     assert ours.std() > 20, "no texture"
     assert difference.mean() < 0.5 and (difference > 8).mean() < 0.002, difference.mean()
+    # The months' dates: xarray's time axis here, netCDF-C's in the command.
+    year = ibfvs.Animation("globe:1", field=field, time="0:131", size=(16, 16), frames=1)
+    assert len(year.step_labels) == 132 and year.step_labels[0] == "1982-01-16 20:00"
+    assert f"at time index 6 ({year.step_labels[6]})" in done.stdout, done.stdout
 
 
 def test_a_file_that_is_not_netcdf_is_one_error_naming_it(tmp_path):

@@ -24,7 +24,7 @@ LonLatReader current(const std::filesystem::path& path) {
   if (!std::filesystem::exists(path, ec))
     throw InputError(one_line(path.string() + ": no such file"));
   std::lock_guard<std::mutex> lock(reader_mutex);
-  if (!reader().read || !reader().variables)
+  if (!reader().read || !reader().variables || !reader().time_axis)
     throw InputError(one_line(
         path.string() +
         ": this build of ibfvs has no netCDF reader of its own; in Python it reads netCDF "
@@ -76,6 +76,10 @@ LonLatGrid read_lonlat_grid(const std::filesystem::path& path, const std::string
   for (float& v : g.values)
     if (!std::isfinite(v)) v = std::nanf("");
   return g;
+}
+
+TimeAxis netcdf_time_axis(const std::filesystem::path& path, const std::string& variable) {
+  return current(path).time_axis(path, variable);
 }
 
 }  // namespace ibfvs

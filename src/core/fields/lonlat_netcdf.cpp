@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 #include <functional>
+#include <utility>
 
 #include <fcntl.h>
 #include <netcdf.h>
@@ -109,6 +110,17 @@ std::vector<double> coordinates(const NcFile& file, int dim, std::size_t n) {
   return out;
 }
 
+// A text attribute of a variable ("" where it has none).
+std::string text_attribute(int nc, int var, const char* name) {
+  nc_type type;
+  std::size_t len = 0;
+  if (nc_inq_att(nc, var, name, &type, &len) != NC_NOERR || type != NC_CHAR) return {};
+  std::string out(len, '\0');
+  if (nc_get_att_text(nc, var, name, out.data()) != NC_NOERR) return {};
+  while (!out.empty() && out.back() == '\0') out.pop_back();
+  return out;
+}
+
 // netCDF-C reads in a child process: a crash, a runaway allocation or a loop
 // in it is one error line (support/isolation.h), and nothing of ours
 // re-parses the file in front of it.
@@ -120,15 +132,22 @@ IsolatedBytes read_isolated(const std::filesystem::path& path,
   return run_isolated(one_line(path.string()), "netCDF-C", work);
 }
 
+// A variable's id and its number of dimensions; a missing one fails
+// naming the variables the file has.
+std::pair<int, int> find_variable(const NcFile& file, const std::string& variable) {
+  const int nc = file.id();
+  int var = -1, ndims = 0;
+  if (nc_inq_varid(nc, variable.c_str(), &var) != NC_NOERR)
+    file.fail("no variable '" + variable + "' (the file has: " + variable_list(nc) + ")");
+  file.check(nc_inq_varndims(nc, var, &ndims), variable);
+  return {var, ndims};
+}
+
 LonLatGrid read_grid_here(const std::filesystem::path& path, const std::string& variable,
                           std::size_t time_index) {
   const NcFile file(path);
   const int nc = file.id();
-  int var = -1;
-  if (nc_inq_varid(nc, variable.c_str(), &var) != NC_NOERR)
-    file.fail("no variable '" + variable + "' (the file has: " + variable_list(nc) + ")");
-  int ndims = 0;
-  file.check(nc_inq_varndims(nc, var, &ndims), variable);
+  const auto [var, ndims] = find_variable(file, variable);
   if (ndims < 2 || ndims > 3)
     file.fail("'" + variable + "' has " + std::to_string(ndims) +
               " dimensions; expected (latitude, longitude) or (time, latitude, longitude)");
@@ -178,12 +197,39 @@ LonLatGrid read_grid_here(const std::filesystem::path& path, const std::string& 
     else
       v = static_cast<float>(v * scale + offset);
   }
-  std::size_t units_len = 0;
-  if (nc_inq_attlen(nc, var, "units", &units_len) == NC_NOERR) {
-    g.units.resize(units_len);
-    nc_get_att_text(nc, var, "units", g.units.data());
-  }
+  g.units = text_attribute(nc, var, "units");
   return g;
+}
+
+TimeAxis time_axis_here(const std::filesystem::path& path, const std::string& variable) {
+  const NcFile file(path);
+  const int nc = file.id();
+  const auto [var, ndims] = find_variable(file, variable);
+  TimeAxis axis;
+  if (ndims != 3) return axis;
+  int dims[3] = {};
+  file.check(nc_inq_vardimid(nc, var, dims), variable);
+  char name[NC_MAX_NAME + 1] = {};
+  std::size_t n = 0;
+  file.check(nc_inq_dimname(nc, dims[0], name), variable);
+  file.check(nc_inq_dimlen(nc, dims[0], &n), variable);
+  int coordinate = -1, coordinate_dims = 0, coordinate_dim = -1;
+  if (nc_inq_varid(nc, name, &coordinate) != NC_NOERR ||
+      nc_inq_varndims(nc, coordinate, &coordinate_dims) != NC_NOERR || coordinate_dims != 1 ||
+      nc_inq_vardimid(nc, coordinate, &coordinate_dim) != NC_NOERR || coordinate_dim != dims[0])
+    return axis;  // no coordinate variable: steps without times
+  try {
+    check_memory(static_cast<double>(n) * sizeof(double),
+                 std::string("the time axis '") + name + "' (" + std::to_string(n) + " values)");
+  } catch (const InputError& e) {
+    file.fail(e.what());
+  }
+  axis.values.resize(n);
+  file.check(nc_get_var_double(nc, coordinate, axis.values.data()),
+             std::string("reading '") + name + "'");
+  axis.units = text_attribute(nc, coordinate, "units");
+  axis.calendar = text_attribute(nc, coordinate, "calendar");
+  return axis;
 }
 
 }  // namespace
@@ -221,6 +267,21 @@ LonLatGrid read_lonlat_grid(const std::filesystem::path& path, const std::string
   g.values = in.get_vector<float>();
   g.time_steps = static_cast<std::size_t>(in.get<std::uint64_t>());
   return g;
+}
+
+TimeAxis netcdf_time_axis(const std::filesystem::path& path, const std::string& variable) {
+  const IsolatedBytes bytes = read_isolated(path, [&](ByteWriter& out) {
+    const TimeAxis axis = time_axis_here(path, variable);
+    out.put(axis.values);
+    out.put(axis.units);
+    out.put(axis.calendar);
+  });
+  ByteReader in(bytes.view(), path.string());
+  TimeAxis axis;
+  axis.values = in.get_vector<double>();
+  axis.units = in.get_string();
+  axis.calendar = in.get_string();
+  return axis;
 }
 
 }  // namespace ibfvs

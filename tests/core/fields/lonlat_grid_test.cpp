@@ -226,6 +226,50 @@ TEST(LonLatGrid, GlobeIsAUnitGeodesicSphere) {
   EXPECT_THROW(make_globe(9), InputError);
 }
 
+TEST(LonLatGrid, TheTimeAxisIsTheTimeDimensionsCoordinates) {
+  test::TempDir dir;
+  write_winds(dir / "w.nc", 2);  // no TIME variable: steps without times
+  EXPECT_TRUE(netcdf_time_axis(dir / "w.nc", "U").values.empty());
+  EXPECT_TRUE(netcdf_time_axis(dir / "w.nc", "LON").values.empty());  // no time dimension
+  EXPECT_THROW(netcdf_time_axis(dir / "w.nc", "W"), InputError);
+  // A model's days on a 365-day calendar.
+  int nc = 0, dt = 0, dy = 0, dx = 0, vt = 0, vu = 0;
+  ASSERT_EQ(nc_create((dir / "t.nc").c_str(), NC_CLOBBER | NC_NETCDF4, &nc), NC_NOERR);
+  nc_def_dim(nc, "time", 3, &dt);
+  nc_def_dim(nc, "lat", 2, &dy);
+  nc_def_dim(nc, "lon", 2, &dx);
+  nc_def_var(nc, "time", NC_DOUBLE, 1, &dt, &vt);
+  const int du[3] = {dt, dy, dx};
+  nc_def_var(nc, "u", NC_FLOAT, 3, du, &vu);
+  nc_put_att_text(nc, vt, "units", 22, "days since 1999-12-31");
+  nc_put_att_text(nc, vt, "calendar", 6, "noleap");
+  nc_enddef(nc);
+  const double days[3] = {0, 60, 365};
+  nc_put_var_double(nc, vt, days);
+  nc_close(nc);
+  const TimeAxis axis = netcdf_time_axis(dir / "t.nc", "u");
+  EXPECT_EQ(axis.values, (std::vector<double>{0, 60, 365}));
+  EXPECT_EQ(axis.units, "days since 1999-12-31");
+  EXPECT_EQ(axis.calendar, "noleap");
+  EXPECT_EQ(time_labels(axis, 0, 2),
+            (std::vector<std::string>{"1999-12-31", "2000-03-01", "2000-12-31"}));
+}
+
+TEST(LonLatGrid, RealMonthlyWindsAreDatedByTheirTimeAxis) {
+  const std::filesystem::path path =
+      std::filesystem::path(IBFVS_TEST_DATA_DIR) / "earth/monthly_navy_winds.cdf";
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << "fetched data missing: " << path;
+  const TimeAxis axis = netcdf_time_axis(path, "UWND");
+  ASSERT_EQ(axis.values.size(), 132u);
+  EXPECT_EQ(axis.units, "hour since 1980-01-14 14:00:00");
+  const std::vector<std::string> months = time_labels(axis, 0, 131);
+  EXPECT_EQ(months.front(), "1982-01-16 20:00");
+  EXPECT_EQ(months[6].substr(0, 7), "1982-07");
+  EXPECT_EQ(months.back(), "1992-12-17 03:30");
+  for (std::size_t k = 0; k < months.size(); ++k)  // one a month, every month
+    EXPECT_EQ(std::stoi(months[k].substr(5, 2)), static_cast<int>(k % 12) + 1) << months[k];
+}
+
 TEST(LonLatGrid, RealMonthlyWindsHaveTheWesterlies) {
   const std::filesystem::path path =
       std::filesystem::path(IBFVS_TEST_DATA_DIR) / "earth/monthly_navy_winds.cdf";

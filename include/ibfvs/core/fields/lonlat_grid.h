@@ -11,6 +11,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "ibfvs/core/fields/cf_time.h"
 #include "ibfvs/core/mesh/mesh.h"
 
 namespace ibfvs {
@@ -43,9 +44,17 @@ std::vector<std::string> netcdf_variables(const std::filesystem::path& path);
 LonLatGrid read_lonlat_grid(const std::filesystem::path& path, const std::string& variable,
                             std::size_t time_index = 0);
 
+/// The time axis of `variable`: the coordinate variable of its leading
+/// (time) dimension, with that variable's `units` and `calendar` attributes
+/// (time_labels makes them dates). Empty for a variable without a time
+/// dimension, or whose time dimension has no coordinate variable. Throws
+/// InputError naming the file as read_lonlat_grid does.
+TimeAxis netcdf_time_axis(const std::filesystem::path& path, const std::string& variable);
+
 /// True when this build reads netCDF itself (netCDF-C, the Debian build);
-/// otherwise netcdf_variables and read_lonlat_grid go to the reader that
-/// set_lonlat_reader gave (the pip package's: Python's xarray).
+/// otherwise netcdf_variables, read_lonlat_grid and netcdf_time_axis go to
+/// the reader that set_lonlat_reader gave (the pip package's: Python's
+/// xarray).
 bool netcdf_built_in();
 
 /// A reader of netCDF lon/lat grids from outside the library, for builds
@@ -55,6 +64,7 @@ bool netcdf_built_in();
 struct LonLatReader {
   std::function<std::vector<std::string>(const std::filesystem::path&)> variables;
   std::function<LonLatGrid(const std::filesystem::path&, const std::string&, std::size_t)> read;
+  std::function<TimeAxis(const std::filesystem::path&, const std::string&)> time_axis;
 };
 /// Sets the reader for builds without netCDF-C (an empty one: none); the
 /// Debian build, which reads netCDF itself, never calls it.

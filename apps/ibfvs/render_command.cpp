@@ -254,7 +254,7 @@ int run_render(const Scene& o, const std::string& scene_file) {
   const int frames = prepared.frames;
   const std::string mesh_name = prepared.mesh_name;
   const float dt = prepared.dt, max_px = prepared.max_px;
-  const FieldSpec field_spec = prepared.field_spec;
+  const std::string field = field_text(prepared);  // prepared goes to the session
 
   // ---- a web page: the browser renders it; nothing to render here
   if (kind == OutputKind::Page) {
@@ -264,8 +264,7 @@ int run_render(const Scene& o, const std::string& scene_file) {
           "ibfvs: wrote %s (%zu bytes: the scene %zu, the runtime %zu) from %s: %zu "
           "vertices, %zu triangles, field %s\n",
           out.c_str(), report.page, report.scene, report.runtime, mesh_name.c_str(),
-          prepared.mesh->vertex_count(), prepared.mesh->triangle_count(),
-          field_spec.to_string().c_str());
+          prepared.mesh->vertex_count(), prepared.mesh->triangle_count(), field.c_str());
     if (!o.quiet && report.other_meshes > 0)
       std::printf("ibfvs: %zu steps with triangles of their own, each a mesh in the page\n",
                   report.other_meshes);
@@ -355,7 +354,7 @@ int run_render(const Scene& o, const std::string& scene_file) {
         "ibfvs: wrote %s (%d frames, %dx%d) from %s: %zu vertices, %zu triangles, field %s, "
         "dt %.4g (%s %.2f px/frame), %.1f fps on %s\n",
         out.c_str(), frames, size.width, size.height, mesh_name.c_str(), mesh->vertex_count(),
-        mesh->triangle_count(), field_spec.to_string().c_str(), dt,
+        mesh->triangle_count(), field.c_str(), dt,
         o.image_normalize ? "image-normalised, every point" : "max", max_px, frames / seconds,
         context.renderer().c_str());
     if (!o.texture_out.empty())

@@ -104,9 +104,11 @@ void ViewerPanel::draw(ViewerSession& viewer, bool& show, bool& show_help, doubl
     viewer.session().seek(viewer.time);
     viewer.time = viewer.session().time();  // as played: held at the last step, or looped
     ImGui::SameLine();
-    ImGui::Text("step %d of %zu",
-                static_cast<int>(viewer.time) % static_cast<int>(viewer.scene().step_count),
-                viewer.scene().step_count);
+    const std::size_t step = static_cast<std::size_t>(viewer.time) % viewer.scene().step_count;
+    const std::vector<std::string>& when = viewer.scene().step_labels;  // dates of netCDF steps
+    const bool dated = step < when.size();
+    ImGui::Text("step %zu of %zu%s%s", step, viewer.scene().step_count, dated ? ": " : "",
+                dated ? when[step].c_str() : "");
   }
   if (ImGui::CollapsingHeader("More parameters")) draw_more_parameters(viewer);
   if (ImGui::CollapsingHeader("Styles and files")) draw_styles_and_files(viewer);

@@ -417,3 +417,23 @@ def test_the_overlay_key_draws_the_topology_in_the_modules_pictures():
     red, pink = ibfvs.KIND_COLOURS[10], ibfvs.KIND_COLOURS[5]
     assert count(over, red) > 50 and count(over, pink) > 5
     assert count(plain, red) == 0 and count(plain, pink) == 0
+
+
+def test_a_netcdf_fields_steps_are_named_by_the_dates_of_its_time_axis():
+    """step_labels: the Navy winds' months from the file's time axis (hours
+    since 1980-01-14 14:00), following the time key; a scene without one
+    has none."""
+    winds = os.path.join(os.path.dirname(__file__), "..", "..", "data", "earth",
+                         "monthly_navy_winds.cdf")
+    if not os.path.exists(winds):
+        pytest.skip("fetched data missing (scripts/fetch_data.sh)")
+    year = ibfvs.Animation("globe:2", field=f"wind:{winds}", time="0:11", size=(16, 16), frames=1)
+    assert year.step_count == 12
+    assert [label[:7] for label in year.step_labels] == [f"1982-{m:02d}" for m in range(1, 13)]
+    assert year.step_labels[0] == "1982-01-16 20:00"
+    july = ibfvs.Animation("globe:2", field=f"wind:{winds}", time=6, size=(16, 16), frames=1)
+    assert july.step_labels == ["1982-07-18 11:00"]
+    july.set(time="130:131")
+    assert july.step_labels == ["1992-11-16 17:00", "1992-12-17 03:30"]
+    p, t, v = torus()
+    assert ibfvs.Animation(p, t, v, size=(16, 16)).step_labels == []

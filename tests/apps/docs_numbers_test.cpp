@@ -122,6 +122,69 @@ TEST_F(StatedNumbers, StatedPageSizesAreThePrograms) {
               "docs/gallery.md's figure6-year.html");
 }
 
+// The Navy winds' dates as the docs state them (docs/data.md, earth.md,
+// design.md): the first and last month, how many, and which month a
+// `--time K` shows, against the dates the command reads from the file's
+// time axis.
+TEST_F(StatedNumbers, TheEarthDatasDatesAreItsTimeAxis) {
+  if (!with_data() || !fs::exists(dir_ / "data/earth/monthly_navy_winds.cdf"))
+    GTEST_SKIP() << "fetched data missing (scripts/fetch_data.sh)";
+  // A page's text with its line breaks as spaces.
+  const auto flat = [](const char* page) {
+    return std::regex_replace(source_file(page), std::regex(R"(\s+)"), " ");
+  };
+  const std::string winds =
+      "render --mesh globe:1 --field wind:data/earth/monthly_navy_winds.cdf --frames 1 "
+      "--size 16x16 --out winds.png --time ";
+  // "at time index 0 to 131 (1982-01-16 20:00 to 1992-12-17 03:30)"
+  test::Result r = run(winds + "0:131");
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(
+      r.out, m,
+      std::regex(
+          R"(at time index 0 to (\d+) \((\d{4}-\d\d-\d\d)[^)]* to (\d{4}-\d\d-\d\d)[^)]*\))")))
+      << r.out;
+  const int months = std::stoi(m[1]) + 1;
+  const std::string first = m[2], last = m[3];
+  static const std::regex range(R"((\d{4}-\d\d-\d\d) to (\d{4}-\d\d-\d\d))");
+  int ranges = 0;
+  for (const char* page : {"docs/data.md", "docs/earth.md", "docs/design.md"}) {
+    const std::string text = flat(page);
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), range);
+         it != std::sregex_iterator(); ++it, ++ranges)
+      EXPECT_EQ((*it)[1].str() + " to " + (*it)[2].str(), first + " to " + last)
+          << page << " dates the winds otherwise than their time axis";
+  }
+  EXPECT_GE(ranges, 3);
+  const std::string data = flat("docs/data.md");
+  ASSERT_TRUE(std::regex_search(data, m, std::regex(R"((\d+) months, \d{4}-)")));
+  EXPECT_EQ(std::stoi(m[1]), months) << "docs/data.md's count of months";
+
+  // "months from January 1982", "`--time 6` is July 1982"
+  static const char* const names[] = {"January",   "February", "March",    "April",
+                                      "May",       "June",     "July",     "August",
+                                      "September", "October",  "November", "December"};
+  const auto month_of = [](const std::string& date) {
+    return std::string(names[std::stoi(date.substr(5, 2)) - 1]) + " " + date.substr(0, 4);
+  };
+  const std::string earth = flat("docs/earth.md");
+  ASSERT_TRUE(std::regex_search(earth, m, std::regex(R"(months from (\w+ \d{4}))")));
+  EXPECT_EQ(m[1].str(), month_of(first)) << "docs/earth.md: the first month";
+  int shown = 0;
+  static const std::regex time_is(R"(`--time (\d+)` is (\w+ \d{4}))");
+  for (auto it = std::sregex_iterator(earth.begin(), earth.end(), time_is);
+       it != std::sregex_iterator(); ++it, ++shown) {
+    r = run(winds + (*it)[1].str());
+    ASSERT_EQ(r.status, 0) << r.err;
+    std::smatch d;
+    ASSERT_TRUE(std::regex_search(r.out, d, std::regex(R"(at time index \d+ \((\d{4}-\d\d-\d\d))")))
+        << r.out;
+    EXPECT_EQ((*it)[2].str(), month_of(d[1])) << "docs/earth.md: `--time " << (*it)[1] << "`";
+  }
+  EXPECT_GE(shown, 1);
+}
+
 // The runs labelled `optimised` (left out of the sanitized suite) are as
 // many as README.md and docs/reliability.md say.
 TEST(StatedCounts, OptimisedRunsAreAsManyAsTheDocsSay) {

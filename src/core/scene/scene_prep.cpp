@@ -160,6 +160,19 @@ PreparedScene prepare(const Scene& s, std::optional<LoadedMesh> given) {
 
 }  // namespace
 
+std::string field_text(const PreparedScene& p) {
+  std::string out = p.field_spec.to_string();
+  const std::vector<std::string>& when = p.step_labels;
+  if (when.size() == 1) {
+    out += " (" + when.front() + ")";
+  } else if (when.size() > 1) {
+    const std::size_t first = p.scene.time ? p.scene.time->first : 0;
+    out += " to " + std::to_string(first + when.size() - 1) + " (" + when.front() + " to " +
+           when.back() + ")";
+  }
+  return out;
+}
+
 PreparedScene prepare_scene(const Scene& scene) {
   return prepare(scene, std::nullopt);
 }
@@ -208,6 +221,7 @@ PreparedScene prepare_change(const PreparedScene& prepared, TriMesh mesh, const 
   PreparedScene next = prepared;
   next.step_count = 1;
   next.step_data = nullptr;
+  next.step_labels.clear();
   next.field = std::move(d.field);
   next.color_scalar = std::move(d.color_scalar);
   next.beta_scalar = std::move(d.beta_scalar);

@@ -35,6 +35,7 @@ PreparedScene prepare_states(const Scene& scene, std::vector<TriMesh> states,
     }
   }
   p.step_count = count;
+  p.step_labels.clear();  // a host's states: their times are the host's
   p.step_data = [steps](std::size_t k) {
     if (k >= steps->size()) throw InputError("no time step " + std::to_string(k));
     return (*steps)[k];

@@ -52,6 +52,10 @@ struct PreparedScene {
   /// The data at a step (0 <= k < step_count; step 0 is `field` and `mesh`
   /// with the scalars). Throws SettingError naming the file and the step.
   std::function<StepData(std::size_t)> step_data;
+  /// The time of each step (step_count of them, from the time key's first)
+  /// as the data states it: a netCDF field's dates from its CF time axis
+  /// (time_labels). Empty where the data states none.
+  std::vector<std::string> step_labels;
   /// The mesh as given, before subdivision and GPU order: its vertex count,
   /// topology_hash, and the new index of each of its vertices (empty:
   /// unchanged). A later state of it (prepare_change) with the same
@@ -91,6 +95,12 @@ struct PreparedScene {
 /// The same for a host that knows its fastest vector in world units and
 /// the world units a pixel spans at its focal point.
 [[nodiscard]] float scene_dt(const Scene& scene, float world_speed, double world_per_pixel);
+
+/// The field as messages name it (FieldSpec::to_string), with the time of
+/// the step it shows, or of the first and last steps it plays, where the
+/// data states them (step_labels): "wind:FILE:UWND:VWND at time index 6
+/// (1982-07-18 11:00)", "... at time index 0 to 11 (... to ...)".
+[[nodiscard]] std::string field_text(const PreparedScene& prepared);
 
 /// Checks the scene and prepares it. Throws InputError naming the file, or
 /// SettingError naming the key whose value is wrong.

@@ -109,6 +109,14 @@ void field(Preparation& c) {
   } catch (const InputError& e) {
     throw SettingError("field", mesh_label + ": " + e.what());
   }
+  // A netCDF field's steps by their dates.
+  if (field_spec->kind == FieldKind::Wind) {
+    const std::size_t first = s.time ? s.time->first : 0;
+    p.step_labels = for_key("field", [&] {
+      return time_labels(netcdf_time_axis(field_spec->path, field_spec->east), first,
+                         first + p.step_count - 1);
+    });
+  }
   if (field_report.outside_volume > 0)
     p.warnings.push_back(field_spec->path + ": " + std::to_string(field_report.outside_volume) +
                          " of " + std::to_string(mesh.vertex_count()) +

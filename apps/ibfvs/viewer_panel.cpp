@@ -106,9 +106,8 @@ void ViewerPanel::draw(ViewerSession& viewer, bool& show, bool& show_help, doubl
     ImGui::SameLine();
     const std::size_t step = static_cast<std::size_t>(viewer.time) % viewer.scene().step_count;
     const std::vector<std::string>& when = viewer.scene().step_labels;  // dates of netCDF steps
-    const bool dated = step < when.size();
-    ImGui::Text("step %zu of %zu%s%s", step, viewer.scene().step_count, dated ? ": " : "",
-                dated ? when[step].c_str() : "");
+    ImGui::Text("step %zu of %zu", step, viewer.scene().step_count);
+    if (step < when.size()) ImGui::Text("%s", when[step].c_str());  // a line of its own
   }
   if (ImGui::CollapsingHeader("More parameters")) draw_more_parameters(viewer);
   if (ImGui::CollapsingHeader("Styles and files")) draw_styles_and_files(viewer);

@@ -115,6 +115,7 @@ interface PageState {
   loop: boolean; // on from the last step to the first, else the last step holds
   hold: boolean; // each step shown as it is until the next, as ParaView shows steps
   timeSlider: HTMLInputElement | null;
+  when: HTMLElement | null; // the shown step's date, where the data names its steps
   play: HTMLButtonElement;
 }
 
@@ -162,7 +163,7 @@ function addPanel(root: HTMLElement, canvas: HTMLCanvasElement, scene: SceneHead
   root.appendChild(panel);
   const play = document.createElement("button");
   const state: PageState = { playing: true, dtFactor: 1, time: 0, loop: scene.loop, hold: false,
-                             timeSlider: null, play };
+                             timeSlider: null, when: null, play };
   const setPlaying = (on: boolean) => {
     state.playing = on;
     play.textContent = on ? "Pause" : "Play";
@@ -248,8 +249,16 @@ function addPanel(root: HTMLElement, canvas: HTMLCanvasElement, scene: SceneHead
     state.timeSlider = slider(panel, "time step", 0, scene.loop ? scene.steps : scene.steps - 1, 0, (v) => {
       state.time = v;
       renderer.setTime(shownTime(state));
+      showStep(state, scene);
     });
     state.timeSlider.step = "0.01";
+    // Beside it the step's time as the data states it (a netCDF field's dates).
+    if (scene.step_labels.length === scene.steps) {
+      state.when = document.createElement("span");
+      state.when.dataset.name = "date";
+      state.timeSlider.parentElement!.appendChild(state.when);
+      showStep(state, scene);
+    }
     checkbox(panel, "loop", state.loop, (on) => {
       state.loop = on;
       state.timeSlider!.max = String(on ? scene.steps : scene.steps - 1);
@@ -297,6 +306,12 @@ function checkbox(panel: HTMLElement, label: string, on: boolean, change: (on: b
   row.appendChild(document.createTextNode(" " + label));
   panel.appendChild(row);
   return box;
+}
+
+// The slider's date: that of the step the time is at or past (as the
+// viewer's panel names it).
+function showStep(state: PageState, scene: SceneHeader): void {
+  if (state.when) state.when.textContent = " " + scene.step_labels[Math.floor(state.time) % scene.steps];
 }
 
 // The time the renderer shows: the playing time, or its step where steps hold.
@@ -424,6 +439,7 @@ export function start(root: HTMLElement, scene: SceneHeader, data: ArrayBuffer,
       if (scene.steps > 1) {
         renderer.setTime(shownTime(state));
         if (state.timeSlider) state.timeSlider.value = String(state.time);
+        showStep(state, scene);
       }
       renderer.advance(nav, state.dtFactor);
     }

@@ -291,7 +291,7 @@ test("a series whose triangles change plays in the page as in ibfvs render", asy
   await assertMatchesRender("changing", ["--mesh", series, "--frames-per-step", "4", "--color-by", "z"]);
 });
 
-test("the earth plays its months, with a time slider; the series ends at its last, or loops", async () => {
+test("the earth plays its months, with a time slider and their dates; the series ends at its last, or loops", async () => {
   const file = path.join(out, "earth.html");
   execFileSync(ibfvs, ["render", "scenes/figure6-earth-wind.toml", "--size", "128x128",
                        "--time", "0:2", "--frames-per-step", "4", "--out", file, "-q"]);
@@ -308,6 +308,9 @@ test("the earth plays its months, with a time slider; the series ends at its las
   const frames = await page.evaluate(() => window.ibfvsFrames);
   await page.waitForFunction((k) => window.ibfvsFrames >= k + 8, { timeout: 60000 }, frames);
   assert.equal(await page.evaluate(() => window.ibfvsTime), 2);
+  // Beside the slider, the step's date from the file's time axis: the
+  // climatology's March (coads_climatology.cdf counts hours from year 0).
+  assert.equal(await page.$eval('[data-name="date"]', (e) => e.textContent.trim()), "0000-03-17 02:58:12");
   // The loop toggle: the time goes back to the first step after the last.
   await page.click('input[data-name="loop"]');
   assert.equal(await slider.evaluate((e) => e.max), "3");

@@ -55,6 +55,21 @@ void write_winds(const std::filesystem::path& path, int steps, bool v_on_other_g
   nc_close(nc);
 }
 
+// `read` of `file` throws one InputError line that begins with the file's
+// name and says `needle`.
+template <class Read>
+void expect_one_line(const std::filesystem::path& file, const std::string& needle, Read read) {
+  try {
+    read();
+    ADD_FAILURE() << "no error for " << file;
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_EQ(what.rfind(file.string() + ": ", 0), 0u) << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+    EXPECT_NE(what.find(needle), std::string::npos) << what;
+  }
+}
+
 TEST(LonLatGrid, EastwardWindRunsAlongTheParallels) {
   test::TempDir dir;
   write_winds(dir / "w.nc", 3);
@@ -148,15 +163,7 @@ TEST(LonLatGrid, MalformedAndCutShortFilesAreCleanErrors) {
   test::TempDir dir;
   const auto expect = [&](const std::filesystem::path& file, const std::string& needle,
                           const std::string& variable = "U", std::size_t time = 0) {
-    try {
-      read_lonlat_grid(file, variable, time);
-      FAIL() << "no error for " << file;
-    } catch (const InputError& e) {
-      const std::string what = e.what();
-      EXPECT_EQ(what.rfind(file.string() + ": ", 0), 0u) << what;
-      EXPECT_EQ(what.find('\n'), std::string::npos) << what;
-      EXPECT_NE(what.find(needle), std::string::npos) << what;
-    }
+    expect_one_line(file, needle, [&] { (void)read_lonlat_grid(file, variable, time); });
   };
   // Whole files of the three classic versions read; one byte less is cut short.
   for (const int mode : {0, NC_64BIT_OFFSET, NC_64BIT_DATA}) {
@@ -241,7 +248,7 @@ TEST(LonLatGrid, TheTimeAxisIsTheTimeDimensionsCoordinates) {
   nc_def_var(nc, "time", NC_DOUBLE, 1, &dt, &vt);
   const int du[3] = {dt, dy, dx};
   nc_def_var(nc, "u", NC_FLOAT, 3, du, &vu);
-  nc_put_att_text(nc, vt, "units", 22, "days since 1999-12-31");
+  nc_put_att_text(nc, vt, "units", 21, "days since 1999-12-31");
   nc_put_att_text(nc, vt, "calendar", 6, "noleap");
   nc_enddef(nc);
   const double days[3] = {0, 60, 365};
@@ -253,6 +260,41 @@ TEST(LonLatGrid, TheTimeAxisIsTheTimeDimensionsCoordinates) {
   EXPECT_EQ(axis.calendar, "noleap");
   EXPECT_EQ(time_labels(axis, 0, 2),
             (std::vector<std::string>{"1999-12-31", "2000-03-01", "2000-12-31"}));
+}
+
+TEST(LonLatGrid, ABadFilesTimeAxisIsOneErrorNamingTheFile) {
+  test::TempDir dir;
+  const auto expect = [&](const std::filesystem::path& file, const std::string& needle) {
+    expect_one_line(file, needle, [&] { (void)netcdf_time_axis(file, "U"); });
+  };
+  // A classic file whose records end with the time coordinate's value: one
+  // byte less cuts the last time short.
+  int nc = 0, dt = 0, dy = 0, dx = 0, vu = 0, vt = 0;
+  const auto path = dir / "t.nc";
+  ASSERT_EQ(nc_create(path.c_str(), NC_CLOBBER, &nc), NC_NOERR);
+  nc_def_dim(nc, "TIME", NC_UNLIMITED, &dt);
+  nc_def_dim(nc, "Y", 2, &dy);
+  nc_def_dim(nc, "X", 2, &dx);
+  const int du[3] = {dt, dy, dx};
+  nc_def_var(nc, "U", NC_FLOAT, 3, du, &vu);
+  nc_def_var(nc, "TIME", NC_DOUBLE, 1, &dt, &vt);
+  nc_put_att_text(nc, vt, "units", 21, "days since 2000-01-01");
+  nc_enddef(nc);
+  for (std::size_t k = 0; k < 3; ++k) {
+    const float u[4] = {1, 2, 3, 4};
+    const double t = static_cast<double>(k);
+    const std::size_t start[3] = {k, 0, 0}, count[3] = {1, 2, 2};
+    nc_put_vara_float(nc, vu, start, count, u);
+    nc_put_var1_double(nc, vt, &k, &t);
+  }
+  nc_close(nc);
+  EXPECT_EQ(netcdf_time_axis(path, "U").values, (std::vector<double>{0, 1, 2}));
+  const std::string bytes = test::read_file(path);
+  test::write_file(path, bytes.substr(0, bytes.size() - 1));
+  expect(path, "reading 'TIME': the file ends before its data (cut short)");
+  test::write_file(dir / "junk.nc", "CDF\x01 but not really");
+  expect(dir / "junk.nc", "not a readable netCDF file");
+  expect(dir / "none.nc", "no such file");
 }
 
 TEST(LonLatGrid, RealMonthlyWindsAreDatedByTheirTimeAxis) {
@@ -290,7 +332,7 @@ TEST(LonLatGrid, RealMonthlyWindsHaveTheWesterlies) {
   }
   for (const float v : u.values)
     if (std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v);
-  std::printf("January 1980: mean u at -50 %.1f m/s, at 12N %.1f m/s, range %.1f..%.1f\n", sum / n,
+  std::printf("January 1982: mean u at -50 %.1f m/s, at 12N %.1f m/s, range %.1f..%.1f\n", sum / n,
               trades / m, lo, hi);
   EXPECT_GT(sum / n, 5.0);
   EXPECT_LT(trades / m, -2.0);

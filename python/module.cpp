@@ -478,6 +478,26 @@ std::shared_ptr<py::object> held(py::object fn) {
           }};
 }
 
+// A result of Python's netCDF reader: `call` (under the GIL) gives a tuple
+// of `fields` values, `take` makes them the library's; Python's errors and
+// a result of another shape are one InputError naming the file.
+template <class Call, class Take>
+auto reader_result(const std::filesystem::path& path, const std::string& what, std::size_t fields,
+                   Call call, Take take) {
+  py::gil_scoped_acquire gil;
+  try {
+    const py::tuple r = call();
+    if (r.size() != fields)
+      throw InputError(path.string() + ": the netCDF reader returned no " + what);
+    return take(r);
+  } catch (const py::error_already_set& e) {
+    throw InputError(one_line(path.string() + ": " + e.what()));
+  } catch (const py::cast_error& e) {
+    throw InputError(path.string() + ": the netCDF reader returned no " + what + " (" + e.what() +
+                     ")");
+  }
+}
+
 // The netCDF reader of builds without netCDF-C (the pip package): Python's
 // functions (ibfvs/__init__.py, through xarray), their errors one InputError
 // naming the file.
@@ -486,60 +506,45 @@ void set_netcdf_reader(py::object variables, py::object read, py::object time_ax
     set_lonlat_reader({});
     return;
   }
-  const auto fail = [](const std::filesystem::path& path, const py::error_already_set& e) {
-    return InputError(one_line(path.string() + ": " + e.what()));
-  };
   LonLatReader reader;
-  reader.variables = [fn = held(std::move(variables)), fail](const std::filesystem::path& path) {
+  reader.variables = [fn = held(std::move(variables))](const std::filesystem::path& path) {
     py::gil_scoped_acquire gil;
     try {
       return (*fn)(path.string()).cast<std::vector<std::string>>();
     } catch (const py::error_already_set& e) {
-      throw fail(path, e);
+      throw InputError(one_line(path.string() + ": " + e.what()));
     }
   };
-  reader.read = [fn = held(std::move(read)), fail](const std::filesystem::path& path,
-                                                   const std::string& variable, std::size_t t) {
-    py::gil_scoped_acquire gil;
-    try {
-      // (lon, lat, values (lat, lon), units, time steps)
-      const py::tuple r = (*fn)(path.string(), variable, t);
-      if (r.size() != 5) throw InputError(path.string() + ": the netCDF reader returned no grid");
-      LonLatGrid g;
-      g.name = variable;
-      g.lon = r[0].cast<std::vector<double>>();
-      g.lat = r[1].cast<std::vector<double>>();
-      const auto values =
-          r[2].cast<py::array_t<float, py::array::c_style | py::array::forcecast>>();
-      g.values.assign(values.data(), values.data() + values.size());
-      g.units = r[3].cast<std::string>();
-      g.time_steps = r[4].cast<std::size_t>();
-      return g;
-    } catch (const py::error_already_set& e) {
-      throw fail(path, e);
-    } catch (const py::cast_error& e) {
-      throw InputError(path.string() + ": the netCDF reader returned no grid (" + e.what() + ")");
-    }
+  reader.read = [fn = held(std::move(read))](const std::filesystem::path& path,
+                                             const std::string& variable, std::size_t t) {
+    // (lon, lat, values (lat, lon), units, time steps)
+    return reader_result(
+        path, "grid", 5, [&] { return (*fn)(path.string(), variable, t); },
+        [&](const py::tuple& r) {
+          LonLatGrid g;
+          g.name = variable;
+          g.lon = r[0].cast<std::vector<double>>();
+          g.lat = r[1].cast<std::vector<double>>();
+          const auto values =
+              r[2].cast<py::array_t<float, py::array::c_style | py::array::forcecast>>();
+          g.values.assign(values.data(), values.data() + values.size());
+          g.units = r[3].cast<std::string>();
+          g.time_steps = r[4].cast<std::size_t>();
+          return g;
+        });
   };
-  reader.time_axis = [fn = held(std::move(time_axis)), fail](const std::filesystem::path& path,
-                                                             const std::string& variable) {
-    py::gil_scoped_acquire gil;
-    try {
-      // (values, units, calendar)
-      const py::tuple r = (*fn)(path.string(), variable);
-      if (r.size() != 3)
-        throw InputError(path.string() + ": the netCDF reader returned no time axis");
-      TimeAxis axis;
-      axis.values = r[0].cast<std::vector<double>>();
-      axis.units = r[1].cast<std::string>();
-      axis.calendar = r[2].cast<std::string>();
-      return axis;
-    } catch (const py::error_already_set& e) {
-      throw fail(path, e);
-    } catch (const py::cast_error& e) {
-      throw InputError(path.string() + ": the netCDF reader returned no time axis (" + e.what() +
-                       ")");
-    }
+  reader.time_axis = [fn = held(std::move(time_axis))](const std::filesystem::path& path,
+                                                       const std::string& variable) {
+    // (values, units, calendar)
+    return reader_result(
+        path, "time axis", 3, [&] { return (*fn)(path.string(), variable); },
+        [](const py::tuple& r) {
+          TimeAxis axis;
+          axis.values = r[0].cast<std::vector<double>>();
+          axis.units = r[1].cast<std::string>();
+          axis.calendar = r[2].cast<std::string>();
+          return axis;
+        });
   };
   set_lonlat_reader(std::move(reader));
 }

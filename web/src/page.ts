@@ -311,7 +311,9 @@ function checkbox(panel: HTMLElement, label: string, on: boolean, change: (on: b
 // The slider's date: that of the step the time is at or past (as the
 // viewer's panel names it).
 function showStep(state: PageState, scene: SceneHeader): void {
-  if (state.when) state.when.textContent = " " + scene.step_labels[Math.floor(state.time) % scene.steps];
+  if (!state.when) return;
+  const text = " " + scene.step_labels[Math.floor(state.time) % scene.steps];
+  if (state.when.textContent !== text) state.when.textContent = text;  // not each frame anew
 }
 
 // The time the renderer shows: the playing time, or its step where steps hold.

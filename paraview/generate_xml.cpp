@@ -13,8 +13,9 @@
 //                  key's host name (SceneKey::host), in a DoubleVectorProperty
 //                  for a number key, else an IntVectorProperty
 //   @page.triangles@  the most triangles a web page takes (WebPageLimits)
-//   @topology.strength@, @topology.length@  the defaults of the topology's
-//                  lines (LineOptions), for Skin-Friction Topology
+//   @topology.scale@, @topology.strength@, @topology.length@  the defaults
+//                  of the topology's options (TopologyOptions), for
+//                  Skin-Friction Topology
 // and repeats a block for each of several names, first:
 //   <!-- @each NAME NAME ... --> BLOCK <!-- @end -->  BLOCK once for each
 //                  NAME, with @name@ in it replaced by the name
@@ -207,11 +208,14 @@ int main(int argc, char** argv) {
       out += std::to_string(ibfvs::WebPageLimits{}.triangles);
       continue;
     }
-    if (m[0].str() == "@topology.strength@" || m[0].str() == "@topology.length@") {
-      const ibfvs::LineOptions lines;
-      out += ibfvs::format_number(static_cast<float>(
-          m[1].str() == "topology" && m[2].str() == "strength" ? lines.min_strength
-                                                               : lines.min_length));
+    if (m[1].str() == "topology") {
+      const ibfvs::TopologyOptions options;
+      const std::string part = m[2].str();
+      if (part != "scale" && part != "strength" && part != "length")
+        throw std::runtime_error(m[0].str() + ": no such option of the topology");
+      out += ibfvs::format_number(static_cast<float>(part == "scale"      ? options.scale
+                                                     : part == "strength" ? options.min_strength
+                                                                          : options.min_length));
       continue;
     }
     const SceneKey* key = ibfvs::find_scene_key(m[1].str());

@@ -598,31 +598,38 @@ PYBIND11_MODULE(_ibfvs, m) {
         "(values, units, calendar) read netCDF files (None, None, None: none).");
   m.def(
       "topology",
-      [](const std::string& scene_file, const ibfvs::python::Options& options, double min_strength,
-         double min_length) {
+      [](const std::string& scene_file, const ibfvs::python::Options& options, double scale,
+         double min_strength, double min_length) {
         return ibfvs::python::topology_of(
-            prepare_scene(ibfvs::python::scene_from(scene_file, options)), min_strength,
-            min_length);
+            prepare_scene(ibfvs::python::scene_from(scene_file, options)),
+            ibfvs::TopologyOptions{scale, min_strength, min_length});
       },
-      py::arg("scene_file"), py::arg("options"), py::arg("min_strength"), py::arg("min_length"),
-      "The topology of a scene's field (ibfvs.topology).");
+      py::arg("scene_file"), py::arg("options"), py::arg("scale"), py::arg("min_strength"),
+      py::arg("min_length"), "The topology of a scene's field at each step (ibfvs.topology).");
   m.def(
       "topology",
       [](const ibfvs::python::Array<double>& points,
          const ibfvs::python::Array<std::int64_t>& triangles,
          const std::map<std::string, py::array>& point_arrays,
          const std::map<std::string, py::array>& cell_arrays, const ibfvs::python::Options& options,
-         const std::string& name, double min_strength, double min_length) {
+         const std::string& name, double scale, double min_strength, double min_length) {
         return ibfvs::python::topology_of(
             prepare_scene(
                 ibfvs::python::scene_from("", options),
                 ibfvs::python::mesh_from_arrays(points, triangles, point_arrays, cell_arrays),
                 name),
-            min_strength, min_length);
+            ibfvs::TopologyOptions{scale, min_strength, min_length});
       },
       py::arg("points"), py::arg("triangles"), py::arg("point_arrays"), py::arg("cell_arrays"),
-      py::arg("options"), py::arg("name"), py::arg("min_strength"), py::arg("min_length"),
-      "The topology of the field on a mesh of arrays (ibfvs.topology).");
+      py::arg("options"), py::arg("name"), py::arg("scale"), py::arg("min_strength"),
+      py::arg("min_length"), "The topology of the field on a mesh of arrays (ibfvs.topology).");
+  m.def(
+      "topology_defaults",
+      [] {
+        const ibfvs::TopologyOptions o;
+        return std::make_tuple(o.scale, o.min_strength, o.min_length);
+      },
+      "The topology's default options: (scale, min_strength, min_length).");
   m.def(
       "topology_kinds",
       [] {

@@ -1,18 +1,23 @@
 // ibfvs.topology's native half: a scene prepared as an Animation prepares
-// it (a file, or arrays), its critical points and separation and attachment
-// lines (core/fields/topology.h) as numpy arrays.
+// it (a file, or arrays), the skin-friction topology of each of its steps
+// (core/fields/topology.h; ids carried from step to step) laid out as `ibfvs
+// topology` writes it (core/fields/topology_layout.h, the one layout), as
+// numpy arrays.
 #include "topology_binding.h"
 
+#include <pybind11/stl.h>
+
 #include <algorithm>
+#include <optional>
 #include <vector>
 
 #include "ibfvs/core/fields/topology.h"
+#include "ibfvs/core/fields/topology_layout.h"
 #include "ibfvs/core/scene/scene_prep.h"
 
 namespace ibfvs::python {
 namespace {
 
-// Arrays by shape (numpy works out the strides: see int64_array).
 template <class T>
 py::array_t<T> array_of(std::vector<py::ssize_t> shape, const std::vector<T>& values) {
   py::array_t<T> out(shape);
@@ -20,55 +25,74 @@ py::array_t<T> array_of(std::vector<py::ssize_t> shape, const std::vector<T>& va
   return out;
 }
 
+py::dict step_dict(const FlowTopology& t, const TriMesh& mesh, const std::string& name) {
+  const TopologyLayout g = topology_layout(t, name + ": " + topology_summary(t, mesh));
+  const auto n = static_cast<py::ssize_t>(g.point_count());
+  const auto c = static_cast<py::ssize_t>(g.cell_count());
+  py::dict d;
+  d["points"] = array_of<float>({n, 3}, g.points);
+  d["normals"] = array_of<float>({n, 3}, g.normals);
+  d["index"] = array_of<std::int32_t>({n}, g.index);
+  d["magnitude"] = array_of<float>({n}, g.magnitude);
+  d["eigenvalues"] = array_of<double>({n, 4}, g.eigenvalues);
+  d["vert_offsets"] =
+      array_of<std::int64_t>({static_cast<py::ssize_t>(g.vert_offsets.size())}, g.vert_offsets);
+  d["vert_connectivity"] = array_of<std::int64_t>(
+      {static_cast<py::ssize_t>(g.vert_connectivity.size())}, g.vert_connectivity);
+  d["line_offsets"] =
+      array_of<std::int64_t>({static_cast<py::ssize_t>(g.line_offsets.size())}, g.line_offsets);
+  d["line_connectivity"] = array_of<std::int64_t>(
+      {static_cast<py::ssize_t>(g.line_connectivity.size())}, g.line_connectivity);
+  d["kind"] = array_of<std::int32_t>({c}, g.kind);
+  d["id"] = array_of<std::int32_t>({c}, g.id);
+  d["origin"] = array_of<std::int32_t>({c}, g.origin);
+  d["strength"] = array_of<double>({c}, g.strength);
+  d["length"] = array_of<double>({c}, g.length);
+  d["colour"] = array_of<std::uint8_t>({c, 3}, g.colour);
+  std::vector<std::uint8_t> closed;
+  for (const FeatureLine& l : t.lines.lines) closed.push_back(l.closed ? 1 : 0);
+  d["closed"] = array_of<std::uint8_t>({static_cast<py::ssize_t>(closed.size())}, closed);
+  d["summary"] = g.summary;
+  d["index_sum"] = t.critical.index_sum;
+  d["euler_characteristic"] = euler_characteristic(mesh);
+  d["degenerate_triangles"] = t.critical.degenerate_triangles;
+  d["zero_triangles"] = t.critical.zero_triangles;
+  d["cancelled"] = t.critical.cancelled;
+  d["on_lines"] = t.critical.on_lines;
+  d["scale"] = t.lines.scale;
+  return d;
+}
+
 }  // namespace
 
-py::dict topology_of(const PreparedScene& prepared, double min_strength, double min_length) {
-  const TriMesh& mesh = *prepared.mesh;
-  const FlowTopology t = find_topology(mesh, prepared.field, {min_strength, min_length});
-  const auto k = static_cast<py::ssize_t>(t.critical.points.size());
-  std::vector<double> xyz, normals, eigen;
-  std::vector<std::int32_t> kind, index;
-  for (const CriticalPoint& p : t.critical.points) {
-    xyz.insert(xyz.end(), {p.position.x, p.position.y, p.position.z});
-    normals.insert(normals.end(), {p.normal.x, p.normal.y, p.normal.z});
-    eigen.insert(eigen.end(), {p.eigen_real[0], p.eigen_imag[0], p.eigen_real[1], p.eigen_imag[1]});
-    kind.push_back(static_cast<std::int32_t>(p.kind));
-    index.push_back(p.index);
-  }
-  py::list lines;
-  for (const FeatureLine& l : t.lines.lines) {
-    std::vector<double> at, up, ev;
-    std::vector<float> magnitude;
-    for (const LinePoint& p : l.points) {
-      at.insert(at.end(), {p.position.x, p.position.y, p.position.z});
-      up.insert(up.end(), {p.normal.x, p.normal.y, p.normal.z});
-      ev.insert(ev.end(), {p.eigen[0], p.eigen[1]});
-      magnitude.push_back(p.magnitude);
+py::dict topology_of(const PreparedScene& prepared, const TopologyOptions& options) {
+  check_topology_options(options);
+  py::list steps;
+  std::optional<FlowTopology> before;
+  int next_id = 0;
+  const std::size_t count = std::max<std::size_t>(prepared.step_count, 1);
+  for (std::size_t k = 0; k < count; ++k) {
+    const StepData step = k == 0 ? StepData{} : prepared.step_data(k);
+    const TriMesh surface = k == 0 ? *prepared.mesh : step_surface(prepared, step);
+    const std::span<const glm::vec3> field = k == 0 ? std::span<const glm::vec3>(prepared.field)
+                                                    : std::span<const glm::vec3>(step.field);
+    FlowTopology t;
+    {
+      py::gil_scoped_release release;
+      t = find_topology(surface, field, options);
     }
-    const auto n = static_cast<py::ssize_t>(l.points.size());
-    py::dict line;
-    line["kind"] = static_cast<int>(l.kind);
-    line["points"] = array_of<double>({n, 3}, at);
-    line["normals"] = array_of<double>({n, 3}, up);
-    line["magnitude"] = array_of<float>({n}, magnitude);
-    line["eigenvalues"] = array_of<double>({n, 2}, ev);
-    line["closed"] = l.closed;
-    line["strength"] = l.strength;
-    line["length"] = l.length;
-    lines.append(line);
+    if (before)
+      carry_ids(*before, t, next_id, 2.0 * t.lines.scale);
+    else
+      next_id = static_cast<int>(t.critical.points.size() + t.lines.lines.size());
+    const std::string name =
+        count > 1 ? prepared.mesh_name + " step " + std::to_string(k) : prepared.mesh_name;
+    steps.append(step_dict(t, surface, name));
+    before = std::move(t);
   }
   py::dict out;
-  out["points"] = array_of<double>({k, 3}, xyz);
-  out["normals"] = array_of<double>({k, 3}, normals);
-  out["kind"] = array_of<std::int32_t>({k}, kind);
-  out["index"] = array_of<std::int32_t>({k}, index);
-  out["eigenvalues"] = array_of<double>({k, 4}, eigen);
-  out["lines"] = lines;
-  out["index_sum"] = t.critical.index_sum;
-  out["euler_characteristic"] = euler_characteristic(mesh);
-  out["degenerate_triangles"] = t.critical.degenerate_triangles;
-  out["zero_triangles"] = t.critical.zero_triangles;
-  out["summary"] = prepared.mesh_name + ": " + topology_summary(t, mesh);
+  out["steps"] = steps;
+  out["warnings"] = prepared.warnings;
   return out;
 }
 

@@ -5,14 +5,16 @@
 
 namespace ibfvs {
 struct PreparedScene;
-}
+struct TopologyOptions;
+}  // namespace ibfvs
 
 namespace ibfvs::python {
 namespace py = pybind11;
 
-/// The topology of a prepared scene's field at its first step: critical
-/// points (points, kind, index, eigenvalues), lines (a list of dicts) and
-/// the summary line.
-py::dict topology_of(const PreparedScene& prepared, double min_strength, double min_length);
+/// The topology of a prepared scene's field at each of its steps (ids kept
+/// from step to step): {"steps": [the layout's arrays, the summary and the
+/// counts, a dict a step], "warnings": the preparation's}. Throws
+/// InputError for options out of range.
+py::dict topology_of(const PreparedScene& prepared, const TopologyOptions& options);
 
 }  // namespace ibfvs::python

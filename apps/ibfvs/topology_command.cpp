@@ -4,11 +4,13 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <string>
 
 #include <CLI/CLI.hpp>
 
 #include "ibfvs/core/fields/topology.h"
+#include "ibfvs/core/fields/topology_layout.h"
 #include "ibfvs/core/scene/scene_prep.h"
 #include "ibfvs/core/support/error.h"
 #include "ibfvs/core/support/file_names.h"
@@ -19,32 +21,47 @@ namespace fs = std::filesystem;
 
 void add_topology_options(CLI::App& command, SceneOptions& scene, TopologyOptions& options) {
   add_scene_options(command, scene);
+  const ibfvs::TopologyOptions defaults;
+  options = {defaults.scale, defaults.min_strength, defaults.min_length};
+  command
+      .add_option("--feature-scale", options.scale,
+                  "The significance scale, a fraction of the surface's size (its bounding box's "
+                  "diagonal): a saddle and a node closer than it cancel; lines are measured in it")
+      ->check(CLI::Range(1e-6, 1.0))
+      ->capture_default_str();
   command
       .add_option("--min-strength", options.min_strength,
-                  "Keep a line where the flow converges onto it (or diverges from it) at least "
-                  "this fraction of the field's rate (the RMS of its Jacobian)")
+                  "Keep a line whose neighbours converge onto it (diverge from it) by at least "
+                  "e^N along it")
       ->check(CLI::Range(0.0, 1e6))
       ->capture_default_str();
   command
-      .add_option("--min-length", options.min_length, "Keep a line at least this many edges long")
+      .add_option("--min-length", options.min_length, "Keep a line at least this many scales long")
       ->check(CLI::Range(0.0, 1e9))
       ->capture_default_str();
 }
 
 namespace {
 
-// The topology of one step: found on the step's surface, its summary
-// printed, written to `path`.
-void one_step(const TriMesh& mesh, std::span<const glm::vec3> field, const LineOptions& lines,
-              const std::string& path, const std::string& what, bool quiet) {
+// The topology of one step: found on the step's surface (its ids carried
+// on from the step before, if any), its summary printed, written to `path`.
+FlowTopology one_step(const TriMesh& mesh, std::span<const glm::vec3> field,
+                      const ibfvs::TopologyOptions& options, const FlowTopology* before,
+                      int& next_id, const std::string& path, const std::string& what, bool quiet) {
   const auto t0 = std::chrono::steady_clock::now();
-  const FlowTopology topology = find_topology(mesh, field, lines);
+  FlowTopology topology = find_topology(mesh, field, options);
   const double ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  write_topology_vtp(topology, path);
+  if (before)
+    carry_ids(*before, topology, next_id, 2.0 * topology.lines.scale);
+  else
+    next_id = static_cast<int>(topology.critical.points.size() + topology.lines.lines.size());
+  const std::string summary = topology_summary(topology, mesh);
+  write_topology_vtp(topology_layout(topology, summary), path);
   if (!quiet)
-    std::printf("ibfvs: %s: %s (%zu triangles, %.0f ms); wrote %s\n", what.c_str(),
-                topology_summary(topology, mesh).c_str(), mesh.triangles.size(), ms, path.c_str());
+    std::printf("ibfvs: %s: %s (%zu triangles, %.0f ms); wrote %s\n", what.c_str(), summary.c_str(),
+                mesh.triangles.size(), ms, path.c_str());
+  return topology;
 }
 
 }  // namespace
@@ -63,15 +80,18 @@ int run_topology(const SceneOptions& scene_options, const TopologyOptions& optio
   const PreparedScene prepared = prepare_scene(scene);
   for (const std::string& w : prepared.warnings)
     std::fprintf(stderr, "ibfvs: warning: %s\n", w.c_str());
-  const LineOptions lines{options.min_strength, options.min_length};
+  const ibfvs::TopologyOptions lines{options.scale, options.min_strength, options.min_length};
+  int next_id = 0;
   if (prepared.step_count < 2) {
-    one_step(*prepared.mesh, prepared.field, lines, out, prepared.mesh_name, scene.quiet);
+    one_step(*prepared.mesh, prepared.field, lines, nullptr, next_id, out, prepared.mesh_name,
+             scene.quiet);
     return 0;
   }
   // One file a step beside a .pvd that ParaView plays as a series.
   const fs::path base = fs::path(out).replace_extension();
   std::string pvd =
       "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n  <Collection>\n";
+  std::optional<FlowTopology> before;
   for (std::size_t k = 0; k < prepared.step_count; ++k) {
     char suffix[32];
     std::snprintf(suffix, sizeof suffix, "_%04zu.vtp", k);
@@ -79,8 +99,9 @@ int run_topology(const SceneOptions& scene_options, const TopologyOptions& optio
     const StepData step = k == 0 ? StepData{} : prepared.step_data(k);
     const std::span<const glm::vec3> field = k == 0 ? std::span<const glm::vec3>(prepared.field)
                                                     : std::span<const glm::vec3>(step.field);
-    one_step(step_surface(prepared, step), field, lines, file.string(),
-             prepared.mesh_name + " step " + std::to_string(k), scene.quiet);
+    before =
+        one_step(step_surface(prepared, step), field, lines, before ? &*before : nullptr, next_id,
+                 file.string(), prepared.mesh_name + " step " + std::to_string(k), scene.quiet);
     pvd += "    <DataSet timestep=\"" + std::to_string(k) + "\" file=\"" +
            file.filename().string() + "\"/>\n";
   }

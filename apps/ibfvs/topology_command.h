@@ -12,9 +12,11 @@ namespace ibfvs::app {
 
 struct SceneOptions;
 
+/// The command's options: the library's (ibfvs::TopologyOptions).
 struct TopologyOptions {
-  double min_strength = 0.1;  ///< LineOptions::min_strength
-  double min_length = 4.0;    ///< LineOptions::min_length
+  double scale = 0.02;        ///< ibfvs::TopologyOptions::scale
+  double min_strength = 2.0;  ///< ibfvs::TopologyOptions::min_strength
+  double min_length = 1.0;    ///< ibfvs::TopologyOptions::min_length
 };
 
 void add_topology_options(CLI::App& command, SceneOptions& scene, TopologyOptions& options);

@@ -25,7 +25,7 @@ import numpy as np
 
 from . import _external, _ibfvs
 
-__all__ = ["render", "Animation", "Video", "widget", "keys", "topology", "Topology", "KINDS", "KIND_COLOURS", "has_vtk", "__version__"]
+__all__ = ["render", "Animation", "Video", "widget", "keys", "topology", "Topology", "KINDS", "KIND_COLOURS", "ORIGINS", "has_vtk", "__version__"]
 
 __version__ = _ibfvs.__version__  # CMakeLists.txt's project(), the one version
 has_vtk = _ibfvs.has_vtk
@@ -339,29 +339,56 @@ KIND_COLOURS = {kind: tuple(rgb) for kind, _, rgb in _ibfvs.topology_kinds()}
 
 
 class Topology:
-    """The skin-friction topology of a field (ibfvs.topology): numpy arrays.
+    """The skin-friction topology of a field at one step (ibfvs.topology):
+    numpy arrays laid out as `ibfvs topology` writes its .vtp (one layout
+    for the command, ParaView and this module).
 
-    points (k, 3), normals (k, 3), kind (k,), index (k,), eigenvalues (k, 4):
-    the critical points, the surface's normal there, their kind (KINDS),
-    Poincare index and the Jacobian's eigenvalues (real and imaginary part of
-    the first, then the second);
-    lines: a list of dicts with kind (10 separation, 11 attachment), points
-    (p, 3), normals (p, 3), magnitude (p,), eigenvalues (p, 2), closed,
-    strength, length;
-    index_sum, euler_characteristic, summary."""
+    The critical points: points (k, 3), normals (k, 3), kind (k,), index
+    (k,), eigenvalues (k, 4) (real and imaginary part of the first, then
+    the second), strength (k,) (the largest absolute real part), id (k,);
+    lines: a list of dicts with kind (10 separation, 11 attachment), id,
+    origin (ORIGINS), points (p, 3), normals (p, 3), magnitude (p,),
+    eigenvalues (p, 2), closed, strength, length; index_sum,
+    euler_characteristic, summary; layout: the arrays as laid out (points,
+    cells and the cell and point arrays of the .vtp)."""
 
-    def __init__(self, found):
-        self.points = found["points"]
-        self.normals = found["normals"]
-        self.kind = found["kind"]
-        self.index = found["index"]
-        self.eigenvalues = found["eigenvalues"]
-        self.lines = list(found["lines"])
-        self.index_sum = found["index_sum"]
-        self.euler_characteristic = found["euler_characteristic"]
-        self.degenerate_triangles = found["degenerate_triangles"]
-        self.zero_triangles = found["zero_triangles"]
-        self.summary = found["summary"]
+    def __init__(self, layout):
+        self.layout = layout
+        verts = np.asarray(layout["vert_connectivity"], dtype=np.int64)
+        k = len(verts)
+        points = np.asarray(layout["points"], dtype=np.float64).reshape(-1, 3)
+        normals = np.asarray(layout["normals"], dtype=np.float64).reshape(-1, 3)
+        eigen = np.asarray(layout["eigenvalues"]).reshape(-1, 4)
+        self.points = points[verts]
+        self.normals = normals[verts]
+        self.kind = np.asarray(layout["kind"][:k])
+        self.id = np.asarray(layout["id"][:k])
+        self.index = np.asarray(layout["index"])[verts]
+        self.eigenvalues = eigen[verts]
+        self.strength = np.asarray(layout["strength"][:k])
+        self.lines = []
+        conn = np.asarray(layout["line_connectivity"], dtype=np.int64)
+        start = 0
+        for i, end in enumerate(np.asarray(layout["line_offsets"], dtype=np.int64)):
+            closed = bool(layout["closed"][i])
+            ids = conn[start:end][:-1] if closed else conn[start:end]
+            start = end
+            self.lines.append({
+                "kind": int(layout["kind"][k + i]), "id": int(layout["id"][k + i]),
+                "origin": int(layout["origin"][k + i]),
+                "points": points[ids], "normals": normals[ids],
+                "magnitude": np.asarray(layout["magnitude"])[ids],
+                "eigenvalues": eigen[ids][:, [0, 2]], "closed": closed,
+                "strength": float(layout["strength"][k + i]), "length": float(layout["length"][k + i]),
+            })
+        self.index_sum = layout["index_sum"]
+        self.euler_characteristic = layout["euler_characteristic"]
+        self.degenerate_triangles = layout["degenerate_triangles"]
+        self.zero_triangles = layout["zero_triangles"]
+        self.cancelled = layout["cancelled"]
+        self.on_lines = layout["on_lines"]
+        self.scale = layout["scale"]
+        self.summary = layout["summary"]
 
     def __repr__(self):
         return f"<ibfvs.Topology {self.summary}>"
@@ -376,69 +403,71 @@ class Topology:
 
     def to_pyvista(self):
         """A pyvista.PolyData laid out as `ibfvs topology` writes its .vtp: a
-        vertex per critical point, a polyline per line; cell arrays kind and
-        strength, point arrays index, magnitude, eigenvalues and Normals."""
+        vertex per critical point, a polyline per line; cell arrays kind, id,
+        strength, length, origin and colour (the kinds' sRGB: drawn as they
+        are with rgb=True), point arrays index, magnitude, eigenvalues and
+        Normals; field data summary."""
         import pyvista
 
-        k = len(self.points)
-        pts = [self.points.reshape(-1, 3)]
-        normals = [self.normals.reshape(-1, 3)]
-        index = [self.index.astype(np.int32)]
-        magnitude = [np.zeros(k, np.float32)]
-        eigen = [self.eigenvalues.reshape(-1, 4)]
-        kind = [self.kind.astype(np.int32)]
-        strength = [np.abs(self.eigenvalues[:, [0, 2]]).max(axis=1) if k else np.zeros(0)]
-        verts = np.column_stack([np.ones(k, np.int64), np.arange(k)]).ravel()
-        cells, start = [], k
-        for line in self.lines:
-            p = line["points"]
-            ids = list(range(start, start + len(p))) + ([start] if line["closed"] else [])
-            cells += [len(ids)] + ids
-            start += len(p)
-            pts.append(p)
-            normals.append(line["normals"])
-            index.append(np.zeros(len(p), np.int32))
-            magnitude.append(line["magnitude"])
-            e = np.zeros((len(p), 4))
-            e[:, 0], e[:, 2] = line["eigenvalues"][:, 0], line["eigenvalues"][:, 1]
-            eigen.append(e)
-            kind.append(np.array([line["kind"]], np.int32))
-            strength.append(np.array([line["strength"]]))
-        mesh = pyvista.PolyData(np.concatenate(pts) if start else np.zeros((0, 3)))
-        if k:
-            mesh.verts = verts
-        if self.lines:
-            mesh.lines = np.array(cells, np.int64)
-        mesh.point_data["index"] = np.concatenate(index)
-        mesh.point_data["Normals"] = np.concatenate(normals).astype(np.float32)
-        mesh.point_data["magnitude"] = np.concatenate(magnitude).astype(np.float32)
-        mesh.point_data["eigenvalues"] = np.concatenate(eigen)
-        mesh.cell_data["kind"] = np.concatenate(kind)
-        mesh.cell_data["strength"] = np.concatenate(strength).astype(np.float64)
+        g = self.layout
+        mesh = pyvista.PolyData(np.asarray(g["points"], dtype=np.float32).reshape(-1, 3))
+
+        def cells(offsets, connectivity):
+            offsets = np.concatenate([[0], np.asarray(offsets, dtype=np.int64)])
+            return np.insert(np.asarray(connectivity, dtype=np.int64), offsets[:-1], np.diff(offsets))
+
+        if len(g["vert_offsets"]):
+            mesh.verts = cells(g["vert_offsets"], g["vert_connectivity"])
+        if len(g["line_offsets"]):
+            mesh.lines = cells(g["line_offsets"], g["line_connectivity"])
+        for name in ("index", "magnitude", "eigenvalues"):
+            mesh.point_data[name] = np.asarray(g[name])
+        mesh.point_data["Normals"] = np.asarray(g["normals"], dtype=np.float32)
+        for name in ("kind", "id", "strength", "length", "origin", "colour"):
+            mesh.cell_data[name] = np.asarray(g[name])
         mesh.field_data["summary"] = [self.summary]
         return mesh
 
 
-def topology(source=None, triangles=None, vectors=None, *, min_strength=0.1, min_length=4.0, **options):
+#: The `origin` of a line (how it was found): 1 from a saddle (a
+#: separatrix), 2 a closed orbit, 3 open (from no saddle), 4 a line of zeros.
+ORIGINS = {1: "separatrix", 2: "closed orbit", 3: "open", 4: "zeros"}
+
+_TOPOLOGY_DEFAULTS = _ibfvs.topology_defaults()
+
+
+def topology(source=None, triangles=None, vectors=None, *, feature_scale=_TOPOLOGY_DEFAULTS[0],
+             min_strength=_TOPOLOGY_DEFAULTS[1], min_length=_TOPOLOGY_DEFAULTS[2], **options):
     """The skin-friction topology of a field on a surface: its critical points
-    (zeros of the field, by the Jacobian's eigenvalues) and its separation and
-    attachment lines (Kenwright, Henze and Levit's eigenvector method in its
-    parallel-vectors form); docs/cfd.md.
+    and its separation and attachment lines, found by following the field
+    (docs/cfd.md).
 
     source, triangles, vectors and options as for Animation (arrays, a
-    VTK-style mesh, a file or a scene; options the scene keys: field, blocks,
-    reverse, time, ...). Returns a Topology of numpy arrays, or for a
-    VTK-style mesh (PyVista's PolyData) a pyvista.PolyData as `ibfvs
-    topology` writes it. min_strength: a line is kept where the flow
-    converges onto it (or diverges) at least this fraction of the field's
-    rate; min_length: lines at least this many edges long."""
-    mesh_object = hasattr(source, "points") and hasattr(source, "faces")
+    VTK-style mesh, a file or a scene; options the scene keys: field,
+    blocks, reverse, time, ...). Returns a Topology of numpy arrays, or for
+    a PyVista mesh a pyvista.PolyData as `ibfvs topology` writes it; for a
+    series (several time steps) a list of them, one a step, each feature
+    keeping its id from step to step. feature_scale: the significance
+    scale, a fraction of the surface's size (a saddle and a node closer
+    cancel; lines are measured in it); min_strength: a line is kept where its
+    neighbours converge onto it (or diverge) by e^min_strength at least;
+    min_length: lines at least this many scales long. Vectors that are not
+    finite are set to zero with a RuntimeWarning (what Animation's
+    `warnings` lists)."""
+    import warnings as _warnings
+
+    pyvista_mesh = type(source).__module__.split(".")[0] == "pyvista"
     args = _source(source, triangles, vectors, options)
+    limits = (float(feature_scale), float(min_strength), float(min_length))
     if args[0] == "file":
-        found = _ibfvs.topology(args[1], _options(options), float(min_strength), float(min_length))
+        found = _ibfvs.topology(args[1], _options(options), *limits)
     else:
         _, points, tris, point_arrays, cell_arrays, name = args
-        found = _ibfvs.topology(points, tris, point_arrays, cell_arrays, _options(options), name,
-                                float(min_strength), float(min_length))
-    result = Topology(found)
-    return result.to_pyvista() if mesh_object else result
+        found = _ibfvs.topology(points, tris, point_arrays, cell_arrays, _options(options), name, *limits)
+    for problem in found["warnings"]:
+        _warnings.warn(f"ibfvs: {problem}", RuntimeWarning, stacklevel=2)
+    steps = [Topology(step) for step in found["steps"]]
+    if pyvista_mesh:
+        steps = [step.to_pyvista() for step in steps]
+    return steps[0] if len(steps) == 1 else steps
+

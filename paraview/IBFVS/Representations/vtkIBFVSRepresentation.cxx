@@ -70,6 +70,7 @@ IBFVS_FORWARD(Sharpen, double)
 IBFVS_FORWARD(Resample, int)
 IBFVS_FORWARD(FieldFrame, int)
 IBFVS_FORWARD(Seed, int)
+IBFVS_FORWARD(Overlay, int)
 #undef IBFVS_FORWARD
 
 void vtkIBFVSRepresentation::SetFramesPerStep(int frames) {

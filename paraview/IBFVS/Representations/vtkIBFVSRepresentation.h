@@ -45,6 +45,7 @@ class IBFVSREPRESENTATIONS_EXPORT vtkIBFVSRepresentation
   void SetResample(int mode);     // ibfvs::Resample
   void SetFieldFrame(int frame);  // ibfvs::FieldFrame
   void SetSeed(int seed);
+  void SetOverlay(int overlay);  // ibfvs::Overlay
   /// Texture frames a change of the data (a time step) is given at least.
   void SetFramesPerStep(int frames);
   /// Starts the texture afresh (the panel's Restart Texture button).

@@ -1,12 +1,13 @@
 // Filters > Skin-Friction Topology: a vector field's critical points and its
 // separation and attachment lines on any surface ParaView holds (a
-// multiblock of OpenFOAM patches too), as `ibfvs topology` writes them
-// (docs/cfd.md): a vertex per critical point, a polyline per line; cell
-// arrays kind (1 saddle, 2 attracting node, 3 repelling node, 4 attracting
-// focus, 5 repelling focus, 6 centre, 10 separation line, 11 attachment
-// line) and strength, point arrays index, magnitude, eigenvalues and
-// Normals. It asks for the time step the pipeline asks for, so it plays
-// with transient data like any filter.
+// multiblock of OpenFOAM patches too), laid out as `ibfvs topology` writes
+// them (ibfvs/core/fields/topology_layout.h, the one layout): a vertex per
+// critical point, a polyline per line; cell arrays kind, id, strength,
+// length, origin and colour (the kinds' colours: shown as they are with Map
+// Scalars off), point arrays index, magnitude, eigenvalues and Normals. It
+// asks for the time step the pipeline asks for, so it plays with transient
+// data like any filter; a feature keeps its id from a time step to the
+// next (or the one before) while it lasts.
 #ifndef vtkIBFVSTopologyFilter_h
 #define vtkIBFVSTopologyFilter_h
 
@@ -25,18 +26,23 @@ class IBFVSREPRESENTATIONS_EXPORT vtkIBFVSTopologyFilter : public vtkPolyDataAlg
   vtkGetMacro(Reverse, bool);
   vtkBooleanMacro(Reverse, bool);
 
-  /// A line is kept where the flow converges onto it (or diverges) at
-  /// least this fraction of the field's RMS rate.
+  /// The significance scale, a fraction of the surface's size
+  /// (ibfvs::TopologyOptions::scale).
+  vtkSetClampMacro(FeatureScale, double, 1e-6, 1.0);
+  vtkGetMacro(FeatureScale, double);
+
+  /// A line is kept where its neighbours converge onto it (diverge from it)
+  /// by at least e^this along it.
   vtkSetClampMacro(MinimumStrength, double, 0.0, 1e6);
   vtkGetMacro(MinimumStrength, double);
 
-  /// A line is kept when it is at least this many mean edges long.
+  /// A line is kept when it is at least this many scales long.
   vtkSetClampMacro(MinimumLength, double, 0.0, 1e9);
   vtkGetMacro(MinimumLength, double);
 
  protected:
   vtkIBFVSTopologyFilter();
-  ~vtkIBFVSTopologyFilter() override = default;
+  ~vtkIBFVSTopologyFilter() override;
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
@@ -44,8 +50,12 @@ class IBFVSREPRESENTATIONS_EXPORT vtkIBFVSTopologyFilter : public vtkPolyDataAlg
   vtkIBFVSTopologyFilter(const vtkIBFVSTopologyFilter&) = delete;
   void operator=(const vtkIBFVSTopologyFilter&) = delete;
   bool Reverse = false;
+  double FeatureScale;
   double MinimumStrength;
   double MinimumLength;
+  // The last time step's features, for their ids at the next.
+  class Previous;
+  Previous* Last = nullptr;
 };
 
 #endif

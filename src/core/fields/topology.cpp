@@ -10,6 +10,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "ibfvs/core/fields/linear2.h"
+#include "ibfvs/core/fields/surface_field.h"
 #include "ibfvs/core/support/error.h"
 
 namespace ibfvs {
@@ -28,11 +30,6 @@ struct Vec2 {
   double x = 0, y = 0;
 };
 
-struct Frame {  // a triangle's plane: origin, two unit axes
-  glm::dvec3 origin, e1, e2;
-  [[nodiscard]] Vec2 of(const glm::dvec3& v) const { return {glm::dot(v, e1), glm::dot(v, e2)}; }
-};
-
 // The distance from the origin to the triangle (a, b, c) in the plane.
 double origin_distance(const Vec2& a, const Vec2& b, const Vec2& c) {
   const auto side = [](const Vec2& p, const Vec2& q) { return p.x * q.y - p.y * q.x; };
@@ -46,36 +43,27 @@ double origin_distance(const Vec2& a, const Vec2& b, const Vec2& c) {
   return std::min({to_segment(a, b), to_segment(b, c), to_segment(c, a)});
 }
 
-void classify(double a, double b, double c, double d, CriticalPoint& p) {
-  // J = [a b; c d]
-  const double trace = a + d, det = a * d - b * c;
-  const double disc = trace * trace - 4.0 * det;
-  if (det < 0.0) {
-    const double root = std::sqrt(disc);
+void classify(const Mat2& j, CriticalPoint& p) {
+  const Eigen2 e = eigen2(j);
+  p.eigen_real = e.value;
+  p.eigen_imag = e.imag;
+  if (j.det() < 0.0) {
     p.kind = CriticalKind::Saddle;
     p.index = -1;
-    p.eigen_real = {0.5 * (trace - root), 0.5 * (trace + root)};
-    p.eigen_imag = {0.0, 0.0};
     return;
   }
   p.index = 1;
-  if (disc >= 0.0) {
-    const double root = std::sqrt(disc);
-    p.kind = trace < 0.0 ? CriticalKind::AttractingNode : CriticalKind::RepellingNode;
-    p.eigen_real = {0.5 * (trace - root), 0.5 * (trace + root)};
-    p.eigen_imag = {0.0, 0.0};
+  if (e.real) {
+    p.kind = j.trace() < 0.0 ? CriticalKind::AttractingNode : CriticalKind::RepellingNode;
     return;
   }
-  const double im = 0.5 * std::sqrt(-disc);
-  p.eigen_real = {0.5 * trace, 0.5 * trace};
-  p.eigen_imag = {-im, im};
   // A centre where the spiralling is under a thousandth of the turning:
   // what the discrete field makes of a pure turning (1.6e-4 on the jittered
   // globe of the tests, its vectors tangent to the vertex normals).
-  if (std::abs(0.5 * trace) <= 1e-3 * im)
+  if (std::abs(e.value[0]) <= 1e-3 * e.imag[1])
     p.kind = CriticalKind::Centre;
   else
-    p.kind = trace < 0.0 ? CriticalKind::AttractingFocus : CriticalKind::RepellingFocus;
+    p.kind = j.trace() < 0.0 ? CriticalKind::AttractingFocus : CriticalKind::RepellingFocus;
 }
 
 }  // namespace
@@ -92,6 +80,16 @@ std::span<const KindStyle> kind_styles() {
       {11, "attachment line", {30, 90, 255}},
   };
   return kStyles;
+}
+
+std::array<unsigned char, 3> kind_colour(int kind) {
+  for (const KindStyle& k : kind_styles())
+    if (k.kind == kind) return k.rgb;
+  return {255, 255, 255};
+}
+
+double CriticalPoint::strength() const {
+  return std::max(std::abs(eigen_real[0]), std::abs(eigen_real[1]));
 }
 
 const char* kind_name(CriticalKind kind) {
@@ -158,25 +156,24 @@ std::vector<glm::vec3> tangent_vectors(const TriMesh& mesh, std::span<const glm:
 }
 
 CriticalPoints find_critical_points(const TriMesh& mesh, std::span<const glm::vec3> raw) {
-  check_topology_input(mesh, raw);
-  const std::vector<glm::vec3> vectors = tangent_vectors(mesh, raw);
+  return find_critical_points(SurfaceField(mesh, raw));
+}
+
+CriticalPoints find_critical_points(const SurfaceField& field) {
+  const TriMesh& mesh = field.mesh();
   CriticalPoints out;
-  double edge_sum = 0.0;
-  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+  for (std::uint32_t f = 0; f < field.triangle_count(); ++f) {
     const Triangle& t = mesh.triangles[f];
-    const glm::dvec3 p0(mesh.positions[t[0]]), p1(mesh.positions[t[1]]), p2(mesh.positions[t[2]]);
-    const glm::dvec3 u = p1 - p0, v = p2 - p0;
-    edge_sum += glm::length(u);
-    const glm::dvec3 n = glm::cross(u, v);
-    const double area2 = glm::length(n);
-    if (!(area2 > 1e-12 * glm::dot(u, u) + 1e-300)) {
+    const TriangleFrame& frame = field.frame(f);
+    if (!frame.valid) {
       ++out.degenerate_triangles;
       continue;
     }
-    Frame frame{p0, glm::normalize(u), {}};
-    frame.e2 = glm::cross(n / area2, frame.e1);
-    const Vec2 w0 = frame.of(glm::dvec3(vectors[t[0]])), w1 = frame.of(glm::dvec3(vectors[t[1]])),
-               w2 = frame.of(glm::dvec3(vectors[t[2]]));
+    const glm::dvec3 p0(mesh.positions[t[0]]), p1(mesh.positions[t[1]]), p2(mesh.positions[t[2]]);
+    const glm::dvec3 u = p1 - p0, v = p2 - p0;
+    const auto c0 = frame.of(field.tangent(t[0])), c1 = frame.of(field.tangent(t[1])),
+               c2 = frame.of(field.tangent(t[2]));
+    const Vec2 w0{c0[0], c0[1]}, w1{c1[0], c1[1]}, w2{c2[0], c2[1]};
     if (w0.x == 0 && w0.y == 0 && w1.x == 0 && w1.y == 0 && w2.x == 0 && w2.y == 0) {
       ++out.zero_triangles;
       continue;
@@ -198,20 +195,14 @@ CriticalPoints find_critical_points(const TriMesh& mesh, std::span<const glm::ve
     if (s < -kOnEdge || r < -kOnEdge || b0 < -kOnEdge) continue;
     CriticalPoint p;
     p.triangle = f;
-    p.normal = glm::vec3(n / area2);
+    p.normal = glm::vec3(frame.normal);
     p.position = glm::vec3(p0 + std::clamp(s, 0.0, 1.0) * u + std::clamp(r, 0.0, 1.0) * v);
-    // J = M X^-1, X the corners' offsets in the plane's axes.
-    const Vec2 a = frame.of(u), b = frame.of(v);
-    const double xdet = a.x * b.y - b.x * a.y;
-    const double i00 = b.y / xdet, i01 = -b.x / xdet, i10 = -a.y / xdet, i11 = a.x / xdet;
-    classify(m00 * i00 + m01 * i10, m00 * i01 + m01 * i11, m10 * i00 + m11 * i10,
-             m10 * i01 + m11 * i11, p);
+    classify(field.jacobian(f), p);
     out.points.push_back(p);
   }
   // A zero on an edge or a corner is found by each triangle there: one kept
   // (neighbours looked up in a grid of cells as wide as the merge distance).
-  const double merge = std::max(kMerge * edge_sum / std::max<std::size_t>(mesh.triangles.size(), 1),
-                                std::numeric_limits<double>::min());
+  const double merge = std::max(kMerge * field.mean_edge(), std::numeric_limits<double>::min());
   std::unordered_map<std::uint64_t, std::vector<std::size_t>> grid;
   const auto cell = [&](const glm::vec3& p, int dx, int dy, int dz) {
     const auto c = [&](float x, int d) {

@@ -5,8 +5,11 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <type_traits>
+#include <vector>
 
 #include "ibfvs/core/fields/topology.h"
+#include "ibfvs/core/fields/topology_layout.h"
 #include "ibfvs/core/support/error.h"
 
 namespace ibfvs {
@@ -52,6 +55,11 @@ std::string topology_summary(const FlowTopology& t, const TriMesh& mesh) {
   else
     s += " (an open surface, " + counted(shape.boundary_loops, "boundary loop") +
          ": no sum to expect)";
+  if (t.critical.cancelled > 0)
+    s += "; " + std::to_string(t.critical.cancelled) +
+         " zeros cancelled in pairs closer than the scale";
+  if (t.critical.on_lines > 0)
+    s += "; " + std::to_string(t.critical.on_lines) + " zeros on lines of zeros";
   if (t.critical.zero_triangles > 0)
     s += "; the field is zero on " + std::to_string(t.critical.zero_triangles) + " triangles";
   if (t.critical.degenerate_triangles > 0)
@@ -60,71 +68,102 @@ std::string topology_summary(const FlowTopology& t, const TriMesh& mesh) {
   return s;
 }
 
-void write_topology_vtp(const FlowTopology& t, const std::string& path) {
-  std::ostringstream xyz, normal, index, magnitude, eigen, kind, strength, vconn, voff, lconn, loff;
-  auto number = [](double v) {
-    char b[32];
-    std::snprintf(b, sizeof b, "%.9g ", v);
-    return std::string(b);
+TopologyLayout topology_layout(const FlowTopology& t, std::string summary) {
+  TopologyLayout g;
+  g.summary = std::move(summary);
+  const auto cell = [&](int kind, int id, int origin, double strength, double length) {
+    g.kind.push_back(kind);
+    g.id.push_back(id);
+    g.origin.push_back(origin);
+    g.strength.push_back(strength);
+    g.length.push_back(length);
+    const auto rgb = kind_colour(kind);
+    g.colour.insert(g.colour.end(), rgb.begin(), rgb.end());
   };
-  std::size_t id = 0;
+  std::int64_t id = 0;
   for (const CriticalPoint& p : t.critical.points) {
-    xyz << number(p.position.x) << number(p.position.y) << number(p.position.z);
-    normal << number(p.normal.x) << number(p.normal.y) << number(p.normal.z);
-    index << p.index << ' ';
-    magnitude << "0 ";
-    eigen << number(p.eigen_real[0]) << number(p.eigen_imag[0]) << number(p.eigen_real[1])
-          << number(p.eigen_imag[1]);
-    kind << static_cast<int>(p.kind) << ' ';
-    strength << number(std::max(std::abs(p.eigen_real[0]), std::abs(p.eigen_real[1])));
-    vconn << id++ << ' ';
-    voff << id << ' ';
+    g.points.insert(g.points.end(), {p.position.x, p.position.y, p.position.z});
+    g.normals.insert(g.normals.end(), {p.normal.x, p.normal.y, p.normal.z});
+    g.index.push_back(p.index);
+    g.magnitude.push_back(0.0f);
+    g.eigenvalues.insert(g.eigenvalues.end(),
+                         {p.eigen_real[0], p.eigen_imag[0], p.eigen_real[1], p.eigen_imag[1]});
+    g.vert_connectivity.push_back(id++);
+    g.vert_offsets.push_back(id);
+    cell(static_cast<int>(p.kind), p.id, 0, p.strength(), 0.0);
   }
-  std::size_t line_end = 0;
+  std::int64_t end = 0;
   for (const FeatureLine& l : t.lines.lines) {
-    const std::size_t first = id;
+    const std::int64_t first = id;
     for (const LinePoint& p : l.points) {
-      xyz << number(p.position.x) << number(p.position.y) << number(p.position.z);
-      normal << number(p.normal.x) << number(p.normal.y) << number(p.normal.z);
-      index << "0 ";
-      magnitude << number(p.magnitude);
-      eigen << number(p.eigen[0]) << "0 " << number(p.eigen[1]) << "0 ";
-      lconn << id++ << ' ';
+      g.points.insert(g.points.end(), {p.position.x, p.position.y, p.position.z});
+      g.normals.insert(g.normals.end(), {p.normal.x, p.normal.y, p.normal.z});
+      g.index.push_back(0);
+      g.magnitude.push_back(p.magnitude);
+      g.eigenvalues.insert(g.eigenvalues.end(), {p.eigen[0], 0.0, p.eigen[1], 0.0});
+      g.line_connectivity.push_back(id++);
     }
-    if (l.closed) lconn << first << ' ';
-    line_end += l.points.size() + (l.closed ? 1 : 0);
-    loff << line_end << ' ';
-    kind << static_cast<int>(l.kind) << ' ';
-    strength << number(l.strength);
+    if (l.closed && !l.points.empty()) g.line_connectivity.push_back(first);
+    end += static_cast<std::int64_t>(l.points.size()) + (l.closed && !l.points.empty() ? 1 : 0);
+    g.line_offsets.push_back(end);
+    cell(static_cast<int>(l.kind), l.id, static_cast<int>(l.origin), l.strength, l.length);
   }
+  return g;
+}
+
+void write_topology_vtp(const TopologyLayout& g, const std::string& path) {
+  const auto join = [](const auto& values) {
+    std::string s;
+    char b[40];
+    for (const auto v : values) {
+      if constexpr (std::is_floating_point_v<std::decay_t<decltype(v)>>)
+        std::snprintf(b, sizeof b, "%.9g ", static_cast<double>(v));
+      else
+        std::snprintf(b, sizeof b, "%lld ", static_cast<long long>(v));
+      s += b;
+    }
+    return s;
+  };
   std::ostringstream out;
   out << "<?xml version=\"1.0\"?>\n"
          "<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
-         "  <PolyData>\n"
-      << "    <Piece NumberOfPoints=\"" << id << "\" NumberOfVerts=\"" << t.critical.points.size()
-      << "\" NumberOfLines=\"" << t.lines.lines.size()
+         "  <PolyData>\n";
+  // The summary as field data: a string array of one value (its characters'
+  // codes, as VTK's XML writer stores strings, each ended by a 0).
+  std::vector<int> chars(g.summary.begin(), g.summary.end());
+  for (int& c : chars) c = static_cast<unsigned char>(c);
+  chars.push_back(0);
+  out << "    <FieldData>\n        <DataArray type=\"String\" Name=\"summary\" "
+         "NumberOfTuples=\"1\" format=\"ascii\">\n"
+      << join(chars) << "\n        </DataArray>\n    </FieldData>\n";
+  out << "    <Piece NumberOfPoints=\"" << g.point_count() << "\" NumberOfVerts=\""
+      << g.vert_offsets.size() << "\" NumberOfLines=\"" << g.line_offsets.size()
       << "\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n";
   out << "      <Points>\n";
-  data_array(out, "Float32", "Points", 3, xyz.str());
+  data_array(out, "Float32", "Points", 3, join(g.points));
   out << "      </Points>\n      <PointData Scalars=\"index\" Normals=\"Normals\">\n";
-  data_array(out, "Int32", "index", 1, index.str());
-  data_array(out, "Float32", "magnitude", 1, magnitude.str());
-  data_array(out, "Float64", "eigenvalues", 4, eigen.str());
-  data_array(out, "Float32", "Normals", 3, normal.str());
+  data_array(out, "Int32", "index", 1, join(g.index));
+  data_array(out, "Float32", "magnitude", 1, join(g.magnitude));
+  data_array(out, "Float64", "eigenvalues", 4, join(g.eigenvalues));
+  data_array(out, "Float32", "Normals", 3, join(g.normals));
   out << "      </PointData>\n      <CellData Scalars=\"kind\">\n";
-  data_array(out, "Int32", "kind", 1, kind.str());
-  data_array(out, "Float64", "strength", 1, strength.str());
+  data_array(out, "Int32", "kind", 1, join(g.kind));
+  data_array(out, "Int32", "id", 1, join(g.id));
+  data_array(out, "Float64", "strength", 1, join(g.strength));
+  data_array(out, "Float64", "length", 1, join(g.length));
+  data_array(out, "Int32", "origin", 1, join(g.origin));
+  data_array(out, "UInt8", "colour", 3, join(g.colour));
   out << "      </CellData>\n";
-  if (!t.critical.points.empty()) {
+  if (!g.vert_offsets.empty()) {
     out << "      <Verts>\n";
-    data_array(out, "Int64", "connectivity", 1, vconn.str());
-    data_array(out, "Int64", "offsets", 1, voff.str());
+    data_array(out, "Int64", "connectivity", 1, join(g.vert_connectivity));
+    data_array(out, "Int64", "offsets", 1, join(g.vert_offsets));
     out << "      </Verts>\n";
   }
-  if (!t.lines.lines.empty()) {
+  if (!g.line_offsets.empty()) {
     out << "      <Lines>\n";
-    data_array(out, "Int64", "connectivity", 1, lconn.str());
-    data_array(out, "Int64", "offsets", 1, loff.str());
+    data_array(out, "Int64", "connectivity", 1, join(g.line_connectivity));
+    data_array(out, "Int64", "offsets", 1, join(g.line_offsets));
     out << "      </Lines>\n";
   }
   out << "    </Piece>\n  </PolyData>\n</VTKFile>\n";

@@ -435,6 +435,7 @@ std::vector<SceneKey> named(std::vector<SceneKey> keys) {
       {"resample", "Resample"},
       {"field_frame", "FieldFrame"},
       {"seed", "Seed"},
+      {"overlay", "Overlay"},
   };
   for (SceneKey& key : keys) {
     key.label = key.name;

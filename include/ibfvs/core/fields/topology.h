@@ -1,37 +1,55 @@
 #pragma once
-// The topology of a tangent vector field on a triangle mesh (issue 64): its
-// critical points, found and classified as Helman and Hesselink did for flow
-// data ("Representation and display of vector field topology in fluid flow
-// data sets", IEEE Computer 22(8):27-36, 1989): a critical point is a zero
-// of the field, its kind given by the eigenvalues of the field's Jacobian
-// there (saddle: real, opposite signs; node: real, one sign; focus:
-// complex; centre: imaginary).
-// On a surface, the field is the piecewise-linear one: on each triangle, the
-// linear interpolation of its corners' vectors (tangent to their vertex
-// normals: tangent_vectors) projected into the triangle's plane, which has at most one zero and a
-// constant Jacobian. A zero inside a triangle (or on its edges or corners, counted once) is a
-// critical point. On a closed surface their indices sum to the Euler
+// The skin-friction topology of a tangent vector field on a triangle mesh
+// (issues 64 and 73): its critical points and its separation and attachment
+// lines, as an aerodynamicist reads them off an oil-flow picture.
+//
+// Critical points (Helman and Hesselink, "Representation and display of
+// vector field topology in fluid flow data sets", IEEE Computer 22(8):27-36,
+// 1989): the field linear over each triangle (its corners' vectors, tangent
+// to their vertex normals, projected into its plane) has at most one zero
+// there, classified by the eigenvalues of its Jacobian (saddle: real,
+// opposite signs; node: real, one sign; focus: complex; centre:
+// imaginary). On a closed surface the indices sum to the Euler
 // characteristic (Poincare-Hopf), which the tests check.
 //
-// Separation and attachment lines: the parallel-vectors form of the
-// eigenvector method of Kenwright, Henze and Levit ("Feature extraction of
-// separation and attachment lines", IEEE TVCG 5(2):135-144, 1999), as
-// Peikert and Roth wrote it ("The parallel vectors operator", IEEE
-// Visualization 1999): a line lies where the wall flow w is parallel to an
-// eigenvector of its Jacobian J, i.e. where w x Jw = 0; it is a separation
-// line where the other eigenvalue is negative and below the first (the
-// neighbouring flow converges onto it), an attachment line where it is
-// positive and above (it diverges from it). Why this method: it finds open
-// separation, which starts at no saddle (the common kind on car bodies,
-// wings and fans), and closed separation around a body, which integrating
-// separatrices from saddles misses; and it needs only the Jacobian at the
-// vertices (the area-weighted mean of the triangles' constant Jacobians,
-// tangent to the vertex's normal), so it runs on any triangle mesh in one
-// pass. The scalar n . (w x Jw) at the vertices, linear over each triangle,
-// gives the lines as its zero contour (no eigenvector orientation to fix,
-// unlike w x e); segments are kept where the transverse rate is at least
-// `min_strength` of the field's rate and chained across the edges they
-// share into polylines of at least `min_length` edges.
+// Lines are skin-friction lines, found by following the field
+// (surface_field.h traces them; only the field's direction enters, so
+// scaling each vertex's vector by a positive factor of its own changes no
+// line): a separation line is one onto which its neighbours converge, an
+// attachment line one from which they diverge (Lighthill, "Attachment and
+// separation in three-dimensional flow", 1963; Tobak and Peake, "Topology of
+// three-dimensional separated flows", Annu. Rev. Fluid Mech. 14, 1982).
+// Four kinds are found (feature_lines.cpp):
+//  - separatrices, integrated from the saddles (Helman and Hesselink): the
+//    outgoing ones separation lines, the incoming ones attachment lines; a
+//    line from one saddle into another (a saddle-to-saddle connection)
+//    emanates from the first: a separation line, found once;
+//  - closed orbits, the fixed points of a first-return (Poincare) map on an
+//    edge that a trace crosses again and again (Wischgoll and Scheuermann,
+//    "Detection and visualization of closed streamlines in planar flows",
+//    IEEE TVCG 7(2), 2001): attracting ones separation lines, repelling ones
+//    attachment lines (Surana, Grunberg and Haller, "Exact theory of
+//    three-dimensional flow separation. Part 1. Steady separation", J. Fluid
+//    Mech. 564, 2006: separation lines are unstable manifolds of saddles and
+//    limit cycles of the wall shear);
+//  - open separation and attachment, which start at no saddle: traces from
+//    where the field's lines converge (or diverge) strongly and where they
+//    run straight (Kenwright, Henze and Levit's eigenvector criterion, "Feature
+//    extraction of separation and attachment lines", IEEE TVCG 5(2), 1999, in
+//    Peikert and Roth's parallel-vectors form, here only a seed), followed
+//    forward (backward for attachment) while their neighbours keep
+//    converging onto them: an attracting line draws the trace onto itself;
+//  - lines of zeros, where the field vanishes along a curve (2-D and
+//    axisymmetric separation): edges whose two ends flow towards each other
+//    (or away), chained; separation where the flow on both sides comes in.
+//    The critical points that the discrete field scatters along such a
+//    line belong to it, not to the points.
+// Significance: one scale (a fraction of the surface's size) cancels what a
+// user would call noise: a saddle and a node or focus closer than it cancel
+// (their indices sum to 0), lines shorter than it are dropped, and a line
+// is kept when its neighbours converge onto it (diverge from it) by at
+// least e^min_strength along it, measured against the flow's own
+// compression along it (an even contraction into a node draws no line).
 
 #include <array>
 #include <cstddef>
@@ -45,7 +63,9 @@
 
 namespace ibfvs {
 
-/// The kinds of issue 64's `kind` array (1-6: critical points).
+class SurfaceField;
+
+/// The kinds of the `kind` array (1-6: critical points).
 enum class CriticalKind : int {
   Saddle = 1,
   AttractingNode = 2,
@@ -65,70 +85,102 @@ struct CriticalPoint {
   CriticalKind kind = CriticalKind::Saddle;
   int index = 1;  ///< Poincare index: -1 for a saddle, +1 otherwise
   /// The Jacobian's eigenvalues, real and imaginary parts (1/time in the
-  /// field's units per the mesh's length).
+  /// field's units per the mesh's length), real parts ascending.
   std::array<double, 2> eigen_real{}, eigen_imag{};
+  int id = -1;  ///< the feature's id: kept from step to step (TopologyTracker)
+  /// The largest absolute real part of the eigenvalues (the `strength` array).
+  [[nodiscard]] double strength() const;
 };
 
 struct CriticalPoints {
   std::vector<CriticalPoint> points;
+  /// The sum of the indices of every zero of the field found, before any
+  /// was cancelled or taken into a line (what Poincare-Hopf constrains).
   int index_sum = 0;
   /// Triangles with no area, or whose linear field has no isolated zero
   /// (zero or constant along a line): left out and counted.
   std::size_t degenerate_triangles = 0;
   /// Triangles whose three corner vectors are all zero (no direction there).
   std::size_t zero_triangles = 0;
+  /// Zeros left out as insignificant: pairs of a saddle and a node, focus
+  /// or centre closer than the scale (their indices sum to 0).
+  std::size_t cancelled = 0;
+  /// Zeros on a line of zeros, part of that line.
+  std::size_t on_lines = 0;
 };
 
 /// `vectors` less their part along each vertex's normal (the area-weighted
-/// mean of its triangles'): what both finders below work on, so that a
-/// field with a normal part (a near-wall velocity, a vector off a curved
-/// wall) has the zeros of its tangent part.
+/// mean of its triangles'): what the topology works on, so that a field
+/// with a normal part (a near-wall velocity, a vector off a curved wall) has
+/// the zeros of its tangent part.
 std::vector<glm::vec3> tangent_vectors(const TriMesh& mesh, std::span<const glm::vec3> vectors);
 
-/// The critical points of `vectors` (one per vertex of `mesh`). Throws
+/// Every zero of `vectors` (one per vertex of `mesh`), none left out. Throws
 /// InputError when the counts differ or a vector or position is not finite.
 CriticalPoints find_critical_points(const TriMesh& mesh, std::span<const glm::vec3> vectors);
+CriticalPoints find_critical_points(const SurfaceField& field);
 
-/// Issue 64's `kind` for lines.
+/// The `kind` of a line.
 enum class LineKind : int { Separation = 10, Attachment = 11 };
 
 /// "separation line" or "attachment line".
 const char* kind_name(LineKind kind);
+
+/// How a line was found (the `origin` array).
+enum class LineOrigin : int {
+  Separatrix = 1,   ///< from a saddle
+  ClosedOrbit = 2,  ///< a limit cycle
+  Open = 3,         ///< open separation or attachment: from no saddle
+  Zeros = 4,        ///< a line along which the field vanishes
+};
+
+/// "separatrix", "closed orbit", "open", "zeros".
+const char* origin_name(LineOrigin origin);
 
 /// A point on a feature line with the field there.
 struct LinePoint {
   glm::vec3 position{0.0f};
   glm::vec3 normal{0.0f, 0.0f, 1.0f};  ///< the surface's, interpolated
   float magnitude = 0.0f;              ///< |w| (tangent part), interpolated
-  std::array<double, 2> eigen{};       ///< J's real eigenvalues there (0, 0: complex)
+  std::array<double, 2> eigen{};  ///< its triangle's Jacobian's real eigenvalues (0, 0: complex)
 };
 
 struct FeatureLine {
   LineKind kind = LineKind::Separation;
-  std::vector<LinePoint> points;  ///< in order; a closed line repeats no point
+  LineOrigin origin = LineOrigin::Open;
+  std::vector<LinePoint> points;  ///< in the flow's direction; a closed line repeats no point
   bool closed = false;
-  double strength = 0.0;  ///< mean transverse rate along it (1/time, as the eigenvalues)
-  double length = 0.0;    ///< in the mesh's units
+  /// How strongly its neighbours converge onto it (separation) or diverge
+  /// from it (attachment): the natural log of the factor by which their
+  /// distance to it shrinks (grows) along it, less the flow's own
+  /// compression (stretching) along it. Dimensionless; infinite for a line of zeros.
+  double strength = 0.0;
+  double length = 0.0;  ///< in the mesh's units
+  int id = -1;          ///< the feature's id: kept from step to step (TopologyTracker)
 };
 
-struct LineOptions {
-  /// A segment is kept where its transverse rate is at least this fraction
-  /// of the field's rate (the area-weighted RMS of the Jacobian's norm).
-  double min_strength = 0.1;
-  /// A line is kept when it is at least this many mean edges long.
-  double min_length = 4.0;
+/// What counts as a feature (the significance scale).
+struct TopologyOptions {
+  /// The scale, as a fraction of the surface's size (its bounding box's
+  /// diagonal): a saddle and a node or focus closer than it cancel, and
+  /// lines shorter than min_length of it are dropped.
+  double scale = 0.02;
+  /// A line is kept where its neighbours converge onto it (or diverge) by at
+  /// least e^min_strength along it (see FeatureLine::strength).
+  double min_strength = 2.0;
+  /// A line is kept when it is at least this many scales long.
+  double min_length = 1.0;
 };
+
+/// Throws InputError naming the option when one is out of its range
+/// (scale in (0, 1], min_strength and min_length not negative, all finite).
+void check_topology_options(const TopologyOptions& options);
 
 struct FeatureLines {
   std::vector<FeatureLine> lines;
-  double rate = 0.0;       ///< the field's rate that min_strength is a fraction of
+  double scale = 0.0;      ///< the significance scale in the mesh's units
   double mean_edge = 0.0;  ///< the mesh's mean edge length
 };
-
-/// The separation and attachment lines of `vectors` (one per vertex of
-/// `mesh`). Throws InputError as find_critical_points does.
-FeatureLines find_feature_lines(const TriMesh& mesh, std::span<const glm::vec3> vectors,
-                                const LineOptions& options = {});
 
 /// How every front end draws a kind: its `kind` value, name and colour
 /// (sRGB, 0-255): lines red for separation, blue for attachment; points
@@ -139,6 +191,8 @@ struct KindStyle {
   std::array<unsigned char, 3> rgb;
 };
 std::span<const KindStyle> kind_styles();
+/// The colour of a kind (white for one not in the table).
+std::array<unsigned char, 3> kind_colour(int kind);
 
 /// Both: what `ibfvs topology` and the front ends give.
 struct FlowTopology {
@@ -148,24 +202,31 @@ struct FlowTopology {
   [[nodiscard]] std::size_t count(LineKind kind) const;
 };
 
+/// The significant critical points and lines of `vectors` (one per vertex
+/// of `mesh`). Throws InputError for bad input (check_topology_input) or
+/// options (check_topology_options). Ids number the points, then the lines, from 0.
 FlowTopology find_topology(const TriMesh& mesh, std::span<const glm::vec3> vectors,
-                           const LineOptions& options = {});
+                           const TopologyOptions& options = {});
+
+/// Ids that last from step to step of a series: each feature of `next`
+/// takes the id of the feature of `previous` it continues, a new one
+/// (`next_id`, counted up) otherwise. A point continues one of its index
+/// (saddles saddles; nodes, foci and centres each other, its own kind first)
+/// within `reach`; a line continues one of its kind that it lies along (at
+/// least half its points within `reach` of it, the nearest on average).
+/// Each feature of `previous` is continued once: where one splits, the
+/// nearer part keeps its id; where two merge, the nearer one's id goes on.
+/// `reach`: the largest distance a feature moves in a step, in the mesh's
+/// units (the front ends use twice the significance scale).
+void carry_ids(const FlowTopology& previous, FlowTopology& next, int& next_id, double reach);
 
 /// One line: "3 saddles, 2 attracting nodes, ..., 4 separation lines, 1
 /// attachment line; index sum 2 (Euler characteristic 2)", with the
-/// triangles left out when there are any.
+/// triangles left out and the zeros cancelled when there are any.
 std::string topology_summary(const FlowTopology& topology, const TriMesh& mesh);
 
-/// Writes the topology as VTK XML PolyData (ASCII): a vertex per critical
-/// point, a polyline per line; cell array `kind` (1-6, 10, 11) and
-/// `strength`, point arrays `index`, `magnitude`, `eigenvalues` (4
-/// components: real and imaginary part of the first, then the second) and
-/// `Normals` (the surface's there, to lift them off it or orient glyphs).
-/// Throws InputError naming the file when it cannot be written.
-void write_topology_vtp(const FlowTopology& topology, const std::string& path);
-
 /// Checks `vectors` against `mesh` (counts, finite values): the InputError
-/// find_critical_points and find_feature_lines throw.
+/// the topology throws.
 void check_topology_input(const TriMesh& mesh, std::span<const glm::vec3> vectors);
 
 /// V - E + F of the mesh (edges counted once): 2 for a sphere, 0 for a torus.

@@ -1,0 +1,85 @@
+#pragma once
+// The topology's lines as they are found, before their LinePoints
+// (topology.h): shared by the zero lines (zero_lines.cpp) and the traced
+// lines (feature_lines.cpp).
+#include <cstdint>
+#include <optional>
+#include <unordered_map>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "ibfvs/core/fields/surface_field.h"
+#include "ibfvs/core/fields/topology.h"
+
+namespace ibfvs::detail {
+
+/// Lengths the finder works with, from the options and the mesh.
+struct Scales {
+  double scale = 0.0;       ///< the significance scale (options.scale x the size)
+  double merge = 0.0;       ///< a trace this close to a line has joined it
+  double seed_gap = 0.0;    ///< no seed this close to a line of its kind
+  double disk = 0.0;        ///< a trace this close to a kept critical point ends there
+  double connect = 0.0;     ///< a separatrix turning this close to a saddle connects to it
+  double step = 0.0;        ///< the longest tracing step
+  double max_length = 0.0;  ///< the longest trace
+  double min_length = 0.0;  ///< the shortest line kept
+};
+
+Scales scales_of(const SurfaceField& field, const TopologyOptions& options);
+
+/// A line as found: points with their triangles, in the flow's direction.
+struct RawLine {
+  LineKind kind = LineKind::Separation;
+  LineOrigin origin = LineOrigin::Open;
+  bool closed = false;
+  std::vector<TracePoint> points;
+  double strength = 0.0;
+  /// An open line's length traced against its sense from its seed (its
+  /// extension upstream, the less accurate part: a trace that joins it
+  /// there takes its place).
+  double extension = 0.0;
+  double seed_rate = 0.0;  ///< the convergence rate at its seed
+  /// The critical points it starts and ends at (indices of the kept ones).
+  std::optional<std::uint32_t> from_point, to_point;
+};
+
+/// The largest strength a line is given: its neighbours reach it (a line
+/// of zeros) or converge past any measure (e^50).
+inline constexpr double kFullStrength = 50.0;
+
+/// The lines along which the field vanishes: chains of edges whose two ends'
+/// directions are nearly opposite and point towards each other (separation)
+/// or away (attachment), through the points where the cross-flow is zero.
+/// Only lines at least `scales.min_length` long.
+std::vector<RawLine> find_zero_lines(const SurfaceField& field, const Scales& scales);
+
+/// A uniform grid of points for "what is near": cell `cell` wide.
+class PointGrid {
+ public:
+  explicit PointGrid(double cell) : cell_(cell > 0.0 ? cell : 1.0) {}
+  void insert(const glm::dvec3& p, std::uint32_t item);
+  /// Calls visit(item) for every item within the 27 cells about p.
+  template <class Visit>
+  void near(const glm::dvec3& p, Visit visit) const {
+    const auto [x, y, z] = cell_of(p);
+    for (int dx = -1; dx <= 1; ++dx)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dz = -1; dz <= 1; ++dz) {
+          const auto it = cells_.find(key(x + dx, y + dy, z + dz));
+          if (it == cells_.end()) continue;
+          for (const std::uint32_t item : it->second) visit(item);
+        }
+  }
+
+ private:
+  struct Cell {
+    std::int64_t x, y, z;
+  };
+  [[nodiscard]] Cell cell_of(const glm::dvec3& p) const;
+  static std::uint64_t key(std::int64_t x, std::int64_t y, std::int64_t z);
+  double cell_;
+  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells_;
+};
+
+}  // namespace ibfvs::detail

@@ -1,0 +1,260 @@
+// Lines of zeros (topology.h): where the field vanishes along a curve, as the
+// wall shear does along a 2-D or axisymmetric separation line, the flow on
+// either side of it points the opposite way across it. An edge whose ends'
+// directions are nearly opposite and point towards each other (away from
+// each other) crosses a separation (attachment) line of zeros; the crossing
+// is where the linear field's component across the line is zero. The
+// crossings of a triangle's two such edges are joined, and the pieces
+// chained through the edges they share.
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <unordered_map>
+
+#include <glm/geometric.hpp>
+
+#include "topology_detail.h"
+
+namespace ibfvs::detail {
+namespace {
+
+// Two ends' directions at least this far apart (140 degrees) are "nearly
+// opposite": a smooth field turns by a few degrees across an edge; at the
+// mesh's scale an isolated zero turns it by at most 120 degrees over a
+// triangle's three corners, so a whole triangle's worth of such edges
+// only happens across a line.
+const double kOpposite = std::cos(140.0 * 3.14159265358979 / 180.0);
+// Each corner's direction has at least this part across the line: where the
+// flow on either side runs along it in opposite senses (a reversal along
+// the line, not across it), the field vanishes there too but nothing
+// separates.
+constexpr double kAcross = 0.2;
+
+struct Crossing {
+  glm::dvec3 position;
+  std::uint32_t triangle;
+};
+
+std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
+  return static_cast<std::uint64_t>(std::min(a, b)) << 32 | std::max(a, b);
+}
+
+std::optional<Crossing> edge_crossing(const SurfaceField& f, std::uint32_t a, std::uint32_t b,
+                                      std::uint32_t triangle) {
+  const glm::dvec3 &da = f.direction(a), &db = f.direction(b);
+  if (da == glm::dvec3(0.0) || db == glm::dvec3(0.0)) return std::nullopt;
+  if (glm::dot(da, db) > kOpposite) return std::nullopt;
+  const glm::dvec3 pa(f.mesh().positions[a]), pb(f.mesh().positions[b]);
+  // The cross-flow along the axis the two directions share: zero where the
+  // linear field's part along it is.
+  const glm::dvec3 axis = glm::normalize(da - db);
+  const double fa = glm::dot(f.tangent(a), axis), fb = glm::dot(f.tangent(b), axis);
+  if (!(fa > 0.0) || !(fb < 0.0)) return std::nullopt;
+  const double t = fa / (fa - fb);
+  return Crossing{pa + t * (pb - pa), triangle};
+}
+
+// The kind of the piece from c0 to c1 in triangle t: separation where every
+// corner's flow heads for it, attachment where every one heads away.
+std::optional<LineKind> piece_kind(const SurfaceField& f, std::uint32_t t, const glm::dvec3& c0,
+                                   const glm::dvec3& c1) {
+  const TriangleFrame& fr = f.frame(t);
+  glm::dvec3 along = c1 - c0;
+  const double len = glm::length(along);
+  if (!(len > 0.0)) return std::nullopt;
+  along /= len;
+  const glm::dvec3 across = glm::cross(fr.normal, along);
+  const glm::dvec3 mid = 0.5 * (c0 + c1);
+  int in = 0, out = 0;
+  const Triangle& tri = f.mesh().triangles[t];
+  for (int k = 0; k < 3; ++k) {
+    const double side = glm::dot(glm::dvec3(f.mesh().positions[tri[k]]) - mid, across);
+    const double flow = glm::dot(f.corner_directions(t)[k], across);
+    // Flow along the line, not across it: a reversal along it, no separation.
+    if (std::abs(flow) < kAcross) return std::nullopt;
+    if (side * flow < 0.0)
+      ++in;
+    else
+      ++out;
+  }
+  if (in == 3) return LineKind::Separation;
+  if (out == 3) return LineKind::Attachment;
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::vector<RawLine> find_zero_lines(const SurfaceField& f, const Scales& scales) {
+  const TriMesh& mesh = f.mesh();
+  std::unordered_map<std::uint64_t, Crossing> crossings;
+  std::unordered_map<std::uint64_t, bool> tried;
+  const auto crossing = [&](std::uint32_t a, std::uint32_t b, std::uint32_t t) -> const Crossing* {
+    const std::uint64_t key = edge_key(a, b);
+    if (const auto it = tried.find(key); it != tried.end())
+      return it->second ? &crossings.at(key) : nullptr;
+    const std::optional<Crossing> c = edge_crossing(f, a, b, t);
+    tried.emplace(key, c.has_value());
+    if (!c) return nullptr;
+    return &crossings.emplace(key, *c).first->second;
+  };
+  // A piece per triangle with two crossings of one kind.
+  struct Piece {
+    std::uint64_t end[2];
+    LineKind kind;
+  };
+  std::vector<Piece> pieces;
+  for (std::uint32_t t = 0; t < f.triangle_count(); ++t) {
+    if (!f.frame(t).valid) continue;
+    const Triangle& tri = mesh.triangles[t];
+    std::uint64_t keys[3];
+    const Crossing* found[3];
+    int n = 0;
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t a = tri[k], b = tri[(k + 1) % 3];
+      if (const Crossing* c = crossing(a, b, t)) {
+        keys[n] = edge_key(a, b);
+        found[n++] = c;
+      }
+    }
+    if (n != 2) continue;
+    if (const auto kind = piece_kind(f, t, found[0]->position, found[1]->position))
+      pieces.push_back({{keys[0], keys[1]}, *kind});
+  }
+  // Chains through the edges the pieces share.
+  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> at;
+  for (std::uint32_t i = 0; i < pieces.size(); ++i)
+    for (const std::uint64_t e : pieces[i].end) at[e].push_back(i);
+  std::vector<char> used(pieces.size(), 0);
+  const auto next = [&](std::uint32_t from, std::uint64_t edge) -> std::optional<std::uint32_t> {
+    for (const std::uint32_t k : at[edge])
+      if (k != from && !used[k] && pieces[k].kind == pieces[from].kind) return k;
+    return std::nullopt;
+  };
+  std::vector<RawLine> chains;
+  for (std::uint32_t start = 0; start < pieces.size(); ++start) {
+    if (used[start]) continue;
+    used[start] = 1;
+    std::vector<std::uint64_t> back{pieces[start].end[0]}, on{pieces[start].end[1]};
+    bool closed = false;
+    for (int dir = 0; dir < 2 && !closed; ++dir) {
+      std::vector<std::uint64_t>& path = dir == 0 ? on : back;
+      std::uint32_t here = start;
+      while (const auto k = next(here, path.back())) {
+        used[*k] = 1;
+        const Piece& g = pieces[*k];
+        const std::uint64_t far = g.end[0] == path.back() ? g.end[1] : g.end[0];
+        if (far == (dir == 0 ? back.front() : on.front())) {
+          closed = true;
+          break;
+        }
+        path.push_back(far);
+        here = *k;
+      }
+    }
+    RawLine line;
+    line.kind = pieces[start].kind;
+    line.origin = LineOrigin::Zeros;
+    line.closed = closed;
+    line.strength = kFullStrength;
+    std::vector<std::uint64_t> keys(back.rbegin(), back.rend());
+    keys.insert(keys.end(), on.begin(), on.end());
+    double length = 0.0;
+    for (const std::uint64_t key : keys) {
+      const Crossing& c = crossings.at(key);
+      if (!line.points.empty()) length += glm::length(c.position - line.points.back().position);
+      line.points.push_back({c.position, c.triangle, length});
+    }
+    if (line.points.size() >= 2) chains.push_back(std::move(line));
+  }
+  // Where a vertex beside the line flows along it (the field's part along
+  // the line, which a 3-D solver's round-off makes, outweighs its part
+  // across there), the chain breaks for a triangle or two: chains of a kind
+  // whose ends are that close are one line. The closest ends first.
+  const double gap = 4.0 * f.mean_edge();
+  // An end's direction: from a point a little back along its chain.
+  const auto tangent_at = [](const RawLine& l, bool back) {
+    const std::size_t n = l.points.size(), k = std::min<std::size_t>(n - 1, 3);
+    const glm::dvec3 d = back ? l.points[n - 1].position - l.points[n - 1 - k].position
+                              : l.points[0].position - l.points[k].position;
+    const double len = glm::length(d);
+    return len > 0.0 ? d / len : d;
+  };
+  // Whether the gap from end a (heading out along ta) to end b (heading out
+  // along tb) continues both: it runs on from a and into b.
+  const auto continues = [](const glm::dvec3& a, const glm::dvec3& ta, const glm::dvec3& b,
+                            const glm::dvec3& tb) {
+    const glm::dvec3 g = b - a;
+    const double len = glm::length(g);
+    if (!(len > 0.0)) return true;
+    return glm::dot(g / len, ta) > 0.7 && glm::dot(-g / len, tb) > 0.7;
+  };
+  for (bool joined = true; joined;) {
+    joined = false;
+    double best = gap;
+    std::size_t bi = 0, bj = 0;
+    int how = -1;  // 0: i's back to j's front, 1: back-back, 2: front-front, 3: i closes
+    for (std::size_t i = 0; i < chains.size(); ++i) {
+      if (chains[i].closed) continue;
+      const glm::dvec3 ib = chains[i].points.back().position,
+                       ifr = chains[i].points.front().position;
+      const glm::dvec3 tib = tangent_at(chains[i], true), tif = tangent_at(chains[i], false);
+      if (chains[i].points.size() > 3 && glm::length(ib - ifr) < best &&
+          continues(ib, tib, ifr, tif))
+        best = glm::length(ib - ifr), bi = i, how = 3;
+      for (std::size_t j = 0; j < chains.size(); ++j) {
+        if (j == i || chains[j].closed || chains[j].kind != chains[i].kind) continue;
+        const glm::dvec3 jb = chains[j].points.back().position,
+                         jf = chains[j].points.front().position;
+        const glm::dvec3 tjb = tangent_at(chains[j], true), tjf = tangent_at(chains[j], false);
+        const double d[3] = {glm::length(ib - jf), glm::length(ib - jb), glm::length(ifr - jf)};
+        const bool ok[3] = {continues(ib, tib, jf, tjf), continues(ib, tib, jb, tjb),
+                            continues(ifr, tif, jf, tjf)};
+        for (int k = 0; k < 3; ++k)
+          if (ok[k] && d[k] < best) best = d[k], bi = i, bj = j, how = k;
+      }
+    }
+    if (how < 0) break;
+    joined = true;
+    RawLine& a = chains[bi];
+    if (how == 3) {
+      a.closed = true;
+      continue;
+    }
+    RawLine b = std::move(chains[bj]);
+    if (how == 1) std::reverse(b.points.begin(), b.points.end());
+    if (how == 2) std::reverse(a.points.begin(), a.points.end());
+    a.points.insert(a.points.end(), b.points.begin(), b.points.end());
+    chains.erase(chains.begin() + static_cast<std::ptrdiff_t>(bj));
+  }
+  std::vector<RawLine> out;
+  for (RawLine& line : chains) {
+    double length = 0.0;
+    for (std::size_t i = 1; i < line.points.size(); ++i) {
+      length += glm::length(line.points[i].position - line.points[i - 1].position);
+      line.points[i].arc = length;
+    }
+    if (line.closed)
+      length += glm::length(line.points.front().position - line.points.back().position);
+    if (length >= scales.min_length) out.push_back(std::move(line));
+  }
+  return out;
+}
+
+void PointGrid::insert(const glm::dvec3& p, std::uint32_t item) {
+  const Cell c = cell_of(p);
+  cells_[key(c.x, c.y, c.z)].push_back(item);
+}
+
+PointGrid::Cell PointGrid::cell_of(const glm::dvec3& p) const {
+  const auto c = [&](double v) {
+    return static_cast<std::int64_t>(std::clamp(std::floor(v / cell_), -1e15, 1e15));
+  };
+  return {c(p.x), c(p.y), c(p.z)};
+}
+
+std::uint64_t PointGrid::key(std::int64_t x, std::int64_t y, std::int64_t z) {
+  const auto m = [](std::int64_t v) { return static_cast<std::uint64_t>(v) & 0x1fffff; };
+  return m(x) << 42 | m(y) << 21 | m(z);
+}
+
+}  // namespace ibfvs::detail

@@ -14,9 +14,9 @@ struct SceneOptions;
 
 /// The command's options: the library's (ibfvs::TopologyOptions).
 struct TopologyOptions {
-  double scale = 0.02;        ///< ibfvs::TopologyOptions::scale
+  double scale = 0.05;        ///< ibfvs::TopologyOptions::scale
   double min_strength = 2.0;  ///< ibfvs::TopologyOptions::min_strength
-  double min_length = 1.0;    ///< ibfvs::TopologyOptions::min_length
+  double min_length = 2.0;    ///< ibfvs::TopologyOptions::min_length
 };
 
 void add_topology_options(CLI::App& command, SceneOptions& scene, TopologyOptions& options);

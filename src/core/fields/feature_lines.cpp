@@ -24,14 +24,19 @@ namespace ibfvs {
 namespace detail {
 
 Scales scales_of(const SurfaceField& f, const TopologyOptions& o) {
+  // The finder's own lengths follow the mesh (its edges) and a fixed
+  // fraction of the surface's size, whatever the significance scale asked
+  // for: that only says what is kept.
+  constexpr double kResolution = 0.02;
   Scales s;
-  const double size = f.size(), edge = f.mean_edge();
+  const double size = f.size(), edge = f.mean_edge(), fine = kResolution * size;
   s.scale = o.scale * size;
-  s.merge = std::max({0.5 * edge, 0.25 * s.scale, 1e-9 * size});
-  s.seed_gap = std::max(0.5 * s.scale, s.merge);
-  s.disk = std::max(0.5 * s.scale, edge);
-  s.connect = std::max(2.0 * s.disk, 2.0 * s.scale);
-  s.step = 0.25 * edge;
+  s.fine = fine;
+  s.merge = std::max({0.5 * edge, 0.25 * fine, 1e-9 * size});
+  s.seed_gap = std::max(0.5 * fine, s.merge);
+  s.disk = std::max(0.5 * fine, edge);
+  s.connect = std::max(2.0 * s.disk, 2.0 * fine);
+  s.step = 0.5 * edge;
   s.max_length = 5.0 * size;
   s.min_length = o.min_length * s.scale;
   return s;
@@ -92,8 +97,14 @@ double polyline_length(const std::vector<TracePoint>& points, bool closed) {
 // A line's point in the grid of what has been found.
 struct Mark {
   std::uint32_t line;
-  glm::dvec3 position;
-  glm::dvec3 flow;  // unit, along the flow; zero for a line of zeros
+  glm::dvec3 position, to;  // a segment of the line
+  glm::dvec3 flow;          // unit, along the flow; zero for a line of zeros
+  [[nodiscard]] double distance(const glm::dvec3& p) const {
+    const glm::dvec3 d = to - position;
+    const double l2 = glm::dot(d, d);
+    const double t = l2 > 0.0 ? std::clamp(glm::dot(p - position, d) / l2, 0.0, 1.0) : 0.0;
+    return glm::length(p - (position + t * d));
+  }
 };
 
 // ---- the finder
@@ -126,9 +137,10 @@ class LineFinder {
         s_(scales),
         o_(options),
         points_(points),
-        point_grid_(2.0 * scales.disk),
-        saddle_grid_(scales.connect),
-        line_grid_(std::max(scales.seed_gap, 4.0 * scales.merge)) {
+        point_grid_(2.0 * scales.disk, field.lo(), field.hi()),
+        saddle_grid_(scales.connect, field.lo(), field.hi()),
+        merge_grid_(scales.merge + field.mean_edge(), field.lo(), field.hi()),
+        line_grid_(scales.seed_gap + field.mean_edge(), field.lo(), field.hi()) {
     for (std::uint32_t i = 0; i < points_.size(); ++i) {
       point_grid_.insert(glm::dvec3(points_[i].position), i);
       if (points_[i].kind == CriticalKind::Saddle)
@@ -149,18 +161,28 @@ class LineFinder {
   std::vector<RawLine> take() { return std::move(lines_); }
 
  private:
-  // Marks the line's points from `from` on in the grid.
+  // Marks the line's points from `from` on in the grid: a segment every
+  // few points (a mark is the segment from its point to `to`), each in the
+  // cells of its two ends.
   void mark(const RawLine& line, std::uint32_t id, std::size_t from) {
+    constexpr std::size_t kEvery = 2;
     const bool zeros = line.origin == LineOrigin::Zeros;
-    for (std::size_t i = from; i < line.points.size(); ++i) {
+    const std::size_t n = line.points.size();
+    for (std::size_t i = from; i < n; i += kEvery) {
+      const std::size_t j = std::min(i + kEvery, n - 1);
+      const glm::dvec3 a = line.points[i].position, b = line.points[j].position;
       glm::dvec3 flow(0.0);
-      if (!zeros && line.points.size() > 1) {
-        const std::size_t a = i > 0 ? i - 1 : 0, b = i > 0 ? i : 1;
-        const glm::dvec3 d = line.points[b].position - line.points[a].position;
+      if (!zeros && glm::length(b - a) > 0.0) flow = glm::normalize(b - a);
+      if (!zeros && j == i && n > 1) {
+        const glm::dvec3 d = a - line.points[n - 2].position;
         if (glm::length(d) > 0.0) flow = glm::normalize(d);
       }
-      marks_.push_back({id, line.points[i].position, flow});
-      line_grid_.insert(line.points[i].position, static_cast<std::uint32_t>(marks_.size() - 1));
+      marks_.push_back({id, a, b, flow});
+      const auto m = static_cast<std::uint32_t>(marks_.size() - 1);
+      for (PointGrid* g : {&merge_grid_, &line_grid_}) {
+        g->insert(a, m);
+        if (g->key_of(a) != g->key_of(b)) g->insert(b, m);
+      }
     }
   }
 
@@ -169,7 +191,7 @@ class LineFinder {
                                           std::optional<std::uint32_t> skip) const {
     std::optional<std::uint32_t> best;
     double best_d = s_.disk;
-    point_grid_.near(p, [&](std::uint32_t i) {
+    point_grid_.near(p, s_.disk, [&](std::uint32_t i) {
       if (skip && *skip == i) return;
       const double d = glm::length(glm::dvec3(points_[i].position) - p);
       if (d <= best_d) best_d = d, best = i;
@@ -182,12 +204,35 @@ class LineFinder {
                                            std::optional<std::uint32_t> skip) const {
     std::optional<std::uint32_t> best;
     double best_d = radius;
-    saddle_grid_.near(p, [&](std::uint32_t i) {
+    saddle_grid_.near(p, radius, [&](std::uint32_t i) {
       if (skip && *skip == i) return;
       const double d = glm::length(glm::dvec3(points_[i].position) - p);
       if (d <= best_d) best_d = d, best = i;
     });
     return best;
+  }
+
+  // Within the merge distance of p: the nearest line of `kind` whose flow
+  // runs along `flow` (a line of zeros: any), and any of the other kind.
+  struct Near {
+    std::optional<std::uint32_t> same, other;
+  };
+  Near lines_near(const glm::dvec3& p, LineKind kind, const glm::dvec3& flow) const {
+    Near out;
+    double best = s_.merge;
+    merge_grid_.near(p, s_.merge + f_.mean_edge(), [&](std::uint32_t m) {
+      const Mark& mk = marks_[m];
+      const double d = mk.distance(p);
+      if (d > s_.merge) return;
+      if (lines_[mk.line].kind != kind) {
+        out.other = mk.line;
+        return;
+      }
+      if (mk.flow != glm::dvec3(0.0) && flow != glm::dvec3(0.0) && glm::dot(mk.flow, flow) < 0.5)
+        return;
+      if (d <= best) best = d, out.same = mk.line;
+    });
+    return out;
   }
 
   // The line of `kind` within `radius` of p whose flow runs along `flow` (a
@@ -196,12 +241,12 @@ class LineFinder {
                                          const glm::dvec3& flow) const {
     std::optional<std::uint32_t> best;
     double best_d = radius;
-    line_grid_.near(p, [&](std::uint32_t m) {
+    line_grid_.near(p, radius + f_.mean_edge(), [&](std::uint32_t m) {
       const Mark& mk = marks_[m];
       if (lines_[mk.line].kind != kind) return;
       if (mk.flow != glm::dvec3(0.0) && flow != glm::dvec3(0.0) && glm::dot(mk.flow, flow) < 0.5)
         return;
-      const double d = glm::length(mk.position - p);
+      const double d = mk.distance(p);
       if (d <= best_d) best_d = d, best = mk.line;
     });
     return best;
@@ -229,7 +274,9 @@ class LineFinder {
   Scales s_;
   TopologyOptions o_;
   const std::vector<CriticalPoint>& points_;
-  PointGrid point_grid_, saddle_grid_, line_grid_;
+  // Lines' marks: for a trace's merge (cells as wide as the merge distance
+  // and a mark's length) and for the wider searches.
+  PointGrid point_grid_, saddle_grid_, merge_grid_, line_grid_;
   std::vector<Mark> marks_;
   std::vector<RawLine> lines_;
   // Saddle-to-saddle connections found from their first saddle: (from, to).
@@ -254,6 +301,7 @@ TraceResult LineFinder::follow(const SurfacePoint& start, int sense, LineKind ki
   std::size_t best_at = 0;
   bool left_origin = !origin;
   std::unordered_map<std::uint64_t, std::size_t> crossings;
+  std::size_t crossed = 0;
   struct Zone {
     std::uint32_t saddle;
     std::size_t entered, closest_at;
@@ -275,15 +323,13 @@ TraceResult LineFinder::follow(const SurfacePoint& start, int sense, LineKind ki
       const glm::dvec3 step = p.position - q.position;
       const double len = glm::length(step);
       if (len > 0.0) {
-        if (const auto l =
-                line_near(p.position, kind, s_.merge, static_cast<double>(sense) * step / len)) {
+        const Near near = lines_near(p.position, kind, static_cast<double>(sense) * step / len);
+        if (near.same) {
           r.met = Met::Line;
-          r.line = *l;
+          r.line = *near.same;
           return false;
         }
-        const LineKind other =
-            kind == LineKind::Separation ? LineKind::Attachment : LineKind::Separation;
-        if (const auto l = line_near(p.position, other, s_.merge, glm::dvec3(0.0))) {
+        if (const auto l = near.other) {
           r.met = Met::Other;
           r.line = *l;
           return false;
@@ -341,10 +387,14 @@ TraceResult LineFinder::follow(const SurfacePoint& start, int sense, LineKind ki
     // A crossing from q's triangle into p's, seen before close to where it
     // is now: the trace runs round a closed orbit (one seen far from it
     // was a turn of a spiral still on its way: the later one counts).
+    // (Every crossing is looked up, every fourth kept: a closed orbit
+    // crosses hundreds of edges a turn, its next turn some of the same.)
     if (q.triangle != p.triangle && i >= 2 && mode != Mode::Extension) {
       const std::uint64_t key = static_cast<std::uint64_t>(q.triangle) << 32 | p.triangle;
-      const auto [it, fresh] = crossings.try_emplace(key, i - 1);
-      if (!fresh) {
+      auto it = crossings.find(key);
+      if (it == crossings.end()) {
+        if (++crossed % 4 == 0) crossings.emplace(key, i - 1);
+      } else {
         const double gap = glm::length(t.points[it->second].position - q.position);
         if (gap <= 0.5 * f_.mean_edge()) {
           r.met = Met::Cycle;
@@ -374,7 +424,7 @@ TraceResult LineFinder::follow(const SurfacePoint& start, int sense, LineKind ki
     while (keep > 1) {
       const std::size_t i = keep - 1;
       std::size_t j = i;
-      while (j > 0 && pts[i].arc - pts[j].arc < s_.scale) --j;
+      while (j > 0 && pts[i].arc - pts[j].arc < s_.fine) --j;
       if (pts[i].arc - pts[j].arc > 0.0 && (c[i] - c[j]) >= weak * (pts[i].arc - pts[j].arc)) break;
       --keep;
     }
@@ -474,9 +524,9 @@ double LineFinder::strength(const RawLine& line) const {
       if (glm::length(glm::dvec3(points_[i].position) - x) <= 2.0 * s_.disk) near = true;
     });
     if (!near && line.origin != LineOrigin::Zeros)
-      line_grid_.near(x, [&](std::uint32_t m) {
+      line_grid_.near(x, 2.5 * f_.mean_edge(), [&](std::uint32_t m) {
         if (lines_[marks_[m].line].origin == LineOrigin::Zeros &&
-            glm::length(marks_[m].position - x) <= 1.5 * f_.mean_edge())
+            marks_[m].distance(x) <= 1.5 * f_.mean_edge())
           near = true;
       });
     return near;
@@ -553,7 +603,7 @@ void LineFinder::accept(RawLine line, const TraceResult& r, int sense) {
       // seed: the less accurate part), from a seed as good (a ridge at
       // least half as steep), or a little past its start.
       const double reach = line.seed_rate >= 0.5 * other.seed_rate ? other.extension : 0.0;
-      if (from_start <= reach + 2.0 * s_.scale) {
+      if (from_start <= reach + 2.0 * s_.fine) {
         mine.insert(mine.end(), theirs.begin() + static_cast<std::ptrdiff_t>(j) + 1, theirs.end());
         if (sense < 0) std::reverse(mine.begin(), mine.end());
         other.points = std::move(mine);
@@ -684,10 +734,59 @@ void LineFinder::open_lines() {
     LineKind kind;
     double rate;
   };
-  std::vector<Seed> seeds;
-  const double threshold = kSeedRate / f_.size();
+  // At least kSeedRate, and at least the median rate: on a real surface the
+  // rate is large nearly everywhere (small features and noise), and only
+  // where it stands out of that does a line draw traces onto itself.
+  double threshold = kSeedRate / f_.size();
+  {
+    std::vector<double> rates;
+    rates.reserve(n);
+    for (std::size_t i = 0; i < n; ++i)
+      if (weight[i] > 0.0) rates.push_back(std::abs(vdiv[i]));
+    if (!rates.empty()) {
+      auto mid = rates.begin() + static_cast<std::ptrdiff_t>(rates.size() / 2);
+      std::nth_element(rates.begin(), mid, rates.end());
+      threshold = std::max(threshold, *mid);
+    }
+  }
   const double side = 0.75 * f_.mean_edge();
-  for (std::uint32_t t = 0; t < f_.triangle_count(); ++t) {
+  // The candidates: in each cell of a grid a scale wide, the few triangles
+  // of each kind whose rate is the most (a ridge, where one runs through,
+  // has the most across it); a busy real surface has tens of thousands of
+  // small ridges, and a line draws every trace near it onto itself, so a
+  // few seeds a scale along it are enough.
+  constexpr std::size_t kPerCell = 2;
+  std::vector<std::uint32_t> candidates;
+  {
+    const PointGrid cells(s_.fine);
+    std::unordered_map<std::uint64_t, std::vector<std::pair<double, std::uint32_t>>> best;
+    for (std::uint32_t t = 0; t < f_.triangle_count(); ++t) {
+      if (!f_.frame(t).valid) continue;
+      const Triangle& tri = mesh.triangles[t];
+      const double rate = (vdiv[tri[0]] + vdiv[tri[1]] + vdiv[tri[2]]) / 3.0;
+      if (std::abs(rate) < threshold) continue;
+      const glm::dvec3 c =
+          (glm::dvec3(mesh.positions[tri[0]]) + glm::dvec3(mesh.positions[tri[1]]) +
+           glm::dvec3(mesh.positions[tri[2]])) /
+          3.0;
+      auto& top = best[cells.key_of(c) * 2 + (rate < 0.0 ? 0 : 1)];
+      if (top.size() < kPerCell) {
+        top.emplace_back(std::abs(rate), t);
+      } else {
+        auto low = std::min_element(top.begin(), top.end());
+        if (std::abs(rate) > low->first) *low = {std::abs(rate), t};
+      }
+    }
+    for (const auto& [key, top] : best)
+      for (const auto& [rate, t] : top) candidates.push_back(t);
+    std::sort(candidates.begin(), candidates.end());
+  }
+  // Each candidate's seed (if any), found in parallel.
+  std::vector<std::optional<Seed>> found(candidates.size());
+#pragma omp parallel for schedule(dynamic, 256)
+  for (std::int64_t ci = 0; ci < static_cast<std::int64_t>(candidates.size()); ++ci) {
+    const std::uint32_t t = candidates[static_cast<std::size_t>(ci)];
+    const auto ti = ci;
     const TriangleFrame& fr = f_.frame(t);
     if (!fr.valid) continue;
     const Triangle& tri = mesh.triangles[t];
@@ -702,6 +801,26 @@ void LineFinder::open_lines() {
     const double lf = glm::length(flow);
     if (!(lf > 0.0)) continue;
     const glm::dvec3 across = glm::cross(fr.normal, flow / lf);
+    // Not where a neighbouring triangle on either side across the flow
+    // converges faster (diverges, for attachment): no ridge runs here.
+    {
+      bool faster_left = false, faster_right = false;
+      for (int k = 0; k < 3; ++k) {
+        const std::uint32_t o = f_.neighbour(t, k);
+        if (o == kNoTriangle) continue;
+        const Triangle& ot = mesh.triangles[o];
+        const glm::dvec3 oc =
+            (glm::dvec3(mesh.positions[ot[0]]) + glm::dvec3(mesh.positions[ot[1]]) +
+             glm::dvec3(mesh.positions[ot[2]])) /
+            3.0;
+        const double side_of = glm::dot(oc - centre, across);
+        const double other = rate_at({o, oc});
+        const bool faster = here < 0.0 ? other < here : other > here;
+        if (faster && side_of < 0.0) faster_left = true;
+        if (faster && side_of > 0.0) faster_right = true;
+      }
+      if (faster_left && faster_right) continue;
+    }
     // The rate at seven points across the flow, 3 spacings wide, and the
     // parabola that fits them best: its extreme is the ridge, where it lies
     // within this triangle's half-spacing (so that a ridge is seeded once).
@@ -740,8 +859,26 @@ void LineFinder::open_lines() {
     const double offset = -0.5 * c1 / c2;
     if (std::abs(offset) > 0.5 * side) continue;
     const SurfacePoint seed = walk(f_, at, offset < 0 ? -across : across, std::abs(offset));
-    seeds.push_back(
-        {seed, here < 0.0 ? LineKind::Separation : LineKind::Attachment, std::abs(here)});
+    found[static_cast<std::size_t>(ti)] =
+        Seed{seed, here < 0.0 ? LineKind::Separation : LineKind::Attachment, std::abs(here)};
+  }
+  // The strongest of each kind in each cell of a grid a scale wide: a
+  // line draws every trace near it onto itself, so one seed a scale along
+  // it is enough (a busy real surface has tens of thousands of ridges).
+  std::vector<Seed> seeds;
+  {
+    std::unordered_map<std::uint64_t, std::size_t> best;
+    const PointGrid cells(s_.fine);
+    for (const std::optional<Seed>& seed : found) {
+      if (!seed) continue;
+      const std::uint64_t key =
+          cells.key_of(seed->at.position) * 2 + (seed->kind == LineKind::Separation ? 0 : 1);
+      const auto [it, fresh] = best.try_emplace(key, seeds.size());
+      if (fresh)
+        seeds.push_back(*seed);
+      else if (seed->rate > seeds[it->second].rate)
+        seeds[it->second] = *seed;
+    }
   }
   std::sort(seeds.begin(), seeds.end(),
             [](const Seed& a, const Seed& b) { return a.rate > b.rate; });
@@ -797,14 +934,14 @@ void LineFinder::open_lines() {
   std::sort(straight.begin(), straight.end(),
             [](const Seed& a, const Seed& b) { return a.rate > b.rate; });
   seeds.insert(seeds.begin(), straight.begin(), straight.end());
-  PointGrid tried(s_.seed_gap);
+  PointGrid tried(s_.seed_gap, f_.lo(), f_.hi());
   std::vector<glm::dvec3> tried_at;
   for (const Seed& seed : seeds) {
     if (line_near(seed.at.position, LineKind::Separation, s_.seed_gap, glm::dvec3(0.0)) ||
         line_near(seed.at.position, LineKind::Attachment, s_.seed_gap, glm::dvec3(0.0)))
       continue;
     bool near_tried = false;
-    tried.near(seed.at.position, [&](std::uint32_t k) {
+    tried.near(seed.at.position, s_.merge, [&](std::uint32_t k) {
       if (glm::length(tried_at[k] - seed.at.position) <= s_.merge) near_tried = true;
     });
     if (near_tried) continue;
@@ -818,6 +955,16 @@ void LineFinder::open_lines() {
           add(std::move(*orbit));
         continue;
       }
+    }
+    // The extension adds at most e^1.5 (follow's cap): a line too weak
+    // ahead of its seed stays too weak (unless it joins another).
+    if (ahead.met != Met::Line &&
+        strength(to_line(ahead, sense, seed.kind, LineOrigin::Open)) < o_.min_strength - 1.5) {
+      for (const TracePoint& p : ahead.trace.points) {
+        tried.insert(p.position, static_cast<std::uint32_t>(tried_at.size()));
+        tried_at.push_back(p.position);
+      }
+      continue;
     }
     const TraceResult behind = follow(seed.at, -sense, seed.kind, Mode::Extension, std::nullopt);
     // The line: behind (reversed) then ahead, in the trace's sense.
@@ -859,15 +1006,20 @@ void LineFinder::prune_open_lines() {
     return lines_[a].strength < lines_[b].strength;
   });
   std::vector<char> dropped(lines_.size(), 0);
-  PointGrid wide(2.0 * s_.disk);  // the line grid's cells are narrower than this search
-  for (std::uint32_t m = 0; m < marks_.size(); ++m) wide.insert(marks_[m].position, m);
+  const double beside_radius = std::max(s_.seed_gap, 0.5 * s_.scale);
+  // The line grid's cells are narrower than these searches.
+  PointGrid wide(std::max(2.0 * s_.disk, beside_radius) + f_.mean_edge(), f_.lo(), f_.hi());
+  for (std::uint32_t m = 0; m < marks_.size(); ++m) {
+    wide.insert(marks_[m].position, m);
+    if (wide.key_of(marks_[m].position) != wide.key_of(marks_[m].to)) wide.insert(marks_[m].to, m);
+  }
   const auto nearest = [&](const glm::dvec3& p, std::uint32_t self, double radius) {
     std::optional<std::uint32_t> best;
     double best_d = radius;
-    wide.near(p, [&](std::uint32_t m) {
+    wide.near(p, radius + f_.mean_edge(), [&](std::uint32_t m) {
       const Mark& mk = marks_[m];
       if (mk.line == self || dropped[mk.line]) return;
-      const double d = glm::length(mk.position - p);
+      const double d = mk.distance(p);
       if (d <= best_d) best_d = d, best = mk.line;
     });
     return best;
@@ -884,21 +1036,27 @@ void LineFinder::prune_open_lines() {
     if (const auto b = nearest(end, i, 2.0 * s_.disk); b && !at_point)
       drop = distinct_strength(a, lines_[*b]) < o_.min_strength;
     if (!drop) {
-      std::size_t beside = 0;
-      for (const TracePoint& p : a.points) {
+      // (Every fourth point: they lie a quarter of an edge apart.)
+      std::size_t beside = 0, seen = 0;
+      for (std::size_t k = 0; k < a.points.size(); k += 4, ++seen) {
+        const TracePoint& p = a.points[k];
         bool near = false;
-        line_grid_.near(p.position, [&](std::uint32_t m) {
+        wide.near(p.position, beside_radius + f_.mean_edge(), [&](std::uint32_t m) {
           const Mark& mk = marks_[m];
           if (mk.line == i || dropped[mk.line]) return;
           const RawLine& b = lines_[mk.line];
-          // Beside a line of the skeleton of either kind, or a stronger open one of its own.
-          const bool stronger =
-              b.origin != LineOrigin::Open || (b.kind == a.kind && b.strength >= a.strength);
-          if (stronger && glm::length(mk.position - p.position) <= s_.seed_gap) near = true;
+          // Beside a line of the skeleton of either kind (within the
+          // finder's resolution), or a stronger open one of its own kind
+          // closer than half the significance scale: one feature.
+          const double d = mk.distance(p.position);
+          if (b.origin != LineOrigin::Open
+                  ? d <= s_.seed_gap
+                  : b.kind == a.kind && b.strength >= a.strength && d <= beside_radius)
+            near = true;
         });
         beside += near;
       }
-      drop = 2 * beside > a.points.size();
+      drop = 2 * beside > seen;
     }
     dropped[i] = drop;
   }

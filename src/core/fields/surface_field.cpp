@@ -3,27 +3,19 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <unordered_map>
 
 #include <glm/geometric.hpp>
 
 #include "ibfvs/core/fields/topology.h"
 
 namespace ibfvs {
-namespace {
-
-std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
-  return static_cast<std::uint64_t>(std::min(a, b)) << 32 | std::max(a, b);
-}
-
-}  // namespace
+namespace {}  // namespace
 
 SurfaceField::SurfaceField(const TriMesh& mesh, std::span<const glm::vec3> vectors) : mesh_(mesh) {
   check_topology_input(mesh, vectors);
   const std::size_t n = mesh.positions.size(), nt = mesh.triangles.size();
   normal_.assign(n, glm::dvec3(0.0));
   frames_.resize(nt);
-  std::vector<double> ring_area(n, 0.0);
   glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
   double edge_sum = 0.0;
   for (std::size_t f = 0; f < nt; ++f) {
@@ -38,11 +30,11 @@ SurfaceField::SurfaceField(const TriMesh& mesh, std::span<const glm::vec3> vecto
     if (!frames_[f].valid) continue;
     for (const std::uint32_t k : t) {
       normal_[k] += frames_[f].area * frames_[f].normal;
-      ring_area[k] += frames_[f].area;
     }
   }
   mean_edge_ = nt ? edge_sum / (3.0 * static_cast<double>(nt)) : 0.0;
   size_ = nt ? glm::length(hi - lo) : 0.0;
+  if (nt) lo_ = lo, hi_ = hi;
   tangent_.resize(n);
   direction_.assign(n, glm::dvec3(0.0));
   for (std::size_t i = 0; i < n; ++i) {
@@ -58,30 +50,6 @@ SurfaceField::SurfaceField(const TriMesh& mesh, std::span<const glm::vec3> vecto
     const double speed = glm::length(tangent_[i]);
     if (speed > 0.0 && std::isfinite(speed)) direction_[i] = tangent_[i] / speed;
   }
-  // Neighbours across each edge (an edge of more than two triangles is a
-  // boundary for the traces: which side to go on is not defined).
-  std::unordered_map<std::uint64_t, std::array<std::uint32_t, 3>> edges;  // tri, edge, count
-  edges.reserve(nt * 2);
-  for (std::uint32_t f = 0; f < nt; ++f)
-    for (int k = 0; k < 3; ++k) {
-      const Triangle& t = mesh.triangles[f];
-      auto [it, fresh] = edges.try_emplace(edge_key(t[k], t[(k + 1) % 3]),
-                                           std::array<std::uint32_t, 3>{f, std::uint32_t(k), 0});
-      ++it->second[2];
-      (void)fresh;
-    }
-  across_.assign(nt, {kNoTriangle, kNoTriangle, kNoTriangle});
-  across_edge_.assign(nt, {-1, -1, -1});
-  for (std::uint32_t f = 0; f < nt; ++f)
-    for (int k = 0; k < 3; ++k) {
-      const Triangle& t = mesh.triangles[f];
-      const auto& e = edges.at(edge_key(t[k], t[(k + 1) % 3]));
-      if (e[2] != 2 || e[0] == f) continue;
-      across_[f][k] = e[0];
-      across_edge_[f][k] = static_cast<std::int8_t>(e[1]);
-      across_[e[0]][e[1]] = f;
-      across_edge_[e[0]][e[1]] = static_cast<std::int8_t>(k);
-    }
   // Vertex fans.
   fan_start_.assign(n + 1, 0);
   for (const Triangle& t : mesh.triangles)
@@ -91,13 +59,51 @@ SurfaceField::SurfaceField(const TriMesh& mesh, std::span<const glm::vec3> vecto
   std::vector<std::uint32_t> fill(fan_start_.begin(), fan_start_.end() - 1);
   for (std::uint32_t f = 0; f < nt; ++f)
     for (const std::uint32_t k : mesh.triangles[f]) fan_[fill[k]++] = f;
+  // Neighbours across each edge, from the fan of its first corner: the one
+  // other triangle with both its corners (none where there are more: which
+  // side a trace goes on at a non-manifold edge is not defined).
+  across_.assign(nt, {kNoTriangle, kNoTriangle, kNoTriangle});
+  across_edge_.assign(nt, {-1, -1, -1});
+#pragma omp parallel for schedule(static)
+  for (std::int64_t fi = 0; fi < static_cast<std::int64_t>(nt); ++fi) {
+    const auto f = static_cast<std::uint32_t>(fi);
+    const Triangle& t = mesh.triangles[f];
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t a = t[k], b = t[(k + 1) % 3];
+      std::uint32_t other = kNoTriangle;
+      int other_edge = -1, count = 0;
+      for (const std::uint32_t g : fan(a)) {
+        if (g == f) continue;
+        const Triangle& u = mesh.triangles[g];
+        for (int e = 0; e < 3; ++e)
+          if ((u[e] == b && u[(e + 1) % 3] == a) || (u[e] == a && u[(e + 1) % 3] == b)) {
+            other = g;
+            other_edge = e;
+            ++count;
+          }
+      }
+      if (count == 1) {
+        across_[f][k] = other;
+        across_edge_[f][k] = static_cast<std::int8_t>(other_edge);
+      }
+    }
+  }
+  corners_.assign(nt, Corners{0, 0, 0, 0, 0});
+  for (std::uint32_t f = 0; f < nt; ++f) {
+    const TriangleFrame& fr = frames_[f];
+    const Triangle& t = mesh.triangles[f];
+    const auto x1 = fr.of(glm::dvec3(mesh.positions[t[1]]) - fr.origin);
+    const auto x2 = fr.of(glm::dvec3(mesh.positions[t[2]]) - fr.origin);
+    const double det = x1[0] * x2[1] - x2[0] * x1[1];
+    corners_[f] = {x1[0], x1[1], x2[0], x2[1], det != 0.0 ? 1.0 / det : 0.0};
+  }
   // Per triangle: the Jacobian, the directions in its plane, their divergence.
   jacobian_.resize(nt);
   divergence_.assign(nt, 0.0);
   corner_dir_.resize(nt);
-  smooth_speed_.assign(n, 0.0);
-  std::vector<double> speed_weight(n, 0.0);
-  for (std::uint32_t f = 0; f < nt; ++f) {
+#pragma omp parallel for schedule(static)
+  for (std::int64_t fi = 0; fi < static_cast<std::int64_t>(nt); ++fi) {
+    const auto f = static_cast<std::uint32_t>(fi);
     const TriangleFrame& fr = frames_[f];
     if (!fr.valid) continue;
     const Triangle& t = mesh.triangles[f];
@@ -117,28 +123,17 @@ SurfaceField::SurfaceField(const TriMesh& mesh, std::span<const glm::vec3> vecto
       const double jx = jd.a * c[0] + jd.b * c[1], jy = jd.c * c[0] + jd.d * c[1];
       divergence_[f] = jd.trace() / len - (c[0] * jx + c[1] * jy) / (len * len * len);
     }
-    const double mean_speed =
-        (glm::length(tangent_[t[0]]) + glm::length(tangent_[t[1]]) + glm::length(tangent_[t[2]])) /
-        3.0;
-    for (const std::uint32_t k : t) {
-      smooth_speed_[k] += fr.area * mean_speed;
-      speed_weight[k] += fr.area;
-    }
   }
-  for (std::size_t i = 0; i < n; ++i)
-    smooth_speed_[i] = speed_weight[i] > 0.0 ? smooth_speed_[i] / speed_weight[i] : 0.0;
 }
 
 std::array<double, 3> SurfaceField::barycentric(std::uint32_t t, const glm::dvec3& p) const {
   const TriangleFrame& fr = frames_[t];
-  const Triangle& tri = mesh_.triangles[t];
-  const auto x1 = fr.of(glm::dvec3(mesh_.positions[tri[1]]) - fr.origin);
-  const auto x2 = fr.of(glm::dvec3(mesh_.positions[tri[2]]) - fr.origin);
-  const auto q = fr.of(p - fr.origin);
-  const double det = x1[0] * x2[1] - x2[0] * x1[1];
-  if (det == 0.0) return {1.0, 0.0, 0.0};
-  const double b1 = (q[0] * x2[1] - x2[0] * q[1]) / det;
-  const double b2 = (x1[0] * q[1] - q[0] * x1[1]) / det;
+  const Corners& c = corners_[t];
+  if (c.inv_det == 0.0) return {1.0, 0.0, 0.0};
+  const glm::dvec3 d = p - fr.origin;
+  const double qx = glm::dot(d, fr.e1), qy = glm::dot(d, fr.e2);
+  const double b1 = (qx * c.y2 - c.x2 * qy) * c.inv_det;
+  const double b2 = (c.x1 * qy - qx * c.y1) * c.inv_det;
   return {1.0 - b1 - b2, b1, b2};
 }
 
@@ -154,12 +149,6 @@ glm::dvec3 SurfaceField::direction_at(const SurfacePoint& p) const {
   const auto b = barycentric(p.triangle, p.position);
   const auto& d = corner_dir_[p.triangle];
   return b[0] * d[0] + b[1] * d[1] + b[2] * d[2];
-}
-
-double SurfaceField::smooth_speed_at(const SurfacePoint& p) const {
-  const auto b = barycentric(p.triangle, p.position);
-  const Triangle& t = mesh_.triangles[p.triangle];
-  return b[0] * smooth_speed_[t[0]] + b[1] * smooth_speed_[t[1]] + b[2] * smooth_speed_[t[2]];
 }
 
 glm::dvec3 SurfaceField::normal_at(const SurfacePoint& p) const {
@@ -205,7 +194,7 @@ Trace trace_line(const SurfaceField& field, const SurfacePoint& start, int sense
   int idle = 0;  // moves across edges without progress (walking round a vertex)
   while (arc < max_length) {
     const TriangleFrame& fr = field.frame(t);
-    const double h = std::min({step, 0.25 * std::sqrt(2.0 * fr.area), max_length - arc});
+    const double h = std::min({step, 0.5 * std::sqrt(2.0 * fr.area), max_length - arc});
     const glm::dvec3 k1 = unit_direction(field, t, x, sense);
     if (k1 == glm::dvec3(0.0)) {
       out.end = TraceEnd::Stalled;

@@ -17,6 +17,7 @@ namespace ibfvs::detail {
 /// Lengths the finder works with, from the options and the mesh.
 struct Scales {
   double scale = 0.0;       ///< the significance scale (options.scale x the size)
+  double fine = 0.0;        ///< the finder's own resolution (a fiftieth of the size)
   double merge = 0.0;       ///< a trace this close to a line has joined it
   double seed_gap = 0.0;    ///< no seed this close to a line of its kind
   double disk = 0.0;        ///< a trace this close to a kept critical point ends there
@@ -57,19 +58,41 @@ std::vector<RawLine> find_zero_lines(const SurfaceField& field, const Scales& sc
 /// A uniform grid of points for "what is near": cell `cell` wide.
 class PointGrid {
  public:
+  /// Cells in a hash map: any extent.
   explicit PointGrid(double cell) : cell_(cell > 0.0 ? cell : 1.0) {}
+  /// Cells in an array over the box lo..hi (a point outside goes to the
+  /// nearest cell), where that takes at most 4 million cells; else as above.
+  PointGrid(double cell, const glm::dvec3& lo, const glm::dvec3& hi);
   void insert(const glm::dvec3& p, std::uint32_t item);
-  /// Calls visit(item) for every item within the 27 cells about p.
+  /// Calls visit(item) for every item in the cells that the cube of half
+  /// width `radius` (at most the cell's width) about p meets: 8 at most.
   template <class Visit>
-  void near(const glm::dvec3& p, Visit visit) const {
-    const auto [x, y, z] = cell_of(p);
-    for (int dx = -1; dx <= 1; ++dx)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dz = -1; dz <= 1; ++dz) {
-          const auto it = cells_.find(key(x + dx, y + dy, z + dz));
+  void near(const glm::dvec3& p, double radius, Visit visit) const {
+    const Cell lo = cell_of(p - glm::dvec3(radius)), hi = cell_of(p + glm::dvec3(radius));
+    for (std::int64_t x = lo.x; x <= hi.x; ++x)
+      for (std::int64_t y = lo.y; y <= hi.y; ++y)
+        for (std::int64_t z = lo.z; z <= hi.z; ++z) {
+          if (!dense_.empty()) {
+            for (const std::uint32_t item :
+                 dense_[static_cast<std::size_t>((z * dims_[1] + y) * dims_[0] + x)])
+              visit(item);
+            continue;
+          }
+          const auto it = cells_.find(key(x, y, z));
           if (it == cells_.end()) continue;
           for (const std::uint32_t item : it->second) visit(item);
         }
+  }
+  /// The same within the cell's width.
+  template <class Visit>
+  void near(const glm::dvec3& p, Visit visit) const {
+    near(p, cell_, visit);
+  }
+  [[nodiscard]] double cell() const { return cell_; }
+  /// The key of p's cell (unique within about 2 million cells an axis).
+  [[nodiscard]] std::uint64_t key_of(const glm::dvec3& p) const {
+    const Cell c = cell_of(p);
+    return key(c.x, c.y, c.z);
   }
 
  private:
@@ -79,6 +102,9 @@ class PointGrid {
   [[nodiscard]] Cell cell_of(const glm::dvec3& p) const;
   static std::uint64_t key(std::int64_t x, std::int64_t y, std::int64_t z);
   double cell_;
+  glm::dvec3 origin_{0.0};
+  std::int64_t dims_[3] = {0, 0, 0};
+  std::vector<std::vector<std::uint32_t>> dense_;
   std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells_;
 };
 

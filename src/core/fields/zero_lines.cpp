@@ -35,10 +35,6 @@ struct Crossing {
   std::uint32_t triangle;
 };
 
-std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
-  return static_cast<std::uint64_t>(std::min(a, b)) << 32 | std::max(a, b);
-}
-
 std::optional<Crossing> edge_crossing(const SurfaceField& f, std::uint32_t a, std::uint32_t b,
                                       std::uint32_t triangle) {
   const glm::dvec3 &da = f.direction(a), &db = f.direction(b);
@@ -86,17 +82,31 @@ std::optional<LineKind> piece_kind(const SurfaceField& f, std::uint32_t t, const
 
 std::vector<RawLine> find_zero_lines(const SurfaceField& f, const Scales& scales) {
   const TriMesh& mesh = f.mesh();
-  std::unordered_map<std::uint64_t, Crossing> crossings;
-  std::unordered_map<std::uint64_t, bool> tried;
-  const auto crossing = [&](std::uint32_t a, std::uint32_t b, std::uint32_t t) -> const Crossing* {
-    const std::uint64_t key = edge_key(a, b);
-    if (const auto it = tried.find(key); it != tried.end())
-      return it->second ? &crossings.at(key) : nullptr;
-    const std::optional<Crossing> c = edge_crossing(f, a, b, t);
-    tried.emplace(key, c.has_value());
-    if (!c) return nullptr;
-    return &crossings.emplace(key, *c).first->second;
+  // Each edge's crossing, on its canonical half-edge (3 t + k of the
+  // triangle t with the lower index), found once, in parallel.
+  const std::size_t nt = f.triangle_count();
+  const auto canonical = [&](std::uint32_t t, int k) -> std::uint64_t {
+    const std::uint32_t o = f.neighbour(t, k);
+    if (o == kNoTriangle || t < o)
+      return 3 * static_cast<std::uint64_t>(t) + static_cast<std::uint64_t>(k);
+    return 3 * static_cast<std::uint64_t>(o) + static_cast<std::uint64_t>(f.neighbour_edge(t, k));
   };
+  std::vector<std::optional<Crossing>> crossings(3 * nt);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t ti = 0; ti < static_cast<std::int64_t>(nt); ++ti) {
+    const auto t = static_cast<std::uint32_t>(ti);
+    if (!f.frame(t).valid) continue;
+    const Triangle& tri = mesh.triangles[t];
+    for (int k = 0; k < 3; ++k)
+      if (canonical(t, k) == 3 * static_cast<std::uint64_t>(t) + static_cast<std::uint64_t>(k))
+        crossings[3 * t + k] = edge_crossing(f, tri[k], tri[(k + 1) % 3], t);
+  }
+  const auto crossing = [&](std::uint32_t t, int k) -> const Crossing* {
+    const std::optional<Crossing>& c = crossings[canonical(t, k)];
+    return c ? &*c : nullptr;
+  };
+  const auto position_of = [&](std::uint64_t key) { return crossings[key]->position; };
+  const auto triangle_of = [&](std::uint64_t key) { return crossings[key]->triangle; };
   // A piece per triangle with two crossings of one kind.
   struct Piece {
     std::uint64_t end[2];
@@ -105,17 +115,14 @@ std::vector<RawLine> find_zero_lines(const SurfaceField& f, const Scales& scales
   std::vector<Piece> pieces;
   for (std::uint32_t t = 0; t < f.triangle_count(); ++t) {
     if (!f.frame(t).valid) continue;
-    const Triangle& tri = mesh.triangles[t];
     std::uint64_t keys[3];
     const Crossing* found[3];
     int n = 0;
-    for (int k = 0; k < 3; ++k) {
-      const std::uint32_t a = tri[k], b = tri[(k + 1) % 3];
-      if (const Crossing* c = crossing(a, b, t)) {
-        keys[n] = edge_key(a, b);
+    for (int k = 0; k < 3; ++k)
+      if (const Crossing* c = crossing(t, k)) {
+        keys[n] = canonical(t, k);
         found[n++] = c;
       }
-    }
     if (n != 2) continue;
     if (const auto kind = piece_kind(f, t, found[0]->position, found[1]->position))
       pieces.push_back({{keys[0], keys[1]}, *kind});
@@ -160,9 +167,9 @@ std::vector<RawLine> find_zero_lines(const SurfaceField& f, const Scales& scales
     keys.insert(keys.end(), on.begin(), on.end());
     double length = 0.0;
     for (const std::uint64_t key : keys) {
-      const Crossing& c = crossings.at(key);
-      if (!line.points.empty()) length += glm::length(c.position - line.points.back().position);
-      line.points.push_back({c.position, c.triangle, length});
+      const glm::dvec3 where = position_of(key);
+      if (!line.points.empty()) length += glm::length(where - line.points.back().position);
+      line.points.push_back({where, triangle_of(key), length});
     }
     if (line.points.size() >= 2) chains.push_back(std::move(line));
   }
@@ -188,44 +195,87 @@ std::vector<RawLine> find_zero_lines(const SurfaceField& f, const Scales& scales
     if (!(len > 0.0)) return true;
     return glm::dot(g / len, ta) > 0.7 && glm::dot(-g / len, tb) > 0.7;
   };
-  for (bool joined = true; joined;) {
-    joined = false;
-    double best = gap;
-    std::size_t bi = 0, bj = 0;
-    int how = -1;  // 0: i's back to j's front, 1: back-back, 2: front-front, 3: i closes
-    for (std::size_t i = 0; i < chains.size(); ++i) {
-      if (chains[i].closed) continue;
-      const glm::dvec3 ib = chains[i].points.back().position,
-                       ifr = chains[i].points.front().position;
-      const glm::dvec3 tib = tangent_at(chains[i], true), tif = tangent_at(chains[i], false);
-      if (chains[i].points.size() > 3 && glm::length(ib - ifr) < best &&
-          continues(ib, tib, ifr, tif))
-        best = glm::length(ib - ifr), bi = i, how = 3;
-      for (std::size_t j = 0; j < chains.size(); ++j) {
-        if (j == i || chains[j].closed || chains[j].kind != chains[i].kind) continue;
-        const glm::dvec3 jb = chains[j].points.back().position,
-                         jf = chains[j].points.front().position;
-        const glm::dvec3 tjb = tangent_at(chains[j], true), tjf = tangent_at(chains[j], false);
-        const double d[3] = {glm::length(ib - jf), glm::length(ib - jb), glm::length(ifr - jf)};
-        const bool ok[3] = {continues(ib, tib, jf, tjf), continues(ib, tib, jb, tjb),
-                            continues(ifr, tif, jf, tjf)};
-        for (int k = 0; k < 3; ++k)
-          if (ok[k] && d[k] < best) best = d[k], bi = i, bj = j, how = k;
-      }
-    }
-    if (how < 0) break;
-    joined = true;
-    RawLine& a = chains[bi];
-    if (how == 3) {
-      a.closed = true;
-      continue;
-    }
-    RawLine b = std::move(chains[bj]);
-    if (how == 1) std::reverse(b.points.begin(), b.points.end());
-    if (how == 2) std::reverse(a.points.begin(), a.points.end());
-    a.points.insert(a.points.end(), b.points.begin(), b.points.end());
-    chains.erase(chains.begin() + static_cast<std::ptrdiff_t>(bj));
+  // The ends (2 c: chain c's front, 2 c + 1 its back), linked greedily,
+  // the closest first, each end once: the chains then form paths and loops.
+  const std::size_t ends = 2 * chains.size();
+  const auto end_at = [&](std::size_t e) {
+    const RawLine& l = chains[e / 2];
+    return e % 2 ? l.points.back().position : l.points.front().position;
+  };
+  PointGrid grid(gap, f.lo(), f.hi());
+  for (std::size_t e = 0; e < ends; ++e) grid.insert(end_at(e), static_cast<std::uint32_t>(e));
+  struct Link {
+    double d;
+    std::size_t a, b;
+  };
+  std::vector<Link> links;
+  for (std::size_t e = 0; e < ends; ++e) {
+    const RawLine& l = chains[e / 2];
+    const glm::dvec3 pe = end_at(e), te = tangent_at(l, e % 2 == 1);
+    grid.near(pe, gap, [&](std::uint32_t o) {
+      if (o <= e) return;
+      const RawLine& m = chains[o / 2];
+      if (m.kind != l.kind) return;
+      if (o / 2 == e / 2 && l.points.size() <= 3) return;  // a chain too short to close
+      const glm::dvec3 po = end_at(o);
+      const double d = glm::length(po - pe);
+      if (d < gap && continues(pe, te, po, tangent_at(m, o % 2 == 1))) links.push_back({d, e, o});
+    });
   }
+  std::sort(links.begin(), links.end(), [](const Link& x, const Link& y) { return x.d < y.d; });
+  std::vector<std::ptrdiff_t> linked(ends, -1);
+  for (const Link& k : links)
+    if (linked[k.a] < 0 && linked[k.b] < 0) {
+      linked[k.a] = static_cast<std::ptrdiff_t>(k.b);
+      linked[k.b] = static_cast<std::ptrdiff_t>(k.a);
+    }
+  // Walk them: from a chain with a free end (a path), then what is left (loops).
+  std::vector<char> taken(chains.size(), 0);
+  std::vector<RawLine> joined;
+  const auto walk_from = [&](std::size_t c, bool forward) {
+    RawLine line;
+    line.kind = chains[c].kind;
+    line.origin = LineOrigin::Zeros;
+    line.strength = kFullStrength;
+    std::size_t here = c;
+    bool fwd = forward;
+    for (;;) {
+      taken[here] = 1;
+      const RawLine& piece = chains[here];
+      if (fwd)
+        line.points.insert(line.points.end(), piece.points.begin(), piece.points.end());
+      else
+        line.points.insert(line.points.end(), piece.points.rbegin(), piece.points.rend());
+      const std::size_t out = 2 * here + (fwd ? 1 : 0);  // the end it leaves by
+      if (linked[out] < 0) break;
+      const auto follow = static_cast<std::size_t>(linked[out]);
+      if (follow / 2 == c && taken[c] && follow == 2 * c + (forward ? 0 : 1)) {
+        line.closed = true;  // back to where it began
+        break;
+      }
+      if (taken[follow / 2]) break;
+      here = follow / 2;
+      fwd = follow % 2 == 0;  // entered by its front: along it
+    }
+    joined.push_back(std::move(line));
+  };
+  for (std::size_t c = 0; c < chains.size(); ++c) {
+    if (taken[c] || chains[c].closed) continue;
+    if (linked[2 * c] < 0)
+      walk_from(c, true);
+    else if (linked[2 * c + 1] < 0)
+      walk_from(c, false);
+  }
+  for (std::size_t c = 0; c < chains.size(); ++c) {
+    if (taken[c]) continue;
+    if (chains[c].closed) {
+      taken[c] = 1;
+      joined.push_back(std::move(chains[c]));
+    } else {
+      walk_from(c, true);
+    }
+  }
+  chains = std::move(joined);
   std::vector<RawLine> out;
   for (RawLine& line : chains) {
     double length = 0.0;
@@ -240,12 +290,38 @@ std::vector<RawLine> find_zero_lines(const SurfaceField& f, const Scales& scales
   return out;
 }
 
+PointGrid::PointGrid(double cell, const glm::dvec3& lo, const glm::dvec3& hi)
+    : cell_(cell > 0.0 ? cell : 1.0) {
+  double count = 1.0;
+  std::int64_t dims[3];
+  for (int k = 0; k < 3; ++k) {
+    const double span = std::max(hi[k] - lo[k], 0.0);
+    dims[k] = static_cast<std::int64_t>(std::floor(span / cell_)) + 1;
+    count *= static_cast<double>(dims[k]);
+  }
+  if (!(count <= 4e6)) return;  // the hash map
+  origin_ = lo;
+  for (int k = 0; k < 3; ++k) dims_[k] = dims[k];
+  dense_.resize(static_cast<std::size_t>(count));
+}
+
 void PointGrid::insert(const glm::dvec3& p, std::uint32_t item) {
   const Cell c = cell_of(p);
+  if (!dense_.empty()) {
+    dense_[static_cast<std::size_t>((c.z * dims_[1] + c.y) * dims_[0] + c.x)].push_back(item);
+    return;
+  }
   cells_[key(c.x, c.y, c.z)].push_back(item);
 }
 
 PointGrid::Cell PointGrid::cell_of(const glm::dvec3& p) const {
+  if (!dense_.empty()) {
+    const auto c = [&](int k) {
+      const double v = std::floor((p[k] - origin_[k]) / cell_);
+      return static_cast<std::int64_t>(std::clamp(v, 0.0, static_cast<double>(dims_[k] - 1)));
+    };
+    return {c(0), c(1), c(2)};
+  }
   const auto c = [&](double v) {
     return static_cast<std::int64_t>(std::clamp(std::floor(v / cell_), -1e15, 1e15));
   };

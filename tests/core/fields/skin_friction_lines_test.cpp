@@ -144,8 +144,8 @@ TEST(SkinFrictionLines, ScalingEachVectorChangesNoFeature) {
 }
 
 // The same counts of each kind, and each found line near a line of its
-// kind in the other: its points within `reach` of it on average and within
-// twice `reach` everywhere but at the ends of an open line, where the
+// kind in the other: its points within `reach` of it on average, and within
+// three times `reach` everywhere but at the ends of an open line, where the
 // convergence that makes it fades, so that it may reach on or stop short by
 // up to three scales (`ends`).
 void expect_same_features(const FlowTopology& a, const FlowTopology& b, double reach, double ends,
@@ -189,7 +189,7 @@ void expect_same_features(const FlowTopology& a, const FlowTopology& b, double r
     }
     EXPECT_LE(count ? sum / static_cast<double>(count) : 0.0, reach)
         << what << ": the " << which << " lines far from the other's on average";
-    EXPECT_LE(worst, 2.0 * reach) << what << ": the " << which << " lines far from the other's at "
+    EXPECT_LE(worst, 3.0 * reach) << what << ": the " << which << " lines far from the other's at "
                                   << where;
   };
   compare(a, b, "mesh's");

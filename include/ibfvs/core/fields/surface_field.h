@@ -51,10 +51,6 @@ class SurfaceField {
   [[nodiscard]] const glm::dvec3& normal(std::uint32_t v) const { return normal_[v]; }
   [[nodiscard]] const glm::dvec3& tangent(std::uint32_t v) const { return tangent_[v]; }
   [[nodiscard]] const glm::dvec3& direction(std::uint32_t v) const { return direction_[v]; }
-  /// |tangent| averaged over the vertex and its neighbours (area-weighted):
-  /// the speed that a line's convergence is measured against, less
-  /// sensitive to one vertex's scale than its own.
-  [[nodiscard]] double smooth_speed(std::uint32_t v) const { return smooth_speed_[v]; }
 
   // ---- per triangle
   [[nodiscard]] const TriangleFrame& frame(std::uint32_t t) const { return frames_[t]; }
@@ -78,14 +74,16 @@ class SurfaceField {
   [[nodiscard]] std::array<double, 3> barycentric(std::uint32_t t, const glm::dvec3& p) const;
   [[nodiscard]] glm::dvec3 field_at(const SurfacePoint& p) const;  ///< linear vectors
   [[nodiscard]] glm::dvec3 direction_at(
-      const SurfacePoint& p) const;  ///< linear directions, not unit
-  [[nodiscard]] double smooth_speed_at(const SurfacePoint& p) const;
+      const SurfacePoint& p) const;                                 ///< linear directions, not unit
   [[nodiscard]] glm::dvec3 normal_at(const SurfacePoint& p) const;  ///< interpolated, unit
 
   // ---- scales
   [[nodiscard]] double mean_edge() const { return mean_edge_; }
   /// The bounding box's diagonal of the triangles' corners.
   [[nodiscard]] double size() const { return size_; }
+  /// That box's corners.
+  [[nodiscard]] const glm::dvec3& lo() const { return lo_; }
+  [[nodiscard]] const glm::dvec3& hi() const { return hi_; }
 
   /// The triangles around vertex v.
   [[nodiscard]] std::span<const std::uint32_t> fan(std::uint32_t v) const {
@@ -95,8 +93,13 @@ class SurfaceField {
  private:
   const TriMesh& mesh_;
   std::vector<glm::dvec3> normal_, tangent_, direction_;
-  std::vector<double> smooth_speed_;
   std::vector<TriangleFrame> frames_;
+  // Per triangle: its corners 1 and 2 in its frame, and the inverse of
+  // that 2x2's determinant (barycentric coordinates without recomputing it).
+  struct Corners {
+    double x1, y1, x2, y2, inv_det;
+  };
+  std::vector<Corners> corners_;
   std::vector<std::array<std::uint32_t, 3>> across_;
   std::vector<std::array<std::int8_t, 3>> across_edge_;
   std::vector<Mat2> jacobian_;
@@ -104,6 +107,7 @@ class SurfaceField {
   std::vector<std::array<glm::dvec3, 3>> corner_dir_;
   std::vector<std::uint32_t> fan_, fan_start_;
   double mean_edge_ = 0.0, size_ = 0.0;
+  glm::dvec3 lo_{0.0}, hi_{0.0};
 };
 
 /// One point of a traced line.

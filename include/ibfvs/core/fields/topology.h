@@ -164,12 +164,12 @@ struct TopologyOptions {
   /// The scale, as a fraction of the surface's size (its bounding box's
   /// diagonal): a saddle and a node or focus closer than it cancel, and
   /// lines shorter than min_length of it are dropped.
-  double scale = 0.02;
+  double scale = 0.05;
   /// A line is kept where its neighbours converge onto it (or diverge) by at
   /// least e^min_strength along it (see FeatureLine::strength).
   double min_strength = 2.0;
   /// A line is kept when it is at least this many scales long.
-  double min_length = 1.0;
+  double min_length = 2.0;
 };
 
 /// Throws InputError naming the option when one is out of its range

@@ -1238,6 +1238,11 @@ FlowTopology find_topology(const TriMesh& mesh, std::span<const glm::vec3> vecto
   std::vector<detail::RawLine> zeros = detail::find_zero_lines(field, s);
   t.critical.points = detail::simplify_points(std::move(t.critical.points), zeros, s,
                                               field.mean_edge(), t.critical);
+  // The kept points' indices: a cancelled pair's sum to 0, and a line of
+  // zeros, across which the flow only turns back, has index 0 as a whole
+  // (its scattered zeros alternate saddle and node).
+  t.critical.index_sum = 0;
+  for (const CriticalPoint& p : t.critical.points) t.critical.index_sum += p.index;
   std::vector<detail::RawLine> raw;
   {
     detail::LineFinder finder(field, s, options, t.critical.points);

@@ -285,7 +285,18 @@ std::vector<RawLine> find_zero_lines(const SurfaceField& f, const Scales& scales
     }
     if (line.closed)
       length += glm::length(line.points.front().position - line.points.back().position);
-    if (length >= scales.min_length) out.push_back(std::move(line));
+    // Long enough; or across the whole surface, from its edge to its edge:
+    // a 2-D case's separation runs across its one cell's depth, however
+    // short that is.
+    const auto on_edge = [&](const TracePoint& p) {
+      const auto b = f.barycentric(p.triangle, p.position);
+      for (int k = 0; k < 3; ++k)  // edge k runs from corner k to k + 1: opposite corner k + 2
+        if (f.neighbour(p.triangle, k) == kNoTriangle && std::abs(b[(k + 2) % 3]) < 1e-6)
+          return true;
+      return false;
+    };
+    const bool across = !line.closed && on_edge(line.points.front()) && on_edge(line.points.back());
+    if (length >= scales.min_length || across) out.push_back(std::move(line));
   }
   return out;
 }

@@ -94,8 +94,10 @@ struct CriticalPoint {
 
 struct CriticalPoints {
   std::vector<CriticalPoint> points;
-  /// The sum of the indices of every zero of the field found, before any
-  /// was cancelled or taken into a line (what Poincare-Hopf constrains).
+  /// The sum of the kept points' indices (find_topology; every zero's for
+  /// find_critical_points): a cancelled pair's sum to 0, and a line of
+  /// zeros has index 0 as a whole. On a closed surface, Poincare-Hopf's
+  /// Euler characteristic.
   int index_sum = 0;
   /// Triangles with no area, or whose linear field has no isolated zero
   /// (zero or constant along a line): left out and counted.

@@ -626,6 +626,12 @@ def test_topology_gives_the_separation_line_and_the_foci_as_polydata():
     assert np.abs(line.points[:, 2]).max() < 0.02  # on the equator (edges about 0.065)
     assert found.point_data["index"].sum() == 2  # Poincare-Hopf: the sphere's 2
     assert "index sum 2 (Euler characteristic 2)" in found.field_data["summary"][0]
+    # Its colours as every front end draws them (rgb=True shows them as they
+    # are), its ids, and how each line was found.
+    assert [tuple(c) for c in found.cell_data["colour"].tolist()] == [
+        ibfvs.KIND_COLOURS[k] for k in kind.tolist()]
+    assert sorted(found.cell_data["id"].tolist()) == [0, 1, 2]
+    assert found.cell_data["origin"][kind == 10].tolist() == [2]  # a closed orbit
     reverse = ibfvs.topology(spiral_sphere(pull=-1.0), vectors="spiral")
     assert sorted(reverse.cell_data["kind"].tolist()) == [4, 4, 11]
     arrays = ibfvs.topology(*_arrays_of(spiral_sphere()))

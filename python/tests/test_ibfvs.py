@@ -376,7 +376,9 @@ def test_topology_of_arrays_finds_the_closed_separation_line_and_its_reverse():
     assert line["closed"] and line["kind"] == 10
     assert np.abs(line["points"] @ axis).max() < 0.02  # on the great circle across the axis
     assert abs(line["length"] - 2 * np.pi) < 0.05
-    assert line["strength"] == pytest.approx(1.0, abs=0.1)  # the pull onto it
+    # Its neighbours converge onto it at the pull's rate 1 per unit of length
+    # along it: by e^(2 pi) a turn.
+    assert line["strength"] == pytest.approx(2 * np.pi, abs=0.15) and line["origin"] == 2
     assert found.kind.tolist() == [5, 5] and found.index_sum == 2  # the two repelling foci
     assert np.allclose(np.abs(found.points @ axis), 1.0, atol=0.01)
     assert "open surface, 2 boundary loops" in found.summary  # the poles are holes
@@ -397,6 +399,69 @@ def test_topology_of_a_scene_and_its_errors():
         ibfvs.topology(points, tris, np.zeros((3, 3)))
     with pytest.raises(ValueError, match="no such file"):
         ibfvs.topology("no-such-mesh.ply")
+
+
+def test_topology_takes_what_animation_takes():
+    """ibfvs.topology takes a series, a duck-typed mesh, NaN vectors and bad
+    options as Animation and the command do: every step (its features' ids
+    kept), a Topology of numpy arrays (no pyvista needed), a RuntimeWarning
+    as Animation's warnings say, a ValueError."""
+    winds = os.path.join(os.path.dirname(__file__), "..", "..", "data", "earth",
+                         "monthly_navy_winds.cdf")
+    if os.path.exists(winds):
+        steps = ibfvs.topology("globe:3", field=f"wind:{winds}", time="0:2")
+        assert isinstance(steps, list) and len(steps) == 3
+        assert all(isinstance(s, ibfvs.Topology) for s in steps)
+        assert all(f"step {k}:" in s.summary for k, s in enumerate(steps))
+        # A feature that lasts keeps its id: most of step 1's points are step 0's.
+        first, second = set(steps[0].id.tolist()), set(steps[1].id.tolist())
+        assert len(first & second) >= len(second) // 2
+    points, tris = uv_sphere()
+    axis = np.array([0.3, 0.2, 0.93]) / np.linalg.norm([0.3, 0.2, 0.93])
+    z = points @ axis
+    spiral = np.cross(axis, points) - z[:, None] * (axis - z[:, None] * points)
+
+    class Mesh:  # points and a VTK-style faces array, as PyVista's, but no PyVista
+        pass
+
+    duck = Mesh()
+    duck.points = points
+    duck.faces = np.column_stack([np.full(len(tris), 3), tris]).ravel()
+    duck.point_data = {"spiral": spiral}
+    found = ibfvs.topology(duck, vectors="spiral")
+    assert isinstance(found, ibfvs.Topology) and found.count("separation line") == 1
+    holey = spiral.copy()
+    holey[10] = np.nan
+    with pytest.warns(RuntimeWarning, match="NaN or infinite"):
+        found = ibfvs.topology(points, tris, holey)
+    assert found.count("separation line") == 1
+    for bad in (dict(min_strength=-1), dict(min_length=-1), dict(feature_scale=0), dict(feature_scale=2)):
+        with pytest.raises(ValueError, match="topology"):
+            ibfvs.topology(points, tris, spiral, **bad)
+
+
+def test_the_topologys_layout_is_the_commands():
+    """The arrays of ibfvs.topology are those of `ibfvs topology`'s .vtp (one
+    layout): the same points, cells, kinds, ids, strengths and colours."""
+    import xml.etree.ElementTree as ET
+
+    exe = os.environ.get("IBFVS_EXE")
+    if not exe:
+        pytest.skip("IBFVS_EXE (the command) not set")
+    found = ibfvs.topology("torus", field="gradient:down:1,0,0.137")
+    out = os.path.join(os.environ.get("TMPDIR", "/tmp"), "ibfvs_layout_%d.vtp" % os.getpid())
+    subprocess.run([exe, "topology", "torus", "--field", "gradient:down:1,0,0.137", "-o", out, "-q"],
+                   check=True)
+    arrays = {a.get("Name"): a.text.split() for a in ET.parse(out).getroot().iter("DataArray")}
+    os.remove(out)
+    g = found.layout
+    assert np.allclose(np.asarray(arrays["Points"], float), np.asarray(g["points"]).ravel(), atol=1e-6)
+    for name in ("kind", "id", "origin"):
+        assert [int(x) for x in arrays[name]] == np.asarray(g[name]).tolist(), name
+    assert np.allclose(np.asarray(arrays["strength"], float), g["strength"], rtol=1e-6, atol=1e-9)
+    assert [int(x) for x in arrays["colour"]] == np.asarray(g["colour"]).ravel().tolist()
+    assert [ibfvs.KIND_COLOURS[k] for k in np.asarray(g["kind"]).tolist()] == [
+        tuple(c) for c in np.asarray(g["colour"]).tolist()]
 
 
 def test_the_overlay_key_draws_the_topology_in_the_modules_pictures():

@@ -1,8 +1,10 @@
 """Filters > Skin-Friction Topology in pvpython (test_plugin.py has the
 display and the runs): a sphere whose flow spirals out of its poles onto its
 equator, as a series of two times, the second reversed. The filter gives the
-issue's cells at each time (transient data plays as with any filter), and
-its separation line shows over the IBFVS representation along the equator.
+issue's cells at each time (transient data plays as with any filter), the
+foci keeping their ids from one time to the next; its separation line shows
+over the IBFVS representation along the equator in the filter's own colours,
+and the representation's Overlay draws the same line itself.
 """
 import json
 import math
@@ -37,7 +39,7 @@ def spiral_series(directory):
 def test_the_filter_finds_the_features_at_every_time_and_shows_them(tmp_path):
     cfg = {"plugin": PLUGIN, "data": str(spiral_series(tmp_path)),
            "vectors": ["POINTS", "spiral"], "out": str(tmp_path / "shot.png"),
-           "camera": [3.0, 0.0, 0.8]}
+           "overlay_out": str(tmp_path / "overlay.png"), "camera": [3.0, 0.0, 0.8]}
     done = on_display(["pvpython", str(SCRIPT), json.dumps(cfg)])
     assert done.returncode == 0, why(done)
     line = [s for s in done.stdout.splitlines() if s.startswith("ibfvs-test: ")]
@@ -51,22 +53,33 @@ def test_the_filter_finds_the_features_at_every_time_and_shows_them(tmp_path):
     for f in found:
         assert f["line_z"] < 0.01  # on the equator (edges about 0.016 at radius 0.5)
         assert "index sum 2 (Euler characteristic 2)" in f["summary"]
-    # The picture: the red line across the middle of the sphere, over the
-    # texture; none of it above or below.
-    img = image(tmp_path / "shot.png")
+    # The foci persist (their index the same, their kind reversed): their ids
+    # go on; the line's kind changes, so it is a new feature.
+    assert found[1]["ids"][:2] == found[0]["ids"][:2], found
+    assert found[1]["ids"][2] not in found[0]["ids"], found
+    for shot in ("shot.png", "overlay.png"):
+        expect_the_equator(image(tmp_path / shot), shot)
+
+
+def expect_the_equator(img, shot):
+    """The red line across the middle of the sphere, over the texture; none
+    of it above or below."""
     h, w, _ = img.shape
+    # The overlay's legend (bottom left, with a red swatch): left out.
+    img = img.copy()
+    img[int(0.8 * h):, : int(0.45 * w)] = img[0, 0]
     ball = np.abs(img - img[0, 0]).sum(axis=2) > 30  # not the background (the corner's)
     ys, xs = np.nonzero(ball)
     middle, radius = (ys.min() + ys.max()) / 2.0, (xs.max() - xs.min()) / 2.0
     assert radius > 40
     red = (img[..., 0] > 180) & (img[..., 1] < 70) & (img[..., 2] < 70)
     rows = np.flatnonzero(red.any(axis=1))
-    assert len(rows), "no separation line in the picture"
+    assert len(rows), "no separation line in " + shot
     # The equator seen from 15 degrees above: the front half of an ellipse
     # a little below the middle (sin 15 = 0.26 of the radius at most).
-    assert rows.min() > middle - 0.05 * radius and rows.max() < middle + 0.35 * radius, rows
+    assert rows.min() > middle - 0.05 * radius and rows.max() < middle + 0.35 * radius, (shot, rows)
     columns = np.flatnonzero(red.any(axis=0))
-    assert columns.max() - columns.min() > 1.8 * radius  # across the sphere
+    assert columns.max() - columns.min() > 1.8 * radius, shot  # across the sphere
     # The texture still shows beside it (the IBFVS representation drawn).
     g = img.mean(axis=2)
     assert np.abs(np.diff(g[: h // 3], axis=1)).mean() > 1.0

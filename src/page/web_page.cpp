@@ -11,6 +11,7 @@ extern "C" {
 #include <b64/cencode.h>
 }
 
+#include "ibfvs/core/fields/topology_morph.h"
 #include "ibfvs/core/mesh/mesh.h"
 #include "ibfvs/core/scene/camera.h"
 #include "ibfvs/core/scene/scene.h"
@@ -107,21 +108,49 @@ Json ranges() {
 }
 
 // The scene's overlay (render/topology_overlay.h): each step's quads, found
-// on that step's surface and field as the Session finds them.
+// on that step's surface and field as the Session finds them, moving into
+// the next step's (the page loops: the last into the first) where the two
+// steps share their points (topology_morph.h), ids carried from step to step.
 Json overlay(const PreparedScene& p, const page::SceneSteps& d, page::Block& block) {
   if (p.scene.overlay != Overlay::Topology) return nullptr;
+  const std::size_t n = d.data.size();
+  std::vector<FlowTopology> found;
+  int next_id = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    found.push_back(find_topology(step_surface(p, d.data[k]), d.data[k].field));
+    if (k == 0)
+      next_id = static_cast<int>(found[0].critical.points.size() + found[0].lines.lines.size());
+    else
+      carry_ids(found[k - 1], found[k], next_id, 2.0 * found[k - 1].lines.scale);
+  }
   Json steps = Json::array();
-  for (const StepData& step : d.data) {
-    const OverlayGeometry g =
-        build_overlay(find_topology(step_surface(p, step), step.field), {p.width, p.height});
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t after = (k + 1) % n;
+    const bool pair = after != k && !d.data[k].mesh && !d.data[after].mesh;
+    TopologyMorph morph;
+    if (!pair) {
+      morph = hold(found[k]);
+    } else if (after > k) {
+      morph = morph_steps(found[k], found[after]);
+    } else {  // the last into the first: the first's ids carried from the last
+      FlowTopology first = found[after];
+      int wrap_id = next_id;
+      carry_ids(found[k], first, wrap_id, 2.0 * found[k].lines.scale);
+      morph = morph_steps(found[k], first);
+    }
+    const OverlayGeometry g = build_overlay(morph, {p.width, p.height});
     std::vector<float> corners;
-    corners.reserve(g.vertices.size() * 12);
+    corners.reserve(g.vertices.size() * kOverlayFloats);
     for (const OverlayVertex& v : g.vertices)
-      corners.insert(corners.end(),
-                     {v.point.x, v.point.y, v.point.z, v.other.x, v.other.y, v.other.z, v.corner.x,
-                      v.corner.y, v.colour.x, v.colour.y, v.colour.z, v.shape});
+      corners.insert(
+          corners.end(),
+          {v.point.x,       v.point.y,       v.point.z,       v.other.x,       v.other.y,
+           v.other.z,       v.corner.x,      v.corner.y,      v.colour.x,      v.colour.y,
+           v.colour.z,      v.shape,         v.point_to.x,    v.point_to.y,    v.point_to.z,
+           v.other_to.x,    v.other_to.y,    v.other_to.z,    v.point_bulge.x, v.point_bulge.y,
+           v.point_bulge.z, v.other_bulge.x, v.other_bulge.y, v.other_bulge.z, v.span});
     // Through meshoptimizer's codecs: a quad's corners share most of their values.
-    steps.push_back({{"vertices", block.add_vertices(corners, 12)},
+    steps.push_back({{"vertices", block.add_vertices(corners, kOverlayFloats)},
                      {"indices", block.add_indices(g.indices, g.vertices.size())}});
   }
   const OverlaySizes sizes = overlay_sizes(p.height);

@@ -59,13 +59,26 @@ class Session::StepPlayer {
       next_step_ = after;
       apply(renderer);
     }
-    renderer.set_field_mix(static_cast<float>(t - static_cast<double>(s)));
+    mix_ = static_cast<float>(t - static_cast<double>(s));
+    renderer.set_field_mix(mix_);
   }
 
   [[nodiscard]] std::size_t step() const { return step_; }
+  // The step played into: the next one where the two are interpolated
+  // (their points correspond), else the step itself (it holds).
+  [[nodiscard]] std::size_t next_step() const { return pair_ ? next_step_ : step_; }
+  // The fraction of the step played (the field's mix).
+  [[nodiscard]] float mix() const { return mix_; }
   // The step shown: its surface (moved where it moves) and field.
   [[nodiscard]] TriMesh surface() const { return step_surface(scene_, current_); }
   [[nodiscard]] const std::vector<glm::vec3>& field() const { return current_.field; }
+  // The step played into (next_step): its surface and field.
+  [[nodiscard]] TriMesh next_surface() const {
+    return step_surface(scene_, pair_ ? next_ : current_);
+  }
+  [[nodiscard]] const std::vector<glm::vec3>& next_field() const {
+    return (pair_ ? next_ : current_).field;
+  }
 
  private:
   const TriMesh& mesh_of(const StepData& d) const { return d.mesh ? *d.mesh : *scene_.mesh; }
@@ -94,6 +107,7 @@ class Session::StepPlayer {
     // the current one holds to the end.
     const TriMesh& next_mesh = mesh_of(next_);
     const bool pair = &next_mesh == &mesh || points_correspond(mesh, next_mesh);
+    pair_ = pair && next_step_ != step_;
     const StepData& to = pair ? next_ : current_;
     const TriMesh& to_mesh = pair ? next_mesh : mesh;
     const std::vector<glm::vec3>& from = positions_of(current_, mesh);
@@ -114,6 +128,8 @@ class Session::StepPlayer {
 
   const PreparedScene& scene_;
   std::size_t step_ = 0, next_step_ = 1;
+  bool pair_ = false;
+  float mix_ = 0.0f;
   StepData current_, next_;
   const TriMesh* on_renderer_ = nullptr;
   std::shared_ptr<const TriMesh> held_;
@@ -249,21 +265,53 @@ void Session::draw_overlay(const ViewState& view) {
   if (scene_.scene.overlay != Overlay::Topology) {
     overlay_.reset();
     overlay_for_.reset();
+    overlay_steps_.reset();
     return;
   }
   const bool steps = scene_.step_count > 1;
-  const std::array<std::size_t, 4> key{data_version_, steps ? player_->step() : 0,
+  const std::size_t step = steps ? player_->step() : 0, next = steps ? player_->next_step() : 0;
+  const std::array<std::size_t, 5> key{data_version_, step, next,
                                        static_cast<std::size_t>(scene_.width),
                                        static_cast<std::size_t>(scene_.height)};
   const glm::ivec2 size(scene_.width, scene_.height);
   if (!overlay_ || overlay_for_ != key) {
-    overlay_topology_ = steps ? find_topology(player_->surface(), player_->field())
-                              : find_topology(*scene_.mesh, scene_.field);
+    // The step shown and the one played into, each found once: playing on,
+    // the next step's features (and their ids) become the shown step's.
+    OverlaySteps found;
+    found.version = data_version_;
+    found.step = step;
+    found.next = next;
+    if (overlay_steps_ && overlay_steps_->version == data_version_ &&
+        overlay_steps_->next == step) {
+      found.first = std::move(overlay_steps_->second);
+      found.next_id = overlay_steps_->next_id;
+    } else if (overlay_steps_ && overlay_steps_->version == data_version_ &&
+               overlay_steps_->step == step) {
+      found.first = std::move(overlay_steps_->first);
+      found.next_id = overlay_steps_->next_id;
+    } else {
+      found.first = steps ? find_topology(player_->surface(), player_->field())
+                          : find_topology(*scene_.mesh, scene_.field);
+      found.next_id =
+          static_cast<int>(found.first.critical.points.size() + found.first.lines.lines.size());
+    }
+    if (next != step) {
+      found.second = find_topology(player_->next_surface(), player_->next_field());
+      // A feature moves at most two significance scales in a step.
+      carry_ids(found.first, found.second, found.next_id, 2.0 * found.first.lines.scale);
+      overlay_morph_ = morph_steps(found.first, found.second);
+    } else {
+      found.second = found.first;
+      overlay_morph_ = hold(found.first);
+    }
+    overlay_steps_ = std::move(found);
     if (!overlay_) overlay_ = std::make_unique<TopologyOverlay>();
-    overlay_->set(overlay_topology_, size);
+    overlay_->set(overlay_morph_, size);
     overlay_for_ = key;
   }
-  renderer_->draw_over_output([&] { overlay_->draw(view.view, view.projection, size); });
+  const float mix = steps ? player_->mix() : 0.0f;
+  overlay_topology_ = topology_at(overlay_morph_, mix);
+  renderer_->draw_over_output([&] { overlay_->draw(view.view, view.projection, size, mix); });
 }
 
 void Session::advance() {

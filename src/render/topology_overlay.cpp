@@ -12,7 +12,11 @@ TopologyOverlay::TopologyOverlay()
       vao_(gl::VertexArray::create()) {}
 
 void TopologyOverlay::set(const FlowTopology& topology, glm::ivec2 size) {
-  const OverlayGeometry g = build_overlay(topology, size);
+  set(hold(topology), size);
+}
+
+void TopologyOverlay::set(const TopologyMorph& morph, glm::ivec2 size) {
+  const OverlayGeometry g = build_overlay(morph, size);
   sizes_ = overlay_sizes(size.y);
   index_count_ = g.indices.size();
   if (g.indices.empty()) return;
@@ -26,10 +30,16 @@ void TopologyOverlay::set(const FlowTopology& topology, glm::ivec2 size) {
   vao_.attribute(2, vertices_, 2, 2, offsetof(OverlayVertex, corner), stride);
   vao_.attribute(3, vertices_, 3, 3, offsetof(OverlayVertex, colour), stride);
   vao_.attribute(4, vertices_, 4, 1, offsetof(OverlayVertex, shape), stride);
+  vao_.attribute(5, vertices_, 5, 3, offsetof(OverlayVertex, point_to), stride);
+  vao_.attribute(6, vertices_, 6, 3, offsetof(OverlayVertex, other_to), stride);
+  vao_.attribute(7, vertices_, 7, 3, offsetof(OverlayVertex, point_bulge), stride);
+  vao_.attribute(8, vertices_, 8, 3, offsetof(OverlayVertex, other_bulge), stride);
+  vao_.attribute(9, vertices_, 9, 1, offsetof(OverlayVertex, span), stride);
   vao_.index_buffer(indices_);
 }
 
-void TopologyOverlay::draw(const glm::mat4& view, const glm::mat4& projection, glm::ivec2 size) {
+void TopologyOverlay::draw(const glm::mat4& view, const glm::mat4& projection, glm::ivec2 size,
+                           float mix) {
   if (index_count_ == 0) return;
   program_.use();
   program_.set(program_.location("u_view"), view);
@@ -38,6 +48,7 @@ void TopologyOverlay::draw(const glm::mat4& view, const glm::mat4& projection, g
   program_.set(program_.location("u_line_width"), sizes_.line_width);
   program_.set(program_.location("u_glyph"), sizes_.glyph);
   program_.set(program_.location("u_lift"), kOverlayLift);
+  program_.set(program_.location("u_mix"), mix);
   gl::draw_over(true);
   vao_.bind();
   gl::draw_triangles(index_count_, true);

@@ -9,13 +9,17 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <functional>
 #include <random>
 #include <vector>
 
 #include <glm/geometric.hpp>
 
 #include "gl_fixture.h"
+#include "helpers.h"
 #include "ibfvs/core/fields/lonlat_grid.h"
+#include "ibfvs/core/fields/topology_morph.h"
+#include "ibfvs/core/mesh/mesh_io.h"
 #include "ibfvs/core/scene/scene.h"
 #include "ibfvs/core/scene/scene_prep.h"
 #include "ibfvs/render/session.h"
@@ -28,8 +32,8 @@ class TopologyOverlayGLTest : public test::GlTest {};
 
 constexpr int kW = 256, kH = 256;
 
-// The globe jittered along itself, turning about +Y and pulled onto y = 0.
-TriMesh spiral_globe() {
+// The globe jittered along itself, turning about +Y and pulled onto y = c.
+TriMesh spiral_globe(float c = 0.0f) {
   TriMesh m = make_globe(4);
   std::mt19937 rng(5);
   std::uniform_real_distribution<float> d(-0.01f, 0.01f);
@@ -39,7 +43,7 @@ TriMesh spiral_globe() {
   m.vectors.clear();
   for (const glm::vec3& p : m.positions) {
     const float z = glm::dot(axis, p);
-    m.vectors.push_back(glm::cross(axis, p) - z * (axis - z * p));
+    m.vectors.push_back(glm::cross(axis, p) - (z - c) * (axis - z * p));
   }
   return m;
 }
@@ -93,6 +97,33 @@ bool near_kind(const std::vector<int>& ref, int x, int y, int kind, int r) {
   return false;
 }
 
+// The separation lines as drawn against the reference's: of the pixels
+// where the reference has one (outside the legend), how many show it; of
+// the red pixels, how many lie within 3 pixels of the reference's.
+struct LineMatch {
+  std::size_t ref = 0, drawn = 0, red = 0, placed = 0;
+};
+LineMatch match_lines(const ImageU8& picture, const std::vector<int>& ref,
+                      const std::function<bool(int, int)>& in_legend) {
+  const glm::vec3 red = rgb_of(10);
+  LineMatch m;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      if (in_legend(x, y)) continue;
+      const std::uint8_t* p = &picture.pixels[(static_cast<std::size_t>(y) * kW + x) *
+                                              static_cast<std::size_t>(picture.channels)];
+      if (ref[static_cast<std::size_t>(y) * kW + x] == 10) {
+        ++m.ref;
+        m.drawn += near_colour(p, red, 40) || near_colour(p, 0.35f * red, 20);  // or its rim
+      }
+      if (near_colour(p, red, 30)) {
+        ++m.red;
+        m.placed += near_kind(ref, x, y, 10, 3);
+      }
+    }
+  return m;
+}
+
 TEST_F(TopologyOverlayGLTest, DrawsWhatItsReferenceSeesAndLeavesTheTexture) {
   const Drawn with = draw(Overlay::Topology, 12);
   const Drawn without = draw(Overlay::None, 12);
@@ -110,26 +141,18 @@ TEST_F(TopologyOverlayGLTest, DrawsWhatItsReferenceSeesAndLeavesTheTexture) {
     return &im.pixels[(static_cast<std::size_t>(y) * kW + x) *
                       static_cast<std::size_t>(im.channels)];
   };
-  const glm::vec3 red = rgb_of(10), pink = rgb_of(5);
-  std::size_t line_ref = 0, line_drawn = 0, focus_ref = 0, focus_drawn = 0;
-  std::size_t red_out = 0, red_placed = 0, changed = 0, changed_placed = 0;
+  const glm::vec3 pink = rgb_of(5);
+  const LineMatch lines = match_lines(with.picture, ref, in_legend);
+  std::size_t focus_ref = 0, focus_drawn = 0, changed = 0, changed_placed = 0;
   for (int y = 0; y < kH; ++y)
     for (int x = 0; x < kW; ++x) {
       const int k = ref[static_cast<std::size_t>(y) * kW + x];
       const std::uint8_t* p = px(with.picture, x, y);
-      if (k == 10 && !in_legend(x, y)) {
-        ++line_ref;
-        line_drawn += near_colour(p, red, 40) || near_colour(p, 0.35f * red, 20);  // or its rim
-      }
       if (k == 5) {
         ++focus_ref;
         focus_drawn += near_colour(p, pink, 40) || near_colour(p, glm::vec3(13.0f), 20);
       }
       if (in_legend(x, y)) continue;
-      if (near_colour(p, red, 30)) {
-        ++red_out;
-        red_placed += near_kind(ref, x, y, 10, 3);
-      }
       const std::uint8_t* q = px(without.picture, x, y);
       if (p[0] != q[0] || p[1] != q[1] || p[2] != q[2]) {
         ++changed;
@@ -139,16 +162,104 @@ TEST_F(TopologyOverlayGLTest, DrawsWhatItsReferenceSeesAndLeavesTheTexture) {
       }
     }
   // The front half of the equator crosses the picture.
-  EXPECT_GT(line_ref, static_cast<std::size_t>(kW / 2)) << line_ref;
-  EXPECT_GE(line_drawn, line_ref * 95 / 100) << line_drawn << " of " << line_ref;
+  EXPECT_GT(lines.ref, static_cast<std::size_t>(kW / 2)) << lines.ref;
+  EXPECT_GE(lines.drawn, lines.ref * 95 / 100) << lines.drawn << " of " << lines.ref;
   EXPECT_GT(focus_ref, 5u);
   EXPECT_GE(focus_drawn, focus_ref * 9 / 10) << focus_drawn << " of " << focus_ref;
   // Red only on the line the reference sees: none behind the sphere.
-  EXPECT_GT(red_out, 0u);
-  EXPECT_GE(red_placed, red_out * 98 / 100) << red_placed << " of " << red_out;
+  EXPECT_GT(lines.red, 0u);
+  EXPECT_GE(lines.placed, lines.red * 98 / 100) << lines.placed << " of " << lines.red;
   // The texture itself as without the overlay, but under the features.
   EXPECT_GT(changed, 0u);
   EXPECT_EQ(changed_placed, changed);
+}
+
+// The mean height (y) of the separation lines' points, and their count.
+std::pair<double, std::size_t> line_height(const FlowTopology& t) {
+  double sum = 0.0;
+  std::size_t n = 0, lines = 0;
+  for (const FeatureLine& l : t.lines.lines) {
+    if (l.kind != LineKind::Separation) continue;
+    ++lines;
+    for (const LinePoint& p : l.points) {
+      sum += p.position.y;
+      ++n;
+    }
+  }
+  return {n ? sum / static_cast<double>(n) : 0.0, lines};
+}
+
+TEST_F(TopologyOverlayGLTest, OnASeriesTheFeaturesMoveWithTheStepsAndKeepTheirIds) {
+  // Two steps: the limit cycle at y = 0, then at y = 0.3 (latitude 17.5
+  // degrees); four frames a step. Halfway through step 0 the line is drawn
+  // halfway (y = 0.15, as its reference there says), with the same id it
+  // has at step 1.
+  const test::TempDir dir;
+  write_ply(spiral_globe(0.0f), dir / "spiral_0.ply");
+  write_ply(spiral_globe(0.3f), dir / "spiral_1.ply");
+  Scene s = spiral_scene(Overlay::Topology);
+  s.mesh = (dir / "spiral_*.ply").string();
+  s.frames_per_step = 4;
+  s.orbit = 0.0f;
+  Session session(prepare_scene(s));
+  std::vector<FlowTopology> seen;
+  std::vector<Drawn> drawn;
+  for (int k = 0; k < 5; ++k) {  // mixes 0, 0.25, 0.5, 0.75 of step 0; step 1
+    session.advance();
+    ASSERT_NE(session.overlay_topology(), nullptr);
+    seen.push_back(*session.overlay_topology());
+    if (k == 2)
+      drawn.push_back({session.read_output(), session.renderer().read_depth(),
+                       ViewState{session.camera().view(), session.camera().projection()},
+                       seen.back()});
+  }
+  for (int k = 0; k < 5; ++k) {
+    const auto [height, count] = line_height(seen[static_cast<std::size_t>(k)]);
+    ASSERT_EQ(count, 1u) << "frame " << k;
+    // Moving between the steps' lines, in proportion (the found lines lie within
+    // 0.01 of y = 0 and 0.3).
+    const double expected = k < 4 ? 0.075 * k : 0.3;
+    EXPECT_NEAR(height, expected, 0.015) << "frame " << k;
+    EXPECT_EQ(seen[static_cast<std::size_t>(k)].lines.lines[0].id, seen[0].lines.lines[0].id)
+        << "frame " << k;
+  }
+  for (int k = 0; k < 5; ++k) {
+    ASSERT_EQ(seen[static_cast<std::size_t>(k)].critical.points.size(), 2u);
+    for (std::size_t i = 0; i < 2; ++i)
+      EXPECT_EQ(seen[static_cast<std::size_t>(k)].critical.points[i].id,
+                seen[0].critical.points[i].id);
+  }
+  // The pass draws the line where its reference has it halfway.
+  const Drawn& half = drawn[0];
+  const std::vector<int> ref =
+      overlay_reference(half.topology, half.view.view, half.view.projection, {kW, kH}, half.depth);
+  glm::vec2 legend(0.0f);
+  for (const OverlayVertex& v : build_overlay(half.topology, {kW, kH}).vertices)
+    if (v.shape >= kOverlayPixels) legend = glm::max(legend, glm::vec2(v.point));
+  const auto in_legend = [&](int x, int y) { return x <= legend.x + 1 && y <= legend.y + 1; };
+  const LineMatch m = match_lines(half.picture, ref, in_legend);
+  EXPECT_GT(m.ref, static_cast<std::size_t>(kW / 2)) << m.ref;
+  EXPECT_GE(m.drawn, m.ref * 95 / 100) << m.drawn << " of " << m.ref;
+  EXPECT_GE(m.placed, m.red * 98 / 100) << m.placed << " of " << m.red;
+}
+
+TEST_F(TopologyOverlayGLTest, BetweenStepsTheLegendShowsEachStepsCounts) {
+  FlowTopology a, b;
+  CriticalPoint p;
+  p.id = 0;
+  a.critical.points = {p};
+  p.kind = CriticalKind::AttractingNode;
+  p.id = 1;
+  b.critical.points = {p};
+  const TopologyMorph m = morph_steps(a, b);
+  // The legend: the first step's counts, then the second's.
+  std::size_t first = 0, second = 0;
+  for (const OverlayVertex& v : build_overlay(m, {200, 100}).vertices) {
+    first += v.shape >= kOverlayPixels && v.span == static_cast<float>(MorphSpan::FirstHalf);
+    second += v.shape >= kOverlayPixels && v.span == static_cast<float>(MorphSpan::SecondHalf);
+  }
+  EXPECT_GT(first, 0u);
+  EXPECT_GT(second, 0u);
 }
 
 TEST_F(TopologyOverlayGLTest, TheGeometryHasAQuadForEachPieceAndALegend) {

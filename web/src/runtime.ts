@@ -121,7 +121,7 @@ export class PageRenderer {
     this.setLook(0);
   }
 
-  /// The overlay's program and each step's quads (OverlayVertex: 12 floats a corner).
+  /// The overlay's program and each step's quads (OverlayVertex: 25 floats a corner).
   private makeOverlay(data: ArrayBuffer): NonNullable<PageRenderer["overlay"]> {
     const gl = this.gl, o = this.scene.overlay!;
     const program = compile(gl, o.vertex, o.fragment);
@@ -131,10 +131,11 @@ export class PageRenderer {
       const corners = gl.createBuffer();
       gl.bindBuffer(gl.ARRAY_BUFFER, corners);
       gl.bufferData(gl.ARRAY_BUFFER, view(data, step.vertices, f32, 4), gl.STATIC_DRAW);
-      // point, other, corner, colour, shape
-      [[0, 3, 0], [1, 3, 3], [2, 2, 6], [3, 3, 8], [4, 1, 11]].forEach(([location, size, at]) => {
+      // point, other, corner, colour, shape, point_to, other_to, point_bulge, other_bulge, span
+      [[0, 3, 0], [1, 3, 3], [2, 2, 6], [3, 3, 8], [4, 1, 11], [5, 3, 12], [6, 3, 15], [7, 3, 18],
+       [8, 3, 21], [9, 1, 24]].forEach(([location, size, at]) => {
         gl.enableVertexAttribArray(location);
-        gl.vertexAttribPointer(location, size, gl.FLOAT, false, 48, at * 4);
+        gl.vertexAttribPointer(location, size, gl.FLOAT, false, 100, at * 4);
       });
       const indices = gl.createBuffer();
       gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, indices);
@@ -457,6 +458,7 @@ export class PageRenderer {
     gl.uniform1f(at("u_line_width"), s.overlay!.line_width);
     gl.uniform1f(at("u_glyph"), s.overlay!.glyph);
     gl.uniform1f(at("u_lift"), s.overlay!.lift);
+    gl.uniform1f(at("u_mix"), this.fieldMix);
     gl.bindVertexArray(step.vao);
     gl.drawElements(gl.TRIANGLES, step.count, gl.UNSIGNED_INT, 0);
     gl.bindVertexArray(null);

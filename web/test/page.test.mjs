@@ -280,6 +280,14 @@ test("a series whose points move plays in the page as in ibfvs render", async ()
                                         "--color-by", "z"]);
 });
 
+test("a series' topology overlay moves between its steps in the page as in ibfvs render", async () => {
+  // The swirl's two centres turn 10 degrees a step with the sphere; frame
+  // 61 of 8 a step is 5/8 of the way from the last step into the first.
+  const series = writeTurningSeries(path.join(out, "turning-topology"), 4, 10);
+  await assertMatchesRender("turning-topology", ["--mesh", series, "--frames-per-step", "8",
+                                                 "--overlay", "topology"]);
+});
+
 test("a series whose triangles change plays in the page as in ibfvs render", async () => {
   // Steps 2 and 3 are the sphere tessellated finer (meshes of their own):
   // the texture goes on from the image into them and back.

@@ -12,6 +12,7 @@
 // legend's text is stb_easy_font's bitmap font. build_overlay makes the
 // quads on the CPU; overlay_reference is the CPU reference of what the
 // pass draws (tests compare the two).
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -20,6 +21,7 @@
 #include <glm/vec3.hpp>
 
 #include "ibfvs/core/fields/topology.h"
+#include "ibfvs/core/fields/topology_morph.h"
 #include "ibfvs/core/image/image.h"
 
 namespace ibfvs {
@@ -30,8 +32,16 @@ struct OverlayVertex {
   glm::vec3 other{0.0f};   ///< a segment's other end
   glm::vec2 corner{0.0f};  ///< segment: (cap, side); glyph and legend: the corner, -1..1
   glm::vec3 colour{0.0f};
-  float shape = 0.0f;  ///< kOverlay* below
+  float shape = 0.0f;           ///< kOverlay* below
+  glm::vec3 point_to{0.0f};     ///< `point` at the next step (topology_morph.h)
+  glm::vec3 other_to{0.0f};     ///< `other` at the next step
+  glm::vec3 point_bulge{0.0f};  ///< `point`'s offset from its chord halfway (FeatureMorph)
+  glm::vec3 other_bulge{0.0f};  ///< `other`'s
+  float span = 0.0f;            ///< MorphSpan: when in the step it is drawn
 };
+/// Floats a corner (the page's vertex codec takes them so).
+inline constexpr std::size_t kOverlayFloats = sizeof(OverlayVertex) / sizeof(float);
+static_assert(kOverlayFloats == 25, "the page's runtime reads 25 floats a corner");
 
 // The shapes (overlay_vertex.glsl has the same numbers).
 inline constexpr float kOverlayLine = 0.0f;         ///< a segment of a line
@@ -54,15 +64,19 @@ struct OverlayGeometry {
   std::vector<std::uint32_t> indices;  ///< two triangles a quad
 };
 
-/// The quads of `topology` for an image of `size`: a segment per line
-/// piece, a glyph per critical point, and the legend (bottom left: a
-/// swatch and "kind (count)" for each kind present).
+/// The quads of `morph` for an image of `size`: a segment per line piece, a
+/// glyph per critical point, each moving from its place at one step to its
+/// place at the next as the pass's `u_mix` goes from 0 to 1, and the legend
+/// (bottom left: a swatch and "kind (count)" for each kind present; the
+/// second step's counts from halfway).
+OverlayGeometry build_overlay(const TopologyMorph& morph, glm::ivec2 size);
+/// One step's, held still.
 OverlayGeometry build_overlay(const FlowTopology& topology, glm::ivec2 size);
 
-/// The CPU reference: per pixel (rows bottom-up), the kind drawn there (0:
-/// none) by a point-sampled rasterisation of the same lifted segments and
-/// glyph discs, tested against `depth` (the frame's window depth, 1 off the
-/// surface) as the pass tests it. Without the legend.
+/// The CPU reference (of the pass at `mix`: of topology_at(morph, mix)): per pixel (rows
+/// bottom-up), the kind drawn there (0: none) by a point-sampled rasterisation of the same lifted
+/// segments and glyph discs, tested against `depth` (the frame's window depth, 1 off the surface)
+/// as the pass tests it. Without the legend.
 std::vector<int> overlay_reference(const FlowTopology& topology, const glm::mat4& view,
                                    const glm::mat4& projection, glm::ivec2 size,
                                    const ImageF& depth);

@@ -27,6 +27,7 @@
 #include <utility>
 #include <vector>
 
+#include "ibfvs/core/fields/topology_morph.h"
 #include "ibfvs/core/image/image.h"
 #include "ibfvs/core/scene/camera.h"
 #include "ibfvs/core/scene/scene_prep.h"
@@ -254,7 +255,10 @@ class Session {
 
   /// The topology the overlay draws (scene key overlay = topology): of the
   /// field and surface of the step shown, found when it was first drawn;
-  /// null before, or with another overlay.
+  /// on a series, where the features are at this point of the step
+  /// (topology_morph.h: those that persist move towards the next step's,
+  /// with ids kept from step to step while played on); null before, or
+  /// with another overlay.
   [[nodiscard]] const FlowTopology* overlay_topology() const {
     return overlay_ ? &overlay_topology_ : nullptr;
   }
@@ -329,9 +333,17 @@ class Session {
   std::optional<float> probe_;
   bool defer_statistics_ = false, record_flow_ = false;
   std::unique_ptr<TopologyOverlay> overlay_;
-  FlowTopology overlay_topology_;
+  FlowTopology overlay_topology_;  // at the last frame's mix
+  TopologyMorph overlay_morph_;
+  // The features of the step shown and of the one played into.
+  struct OverlaySteps {
+    std::size_t version = 0, step = 0, next = 0;
+    FlowTopology first, second;
+    int next_id = 0;  // carry_ids'
+  };
+  std::optional<OverlaySteps> overlay_steps_;
   std::size_t data_version_ = 0;  // a new field or surface: the overlay is found again
-  std::optional<std::array<std::size_t, 4>> overlay_for_;  // version, step, width, height
+  std::optional<std::array<std::size_t, 5>> overlay_for_;  // version, step, next, width, height
   int frame_ = 0;
 };
 

@@ -16,10 +16,13 @@ namespace ibfvs {
 class TopologyOverlay {
  public:
   TopologyOverlay();
-  /// Replaces what is drawn.
+  /// Replaces what is drawn: one step's features, or those between two
+  /// steps (topology_morph.h).
   void set(const FlowTopology& topology, glm::ivec2 size);
+  void set(const TopologyMorph& morph, glm::ivec2 size);
   [[nodiscard]] bool empty() const { return index_count_ == 0; }
-  void draw(const glm::mat4& view, const glm::mat4& projection, glm::ivec2 size);
+  /// Draws the features `mix` (0 to 1) of the way from the first step to the second.
+  void draw(const glm::mat4& view, const glm::mat4& projection, glm::ivec2 size, float mix = 0.0f);
 
  private:
   gl::Program program_;

@@ -1,11 +1,13 @@
 # Filters > Skin-Friction Topology as a user drives it in pvpython: open a
 # series, apply the filter, and at each of its times fetch what it made;
-# show it over the IBFVS representation of the data, coloured by kind with
-# the kinds' colours, and save a picture. Run by test_plugin_topology.py
-# with one JSON argument: plugin, data, vectors ([association, name]),
-# reverse, out (the picture's file), camera (the view's position).
+# show it over the IBFVS representation of the data in its own colours (its
+# `colour` array, not mapped: no colour table to copy), and save a picture;
+# then hide it and let the representation draw the features itself (its
+# Overlay), and save a second. Run by test_plugin_topology.py with one JSON
+# argument: plugin, data, vectors ([association, name]), reverse, out and
+# overlay_out (the pictures' files), camera (the view's position).
 # Prints one line "ibfvs-test: " and the JSON of each time's cells: kinds,
-# the line points' largest |z|, the summary.
+# ids, the line points' largest |z|, the summary.
 import json
 import sys
 
@@ -24,13 +26,15 @@ for t in times:
     topology.UpdatePipeline(t)
     out = servermanager.Fetch(topology)
     kinds = out.GetCellData().GetArray("kind")
+    feature_ids = out.GetCellData().GetArray("id")
     z = 0.0
     for c in range(out.GetNumberOfCells()):
         if kinds.GetValue(c) >= 10:
             ids = out.GetCell(c).GetPointIds()
             for k in range(ids.GetNumberOfIds()):
                 z = max(z, abs(out.GetPoint(ids.GetId(k))[2]))
-    found.append({"time": t, "kinds": sorted(kinds.GetValue(c) for c in range(out.GetNumberOfCells())),
+    cells = sorted((kinds.GetValue(c), feature_ids.GetValue(c)) for c in range(out.GetNumberOfCells()))
+    found.append({"time": t, "kinds": [k for k, _ in cells], "ids": [i for _, i in cells],
                   "line_z": z, "summary": out.GetFieldData().GetAbstractArray("summary").GetValue(0)})
 
 view = GetActiveViewOrCreate("RenderView")
@@ -41,13 +45,8 @@ surface = Show(data, view)
 surface.Representation = "IBFVS"
 surface.SelectInputVectors = cfg["vectors"]
 features = Show(topology, view)
-ColorBy(features, ("CELLS", "kind"))
-kinds = GetColorTransferFunction("kind")
-kinds.InterpretValuesAsCategories = 1
-kinds.Annotations = ["5", "repelling focus", "4", "attracting focus",
-                     "10", "separation line", "11", "attachment line"]
-kinds.IndexedColors = [0.8, 0.475, 0.655, 0.337, 0.706, 0.914,
-                       0.863, 0.078, 0.118, 0.118, 0.353, 1.0]
+ColorBy(features, ("CELLS", "colour"))
+features.MapScalars = 0  # the filter's own RGB
 features.LineWidth = 4
 features.PointSize = 12
 features.RenderPointsAsSpheres = 1
@@ -62,4 +61,10 @@ view.ViewTime = times[0]
 for frame in range(20):
     Render(view)
 SaveScreenshot(cfg["out"], view)
+# The representation alone, drawing the same features itself.
+Hide(topology, view)
+surface.Overlay = "Topology"
+for frame in range(20):
+    Render(view)
+SaveScreenshot(cfg["overlay_out"], view)
 print("ibfvs-test: " + json.dumps(found))

@@ -87,7 +87,7 @@ struct CriticalPoint {
   /// The Jacobian's eigenvalues, real and imaginary parts (1/time in the
   /// field's units per the mesh's length), real parts ascending.
   std::array<double, 2> eigen_real{}, eigen_imag{};
-  int id = -1;  ///< the feature's id: kept from step to step (TopologyTracker)
+  int id = -1;  ///< the feature's id: kept from step to step (carry_ids)
   /// The largest absolute real part of the eigenvalues (the `strength` array).
   [[nodiscard]] double strength() const;
 };
@@ -158,7 +158,7 @@ struct FeatureLine {
   /// compression (stretching) along it. Dimensionless; infinite for a line of zeros.
   double strength = 0.0;
   double length = 0.0;  ///< in the mesh's units
-  int id = -1;          ///< the feature's id: kept from step to step (TopologyTracker)
+  int id = -1;          ///< the feature's id: kept from step to step (carry_ids)
 };
 
 /// What counts as a feature (the significance scale).

@@ -171,6 +171,8 @@ class FlowLayer:
         self._problem = None
         self._tags = []
         self.topology = None  # add_flow(..., topology=True): the features drawn
+        self._topology_drawn = None  # (options, actors) while they are drawn
+        self._settings = {}
         self.set(**settings)
         if frames_per_step is not None:
             self._layer.set_frames_per_step(int(frames_per_step))
@@ -200,6 +202,7 @@ class FlowLayer:
                 raise TypeError(f"'{key}' is not a texture setting of a flow in a plotter "
                                 f"(those are: {', '.join(sorted(TEXTURE_KEYS))})")
         self._layer.set(_options(settings))
+        self._settings.update(settings)
 
     @property
     def frame(self):
@@ -229,6 +232,24 @@ class FlowLayer:
             self._mapper.Update()
         self._vectors = name
         self._colour_key = None  # the arrays again at the next render
+        if self._topology_drawn is not None:  # the new data's features, not the old
+            self.show_topology(self._topology_drawn[0])
+
+    def show_topology(self, options=None):
+        """Draws the field's topology over the texture (add_flow's topology=):
+        `options` ibfvs.topology's (feature_scale, min_strength, min_length),
+        or None to take it away. Drawn again for new data (update)."""
+        if self._topology_drawn is not None:
+            for actor in self._topology_drawn[1]:
+                self._plotter.remove_actor(actor, reset_camera=False, render=False)
+            if getattr(self._plotter, "legend", None) is not None:
+                self._plotter.remove_legend(render=False)
+            self._topology_drawn, self.topology = None, None
+        if options is None:
+            return
+        self.topology, actors = _add_topology(self._plotter, pv.wrap(self._mapper.GetInput()),
+                                              self._vectors, self._settings, dict(options))
+        self._topology_drawn = (dict(options), actors)
 
     # ------------------------------------------------------------ colours
 
@@ -408,10 +429,11 @@ def add_flow(plotter, mesh, vectors=None, *, frames_per_step=None, animate=True,
     at least this many texture frames for each change of the data
     (FlowLayer.update), 3 by default. animate: a window re-renders on a
     timer (about 30 frames a second) while it is open. topology: True, or a
-    dict of ibfvs.topology's options (min_strength, min_length), draws the
-    field's critical points (spheres coloured by kind) and separation and
-    attachment lines (red, blue) over the texture, with a legend; the
-    features are `actor.ibfvs.topology` (a pyvista.PolyData).
+    dict of ibfvs.topology's options (feature_scale, min_strength,
+    min_length), draws the field's critical points (spheres coloured by
+    kind) and separation and attachment lines (red, blue) over the texture,
+    with a legend; the features are `actor.ibfvs.topology` (a
+    pyvista.PolyData), found again for each update's data.
 
     Raises ValueError naming the problem for a missing or non-vector
     array, a mesh without a surface, NaN points or a closed plotter, and
@@ -444,8 +466,7 @@ def add_flow(plotter, mesh, vectors=None, *, frames_per_step=None, animate=True,
     plotter._ibfvs_layers.append(layer)
     pv.set_new_attribute(actor, "ibfvs", layer)
     if topology:
-        options = dict(topology) if isinstance(topology, dict) else {}
-        layer.topology = _add_topology(plotter, surface, name, settings, options)
+        layer.show_topology(dict(topology) if isinstance(topology, dict) else {})
     if animate and not plotter.off_screen:
         _animate(plotter)
     return actor
@@ -460,7 +481,7 @@ def _add_topology(plotter, surface, vectors, settings, options):
     found = topology(surface, vectors=vectors, **keys, **options)
     size = surface.length or 1.0
     kinds = found.cell_data["kind"]
-    legend = []
+    legend, actors = [], []
     for kind in sorted(set(int(k) for k in kinds)):
         part = found.extract_cells(np.flatnonzero(kinds == kind))
         colour = [c / 255.0 for c in KIND_COLOURS[kind]]
@@ -478,9 +499,10 @@ def _add_topology(plotter, surface, vectors, settings, options):
         mapper.SetRelativeCoincidentTopologyLineOffsetParameters(0, -2000)
         mapper.SetRelativeCoincidentTopologyPolygonOffsetParameters(0, -2000)
         legend.append([KINDS[kind], colour])
+        actors.append(actor)
     if legend:
         plotter.add_legend(legend, bcolor=None, face="rectangle", size=(0.22, 0.04 * len(legend)))
-    return found
+    return found, actors
 
 
 def _animate(plotter):

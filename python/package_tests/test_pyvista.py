@@ -688,3 +688,12 @@ def test_add_flow_draws_the_topology_over_the_texture():
     surface = (np.hypot(columns[None, :], (middle - np.arange(h) - 0.5)[:, None]) < 0.8 * per_unit)
     change = np.abs(picture.astype(int) - again.astype(int)).mean(axis=2)
     assert change[surface & off_line].mean() > 3.0
+    # New data (the flow reversed: an attachment line, attracting foci): its
+    # own features, drawn instead of the old.
+    actor.ibfvs.update(spiral_sphere(pull=-1.0))
+    picture = frames(p, 3)
+    assert sorted(actor.ibfvs.topology.cell_data["kind"].tolist()) == [4, 4, 11]
+    red = (picture[..., 0] > 170) & (picture[..., 1] < 90) & (picture[..., 2] < 90)
+    blue = (picture[..., 2] > 170) & (picture[..., 0] < 90) & (picture[..., 1] < 140)
+    assert not red[:, : int(0.7 * w)].any(), "the old separation line is still drawn"
+    assert blue[int(middle - 4):int(middle + 4), :].any(axis=0)[across].mean() > 0.9

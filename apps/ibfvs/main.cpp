@@ -64,12 +64,11 @@ int main(int argc, char** argv) {
       "background inflow, pattern speed against the flow, flicker, contrast");
   ibfvs::app::add_quality_options(*quality, *quality_scene, *quality_options);
   auto topology_scene = std::make_unique<ibfvs::app::SceneOptions>();
-  auto topology_options = std::make_unique<ibfvs::app::TopologyOptions>();
   CLI::App* topology = app.add_subcommand(
       "topology",
       "Skin-friction topology of a scene's field (the same options as render): critical points, "
       "separation and attachment lines, written as VTK PolyData (-o OUT.vtp)");
-  ibfvs::app::add_topology_options(*topology, *topology_scene, *topology_options);
+  ibfvs::app::add_topology_options(*topology, *topology_scene);
   bool keys_markdown = false;
   CLI::App* keys = app.add_subcommand(
       "keys", "List every scene key (scene files; the same as render's flags) with its default");
@@ -112,7 +111,7 @@ int main(int argc, char** argv) {
     if (*view) return ibfvs::app::run_view(*view_options);
     if (*bench) return ibfvs::app::run_bench(*bench_options);
     if (*quality) return ibfvs::app::run_quality(*quality_scene, *quality_options);
-    if (*topology) return ibfvs::app::run_topology(*topology_scene, *topology_options);
+    if (*topology) return ibfvs::app::run_topology(*topology_scene);
     if (*keys) {
       std::fputs(ibfvs::app::scene_keys_table(keys_markdown).c_str(), stdout);
       return 0;

@@ -19,26 +19,8 @@
 namespace ibfvs::app {
 namespace fs = std::filesystem;
 
-void add_topology_options(CLI::App& command, SceneOptions& scene, TopologyOptions& options) {
+void add_topology_options(CLI::App& command, SceneOptions& scene) {
   add_scene_options(command, scene);
-  const ibfvs::TopologyOptions defaults;
-  options = {defaults.scale, defaults.min_strength, defaults.min_length};
-  command
-      .add_option("--feature-scale", options.scale,
-                  "The significance scale, a fraction of the surface's size (its bounding box's "
-                  "diagonal): a saddle and a node closer than it cancel; lines are measured in it")
-      ->check(CLI::Range(1e-6, 1.0))
-      ->capture_default_str();
-  command
-      .add_option("--min-strength", options.min_strength,
-                  "Keep a line whose neighbours converge onto it (diverge from it) by at least "
-                  "e^N along it")
-      ->check(CLI::Range(0.0, 1e6))
-      ->capture_default_str();
-  command
-      .add_option("--min-length", options.min_length, "Keep a line at least this many scales long")
-      ->check(CLI::Range(0.0, 1e9))
-      ->capture_default_str();
 }
 
 namespace {
@@ -66,7 +48,7 @@ FlowTopology one_step(const TriMesh& mesh, std::span<const glm::vec3> field,
 
 }  // namespace
 
-int run_topology(const SceneOptions& scene_options, const TopologyOptions& options) {
+int run_topology(const SceneOptions& scene_options) {
   Scene scene = scene_from_command_line(scene_options);
   if (scene.out.empty()) throw InputError("--out: give the .vtp file to write (-o OUT.vtp)");
   if (lower_extension(scene.out) != ".vtp")
@@ -80,7 +62,7 @@ int run_topology(const SceneOptions& scene_options, const TopologyOptions& optio
   const PreparedScene prepared = prepare_scene(scene);
   for (const std::string& w : prepared.warnings)
     std::fprintf(stderr, "ibfvs: warning: %s\n", w.c_str());
-  const ibfvs::TopologyOptions lines{options.scale, options.min_strength, options.min_length};
+  const ibfvs::TopologyOptions& lines = scene.topology;
   int next_id = 0;
   if (prepared.step_count < 2) {
     one_step(*prepared.mesh, prepared.field, lines, nullptr, next_id, out, prepared.mesh_name,

@@ -12,18 +12,13 @@ namespace ibfvs::app {
 
 struct SceneOptions;
 
-/// The command's options: the library's (ibfvs::TopologyOptions).
-struct TopologyOptions {
-  double scale = 0.05;        ///< ibfvs::TopologyOptions::scale
-  double min_strength = 2.0;  ///< ibfvs::TopologyOptions::min_strength
-  double min_length = 2.0;    ///< ibfvs::TopologyOptions::min_length
-};
-
-void add_topology_options(CLI::App& command, SceneOptions& scene, TopologyOptions& options);
+/// The scene's options; what counts as a feature is the scene keys'
+/// (feature_scale, min_strength, min_length: Scene::topology).
+void add_topology_options(CLI::App& command, SceneOptions& scene);
 
 /// Finds, prints the summary and writes the scene's `out` (.vtp; an unsteady
 /// scene: one file per step, NAME_0000.vtp ..., and NAME.pvd listing them).
 /// Returns the exit status; throws InputError / SettingError.
-int run_topology(const SceneOptions& scene, const TopologyOptions& options);
+int run_topology(const SceneOptions& scene);
 
 }  // namespace ibfvs::app

@@ -489,16 +489,21 @@ def test_the_pvpython_examples_in_the_docs_run(tmp_path, doc):
 
     blocks = re.findall(r"```pvpython\n(.*?)```", (ROOT / doc).read_text(), re.S)
     assert blocks
+    printed = ""
     for k, block in enumerate(blocks):
         assert BUILT_PLUGIN in block
         script = tmp_path / ("example%d.py" % k)
         script.write_text(block.replace(BUILT_PLUGIN, PLUGIN))  # this build's plugin
         done = on_display(["pvpython", str(script)], cwd=tmp_path)
         assert done.returncode == 0, why(done)
+        printed += done.stdout
         assert "IBFVS: " not in done.stdout + done.stderr  # no warning: the texture was drawn
         assert "ERR|" not in done.stdout + done.stderr, why(done)
         for page in re.findall(r'ExportView\("([^"]+)"', block):  # its pages were written
             assert (tmp_path / page).stat().st_size > 100000, page
+    # What the doc says an example prints, it prints.
+    for said in re.findall(r"It prints `([^`]+)`", (ROOT / doc).read_text()):
+        assert " ".join(said.split()) in printed, said
     shots = list(tmp_path.glob("*.png"))
     assert shots
     for shot in shots:

@@ -456,7 +456,8 @@ def topology(source=None, triangles=None, vectors=None, *, feature_scale=_TOPOLO
     `warnings` lists)."""
     import warnings as _warnings
 
-    pyvista_mesh = type(source).__module__.split(".")[0] == "pyvista"
+    # A PyVista mesh (not one of its arrays, which are numpy arrays of its module).
+    pyvista_mesh = type(source).__module__.split(".")[0] == "pyvista" and hasattr(source, "n_cells")
     args = _source(source, triangles, vectors, options)
     limits = (float(feature_scale), float(min_strength), float(min_length))
     if args[0] == "file":

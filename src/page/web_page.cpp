@@ -117,7 +117,7 @@ Json overlay(const PreparedScene& p, const page::SceneSteps& d, page::Block& blo
   std::vector<FlowTopology> found;
   int next_id = 0;
   for (std::size_t k = 0; k < n; ++k) {
-    found.push_back(find_topology(step_surface(p, d.data[k]), d.data[k].field));
+    found.push_back(find_topology(step_surface(p, d.data[k]), d.data[k].field, p.scene.topology));
     if (k == 0)
       next_id = static_cast<int>(found[0].critical.points.size() + found[0].lines.lines.size());
     else

@@ -274,10 +274,13 @@ void Session::draw_overlay(const ViewState& view) {
                                        static_cast<std::size_t>(scene_.width),
                                        static_cast<std::size_t>(scene_.height)};
   const glm::ivec2 size(scene_.width, scene_.height);
-  if (!overlay_ || overlay_for_ != key) {
+  const TopologyOptions& options = scene_.scene.topology;
+  if (overlay_steps_ && !(overlay_steps_->options == options)) overlay_steps_.reset();
+  if (!overlay_ || overlay_for_ != key || !overlay_steps_) {
     // The step shown and the one played into, each found once: playing on,
     // the next step's features (and their ids) become the shown step's.
     OverlaySteps found;
+    found.options = options;
     found.version = data_version_;
     found.step = step;
     found.next = next;
@@ -290,13 +293,13 @@ void Session::draw_overlay(const ViewState& view) {
       found.first = std::move(overlay_steps_->first);
       found.next_id = overlay_steps_->next_id;
     } else {
-      found.first = steps ? find_topology(player_->surface(), player_->field())
-                          : find_topology(*scene_.mesh, scene_.field);
+      found.first = steps ? find_topology(player_->surface(), player_->field(), options)
+                          : find_topology(*scene_.mesh, scene_.field, options);
       found.next_id =
           static_cast<int>(found.first.critical.points.size() + found.first.lines.lines.size());
     }
     if (next != step) {
-      found.second = find_topology(player_->next_surface(), player_->next_field());
+      found.second = find_topology(player_->next_surface(), player_->next_field(), options);
       // A feature moves at most two significance scales in a step.
       carry_ids(found.first, found.second, found.next_id, 2.0 * found.first.lines.scale);
       overlay_morph_ = morph_steps(found.first, found.second);

@@ -243,6 +243,21 @@ TEST_F(TopologyOverlayGLTest, OnASeriesTheFeaturesMoveWithTheStepsAndKeepTheirId
   EXPECT_GE(m.placed, m.red * 98 / 100) << m.placed << " of " << m.red;
 }
 
+TEST_F(TopologyOverlayGLTest, TheSignificanceIsTheScenesAndChangesLive) {
+  // The closed orbit gathers its neighbours by e^(2 pi) a turn (pulled at
+  // rate 1): kept at the default least strength 2, not at 7.
+  Session session(prepare_scene(spiral_scene(Overlay::Topology), spiral_globe(), "spiral"));
+  session.advance();
+  ASSERT_NE(session.overlay_topology(), nullptr);
+  EXPECT_EQ(session.overlay_topology()->count(LineKind::Separation), 1u);
+  Scene strict = session.scene().scene;
+  apply_setting(strict, "min_strength", "7");
+  EXPECT_EQ(session.set(strict), SetResult::Applied);
+  session.advance();
+  EXPECT_EQ(session.overlay_topology()->count(LineKind::Separation), 0u);
+  EXPECT_EQ(session.overlay_topology()->count(CriticalKind::RepellingFocus), 2u);
+}
+
 TEST_F(TopologyOverlayGLTest, BetweenStepsTheLegendShowsEachStepsCounts) {
   FlowTopology a, b;
   CriticalPoint p;

@@ -337,6 +337,7 @@ class Session {
   TopologyMorph overlay_morph_;
   // The features of the step shown and of the one played into.
   struct OverlaySteps {
+    TopologyOptions options;  // the scene's when they were found
     std::size_t version = 0, step = 0, next = 0;
     FlowTopology first, second;
     int next_id = 0;  // carry_ids'

@@ -97,6 +97,23 @@ void require_in_range(std::string_view name, float v, bool min_is_off = false,
                      " and " + format_number(r.max) + std::string(unit));
 }
 
+// A number of the topology's options (Scene::topology), checked as
+// find_topology checks them; the overlay takes it at its next frame.
+template <double TopologyOptions::*Field>
+SceneKey topology_key(const char* name, const char* help) {
+  return {name,
+          KeyKind::Number,
+          help,
+          [](Scene& s, std::string_view t) {
+            TopologyOptions o = s.topology;
+            o.*Field = number(t);
+            check_topology_options(o);
+            s.topology = o;
+          },
+          [](const Scene& s) { return one(format_number(static_cast<float>(s.topology.*Field))); },
+          KeyEffect::None};
+}
+
 std::vector<SceneKey> make_keys() {
   return {
       // ---- mesh
@@ -288,6 +305,17 @@ std::vector<SceneKey> make_keys() {
        [](Scene& s, std::string_view t) { s.surface_color = colour(t); },
        [](const Scene& s) { return one(format_vec3(s.surface_color)); }, KeyEffect::Live},
       IBFVS_ENUM_KEY(overlay, Overlay, "drawn over the texture", KeyEffect::None),
+      topology_key<&TopologyOptions::scale>(
+          "feature_scale",
+          "the topology's significance scale, a fraction of the surface's size (its "
+          "bounding box's diagonal): a saddle and a node or focus closer cancel; lines "
+          "are measured in it"),
+      topology_key<&TopologyOptions::min_strength>(
+          "min_strength",
+          "keep a topology line whose neighbours converge onto it (diverge from it) by "
+          "at least e^N along it"),
+      topology_key<&TopologyOptions::min_length>(
+          "min_length", "keep a topology line at least this many feature scales long"),
       IBFVS_ENUM_KEY(noise_space, NoiseSpace, "where the noise lives (3.6)", KeyEffect::Live),
       IBFVS_ENUM_KEY(advect_view, AdvectView, "which view projects r - v dt (eq. 13)",
                      KeyEffect::Live),

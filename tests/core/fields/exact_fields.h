@@ -201,9 +201,9 @@ inline Truth wavy_open_truth() {
   return t;
 }
 
-/// The height along the axis `a` on the sphere, flowing down: a source at
-/// -a... no: from the maximum (a repelling node at a) to the minimum (an
-/// attracting node at -a); every skin-friction line a meridian, none special.
+/// The height along the axis `a` on the sphere, flowing down: from the
+/// maximum (a repelling node at a) to the minimum (an attracting node at
+/// -a); every skin-friction line a meridian, none special.
 inline SphereField height_down() {
   return [](const glm::dvec3& n) { return -tangent(axes().a, n); };
 }

@@ -172,6 +172,7 @@ struct TopologyOptions {
   double min_strength = 2.0;
   /// A line is kept when it is at least this many scales long.
   double min_length = 2.0;
+  bool operator==(const TopologyOptions&) const = default;
 };
 
 /// Throws InputError naming the option when one is out of its range

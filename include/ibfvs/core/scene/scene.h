@@ -18,6 +18,7 @@
 #include <glm/vec3.hpp>
 
 #include "ibfvs/core/fields/potential_flow.h"
+#include "ibfvs/core/fields/topology.h"
 #include "ibfvs/core/fields/vector_field.h"
 #include "ibfvs/core/image/colormap.h"
 #include "ibfvs/core/scene/camera.h"
@@ -199,6 +200,9 @@ struct Scene {
   int lock_at = kLockNever;  ///< frame to lock the texture at (3.7), or kLockNever / kLockAuto
   std::optional<glm::vec3> lock_camera;  ///< AZ,EL,DIST once locked
   Overlay overlay = Overlay::None;       ///< drawn over the texture
+  /// What counts as a feature of the topology (the overlay's and `ibfvs
+  /// topology`'s): feature_scale, min_strength, min_length.
+  TopologyOptions topology;
 
   // ---- output
   int width = 512, height = 512;

@@ -18,7 +18,6 @@
 #include <mutex>
 #include <new>
 #include <optional>
-#include <set>
 #include <span>
 #include <sstream>
 #include <string>
@@ -472,17 +471,21 @@ TriMesh merge_surfaces(std::vector<Surface>& surfaces, const std::vector<std::st
   }
   // A face that two blocks share, once: the first block's (a boundary
   // patch's, before a volume's outer surface).
-  std::set<std::array<std::uint32_t, 3>> seen;
-  std::vector<bool> keep(mesh.triangles.size(), true);
-  std::size_t repeated = 0;
+  // (Sorted by their corners, then by order: the first of equal ones kept.)
+  std::vector<std::pair<std::array<std::uint32_t, 3>, std::size_t>> faces(mesh.triangles.size());
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
     std::array<std::uint32_t, 3> k = mesh.triangles[t];
     std::sort(k.begin(), k.end());
-    if (!seen.insert(k).second) {
-      keep[t] = false;
+    faces[t] = {k, t};
+  }
+  std::sort(faces.begin(), faces.end());
+  std::vector<bool> keep(mesh.triangles.size(), true);
+  std::size_t repeated = 0;
+  for (std::size_t i = 1; i < faces.size(); ++i)
+    if (faces[i].first == faces[i - 1].first) {
+      keep[faces[i].second] = false;
       ++repeated;
     }
-  }
   if (repeated > 0) {
     std::size_t out = 0;
     for (std::size_t t = 0; t < mesh.triangles.size(); ++t)

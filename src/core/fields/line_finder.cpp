@@ -176,6 +176,8 @@ TraceResult LineFinder::follow(const SurfacePoint& start, int sense, LineKind ki
     return true;
   };
   r.trace = trace_line(f_, start, sense, s_.max_length, s_.step, visit);
+  r.visited.reserve(r.trace.points.size());
+  for (const TracePoint& p : r.trace.points) r.visited.push_back(p.position);
   if (r.met == Met::Cut) r.trace.points.resize(best_at + 1);
   if (r.truncate) r.trace.points.resize(r.truncate);
   if (mode != Mode::Separatrix && (r.met == Met::Nothing || r.met == Met::Cut)) {

@@ -61,8 +61,9 @@ struct TraceResult {
   std::uint32_t point = 0;  // Met::Point: the critical point
   std::uint32_t line = 0;   // Met::Line: the line joined
   std::uint32_t section_from = 0, section_to = 0;
-  std::size_t first_crossing = 0;  // Met::Cycle: the trace's index of its first crossing
-  std::size_t truncate = 0;        // when not 0: the trace's points kept
+  std::size_t first_crossing = 0;   // Met::Cycle: the trace's index of its first crossing
+  std::size_t truncate = 0;         // when not 0: the trace's points kept
+  std::vector<glm::dvec3> visited;  // every point the trace looked at, the cut part too
 };
 
 class LineFinder {
@@ -146,6 +147,18 @@ class LineFinder {
       if (d <= best_d) best_d = d, best = i;
     });
     return best;
+  }
+
+  // Whether a mark from `first` on lies within the merge distance of a
+  // point `r` visited: what follow() saw before those marks were made may
+  // differ from what it would see now.
+  bool sees_marks_from(const TraceResult& r, std::size_t first) const {
+    for (const glm::dvec3& p : r.visited)
+      if (merge_grid_.near(p, s_.merge + f_.mean_edge(), [&](std::uint32_t m) {
+            return m >= first && marks_[m].distance(p) <= s_.merge;
+          }))
+        return true;
+    return false;
   }
 
   // Within the merge distance of p: the nearest line of `kind` whose flow

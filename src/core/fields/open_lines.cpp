@@ -246,59 +246,110 @@ void LineFinder::open_lines() {
   seeds.insert(seeds.begin(), straight.begin(), straight.end());
   PointGrid tried(s_.seed_gap, f_.lo(), f_.hi());
   std::vector<glm::dvec3> tried_at;
-  for (const Seed& seed : seeds) {
-    if (line_near(seed.at.position, LineKind::Separation, s_.seed_gap, glm::dvec3(0.0)) ||
-        line_near(seed.at.position, LineKind::Attachment, s_.seed_gap, glm::dvec3(0.0)))
-      continue;
-    bool near_tried = false;
-    tried.near(seed.at.position, s_.merge, [&](std::uint32_t k) {
-      if (glm::length(tried_at[k] - seed.at.position) <= s_.merge) near_tried = true;
+  // A seed on a line found, or on a trace tried, is passed over.
+  const auto passed_over = [&](const Seed& seed) {
+    const glm::dvec3& p = seed.at.position;
+    if (line_grid_.near(p, s_.seed_gap + f_.mean_edge(),
+                        [&](std::uint32_t m) { return marks_[m].distance(p) <= s_.seed_gap; }))
+      return true;
+    return tried.near(seed.at.position, s_.merge, [&](std::uint32_t k) {
+      return glm::length(tried_at[k] - seed.at.position) <= s_.merge;
     });
-    if (near_tried) continue;
-    const int sense = seed.kind == LineKind::Separation ? 1 : -1;
-    TraceResult ahead = follow(seed.at, sense, seed.kind, Mode::Open, std::nullopt);
-    if (ahead.met == Met::Cycle) {
-      if (auto orbit = closed_orbit(ahead, sense)) {
-        if (!line_near(orbit->points[orbit->points.size() / 2].position, orbit->kind,
-                       4.0 * s_.merge, glm::dvec3(0.0)) &&
-            significant(*orbit))
-          add(std::move(*orbit));
+  };
+  // The seeds one at a time, strongest first, each line found seen by the
+  // traces after it; in batches, each batch's traces ahead found in
+  // parallel against the lines found before it, then taken in order: a
+  // seed that what its batch found before it passes over is passed over,
+  // and a trace that came near a line found since is traced again. The
+  // same lines as one at a time.
+  constexpr std::size_t kBatch = 32;
+  std::vector<std::size_t> batch;
+  std::vector<TraceResult> aheads;
+  std::vector<double> ahead_strength;
+  std::vector<std::optional<TraceResult>> behinds;
+  // The strength of a trace ahead that joins no line (a line's, or none).
+  const auto strength_ahead = [&](const TraceResult& ahead, const Seed& seed) {
+    return ahead.met == Met::Line
+               ? o_.min_strength
+               : strength(to_line(ahead, seed.kind == LineKind::Separation ? 1 : -1, seed.kind,
+                                  LineOrigin::Open));
+  };
+  for (std::size_t next = 0; next < seeds.size();) {
+    batch.clear();
+    for (; next < seeds.size() && batch.size() < kBatch; ++next)
+      if (!passed_over(seeds[next])) batch.push_back(next);
+    aheads.assign(batch.size(), TraceResult{});
+    ahead_strength.assign(batch.size(), 0.0);
+    behinds.assign(batch.size(), std::nullopt);
+    const std::size_t marks_before = marks_.size(), tried_before = tried_at.size();
+#pragma omp parallel for schedule(dynamic, 1)
+    for (std::int64_t b = 0; b < static_cast<std::int64_t>(batch.size()); ++b) {
+      const auto k = static_cast<std::size_t>(b);
+      const Seed& seed = seeds[batch[k]];
+      aheads[k] = follow(seed.at, seed.kind == LineKind::Separation ? 1 : -1, seed.kind, Mode::Open,
+                         std::nullopt);
+      ahead_strength[k] = strength_ahead(aheads[k], seed);
+      // Its extension behind, where the line may be kept: it sees no line.
+      if (aheads[k].met != Met::Cycle &&
+          (aheads[k].met == Met::Line || ahead_strength[k] >= o_.min_strength - 1.5))
+        behinds[k] = follow(seed.at, seed.kind == LineKind::Separation ? -1 : 1, seed.kind,
+                            Mode::Extension, std::nullopt);
+    }
+    for (std::size_t b = 0; b < batch.size(); ++b) {
+      const Seed& seed = seeds[batch[b]];
+      // (Passed over for what its batch's seeds before it found.)
+      if ((marks_.size() > marks_before || tried_at.size() > tried_before) && passed_over(seed))
+        continue;
+      const int sense = seed.kind == LineKind::Separation ? 1 : -1;
+      TraceResult ahead = std::move(aheads[b]);
+      if (marks_.size() > marks_before && sees_marks_from(ahead, marks_before)) {
+        ahead = follow(seed.at, sense, seed.kind, Mode::Open, std::nullopt);
+        ahead_strength[b] = strength_ahead(ahead, seed);
+      }
+      if (ahead.met == Met::Cycle) {
+        if (auto orbit = closed_orbit(ahead, sense)) {
+          if (!line_near(orbit->points[orbit->points.size() / 2].position, orbit->kind,
+                         4.0 * s_.merge, glm::dvec3(0.0)) &&
+              significant(*orbit))
+            add(std::move(*orbit));
+          continue;
+        }
+      }
+      // The extension adds at most e^1.5 (follow's cap): a line too weak
+      // ahead of its seed stays too weak (unless it joins another).
+      if (ahead.met != Met::Line && ahead_strength[b] < o_.min_strength - 1.5) {
+        for (const TracePoint& p : ahead.trace.points) {
+          tried.insert(p.position, static_cast<std::uint32_t>(tried_at.size()));
+          tried_at.push_back(p.position);
+        }
         continue;
       }
-    }
-    // The extension adds at most e^1.5 (follow's cap): a line too weak
-    // ahead of its seed stays too weak (unless it joins another).
-    if (ahead.met != Met::Line &&
-        strength(to_line(ahead, sense, seed.kind, LineOrigin::Open)) < o_.min_strength - 1.5) {
-      for (const TracePoint& p : ahead.trace.points) {
+      const TraceResult behind =
+          behinds[b] ? std::move(*behinds[b])
+                     : follow(seed.at, -sense, seed.kind, Mode::Extension, std::nullopt);
+      // The line: behind (reversed) then ahead, in the trace's sense.
+      TraceResult whole = ahead;
+      std::vector<TracePoint> pts(behind.trace.points.rbegin(), behind.trace.points.rend());
+      if (!pts.empty()) pts.pop_back();  // the seed, again
+      pts.insert(pts.end(), ahead.trace.points.begin(), ahead.trace.points.end());
+      whole.trace.points = std::move(pts);
+      RawLine line = to_line(whole, sense, seed.kind, LineOrigin::Open);
+      line.extension = behind.trace.points.empty() ? 0.0 : behind.trace.points.back().arc;
+      line.seed_rate = seed.rate;
+      if (behind.met == Met::Point) {  // it came from a critical point
+        const CriticalPoint& cp = points_[behind.point];
+        const TracePoint at{glm::dvec3(cp.position), static_cast<std::uint32_t>(cp.triangle), 0.0};
+        if (sense > 0)
+          line.points.insert(line.points.begin(), at);
+        else
+          line.points.push_back(at);
+      }
+      for (const TracePoint& p : line.points) {
         tried.insert(p.position, static_cast<std::uint32_t>(tried_at.size()));
         tried_at.push_back(p.position);
       }
-      continue;
+      accept(std::move(line), ahead, sense);
     }
-    const TraceResult behind = follow(seed.at, -sense, seed.kind, Mode::Extension, std::nullopt);
-    // The line: behind (reversed) then ahead, in the trace's sense.
-    TraceResult whole = ahead;
-    std::vector<TracePoint> pts(behind.trace.points.rbegin(), behind.trace.points.rend());
-    if (!pts.empty()) pts.pop_back();  // the seed, again
-    pts.insert(pts.end(), ahead.trace.points.begin(), ahead.trace.points.end());
-    whole.trace.points = std::move(pts);
-    RawLine line = to_line(whole, sense, seed.kind, LineOrigin::Open);
-    line.extension = behind.trace.points.empty() ? 0.0 : behind.trace.points.back().arc;
-    line.seed_rate = seed.rate;
-    if (behind.met == Met::Point) {  // it came from a critical point
-      const CriticalPoint& cp = points_[behind.point];
-      const TracePoint at{glm::dvec3(cp.position), static_cast<std::uint32_t>(cp.triangle), 0.0};
-      if (sense > 0)
-        line.points.insert(line.points.begin(), at);
-      else
-        line.points.push_back(at);
-    }
-    for (const TracePoint& p : line.points) {
-      tried.insert(p.position, static_cast<std::uint32_t>(tried_at.size()));
-      tried_at.push_back(p.position);
-    }
-    accept(std::move(line), ahead, sense);
   }
 }
 
@@ -317,21 +368,31 @@ void LineFinder::prune_open_lines() {
   });
   std::vector<char> dropped(lines_.size(), 0);
   const double beside_radius = std::max(s_.seed_gap, 0.5 * s_.scale);
-  // The line grid's cells are narrower than these searches.
-  PointGrid wide(std::max(2.0 * s_.disk, beside_radius) + f_.mean_edge(), f_.lo(), f_.hi());
+  // The line grid's cells are narrower than these searches. The marks of
+  // the skeleton (every line but the open ones), and of the open lines of
+  // each kind, apart: a line is looked for beside those it may shadow.
+  const double wide_cell = std::max(2.0 * s_.disk, beside_radius) + f_.mean_edge();
+  PointGrid skeleton(wide_cell, f_.lo(), f_.hi()), open_separation(wide_cell, f_.lo(), f_.hi()),
+      open_attachment(wide_cell, f_.lo(), f_.hi());
+  const auto grid_of = [&](const RawLine& l) -> PointGrid& {
+    if (l.origin != LineOrigin::Open) return skeleton;
+    return l.kind == LineKind::Separation ? open_separation : open_attachment;
+  };
   for (std::uint32_t m = 0; m < marks_.size(); ++m) {
-    wide.insert(marks_[m].position, m);
-    if (wide.key_of(marks_[m].position) != wide.key_of(marks_[m].to)) wide.insert(marks_[m].to, m);
+    PointGrid& g = grid_of(lines_[marks_[m].line]);
+    g.insert(marks_[m].position, m);
+    if (g.key_of(marks_[m].position) != g.key_of(marks_[m].to)) g.insert(marks_[m].to, m);
   }
   const auto nearest = [&](const glm::dvec3& p, std::uint32_t self, double radius) {
     std::optional<std::uint32_t> best;
     double best_d = radius;
-    wide.near(p, radius + f_.mean_edge(), [&](std::uint32_t m) {
-      const Mark& mk = marks_[m];
-      if (mk.line == self || dropped[mk.line]) return;
-      const double d = mk.distance(p);
-      if (d <= best_d) best_d = d, best = mk.line;
-    });
+    for (const PointGrid* g : {&skeleton, &open_separation, &open_attachment})
+      g->near(p, radius + f_.mean_edge(), [&](std::uint32_t m) {
+        const Mark& mk = marks_[m];
+        if (mk.line == self || dropped[mk.line]) return;
+        const double d = mk.distance(p);
+        if (d <= best_d) best_d = d, best = mk.line;
+      });
     return best;
   };
   for (const std::uint32_t i : order) {
@@ -346,27 +407,28 @@ void LineFinder::prune_open_lines() {
     if (const auto b = nearest(end, i, 2.0 * s_.disk); b && !at_point)
       drop = distinct_strength(a, lines_[*b]) < o_.min_strength;
     if (!drop) {
-      // (Every fourth point: they lie a quarter of an edge apart.)
+      // Beside a line of the skeleton of either kind (within the finder's
+      // resolution), or a stronger open one of its own kind closer than
+      // half the significance scale: one feature. (Every fourth point: they
+      // lie a quarter of an edge apart.) Decided as soon as more than half
+      // of them are beside one, or cannot be.
+      const PointGrid& own = a.kind == LineKind::Separation ? open_separation : open_attachment;
+      const std::size_t samples = (a.points.size() + 3) / 4;
       std::size_t beside = 0, seen = 0;
       for (std::size_t k = 0; k < a.points.size(); k += 4, ++seen) {
-        const TracePoint& p = a.points[k];
-        bool near = false;
-        wide.near(p.position, beside_radius + f_.mean_edge(), [&](std::uint32_t m) {
+        if (2 * beside > samples || 2 * (beside + samples - seen) <= samples) break;
+        const glm::dvec3& p = a.points[k].position;
+        const bool near = skeleton.near(p, s_.seed_gap + f_.mean_edge(), [&](std::uint32_t m) {
+          return !dropped[marks_[m].line] && marks_[m].distance(p) <= s_.seed_gap;
+        }) || own.near(p, beside_radius + f_.mean_edge(), [&](std::uint32_t m) {
           const Mark& mk = marks_[m];
-          if (mk.line == i || dropped[mk.line]) return;
-          const RawLine& b = lines_[mk.line];
-          // Beside a line of the skeleton of either kind (within the
-          // finder's resolution), or a stronger open one of its own kind
-          // closer than half the significance scale: one feature.
-          const double d = mk.distance(p.position);
-          if (b.origin != LineOrigin::Open
-                  ? d <= s_.seed_gap
-                  : b.kind == a.kind && b.strength >= a.strength && d <= beside_radius)
-            near = true;
+          if (mk.line == i || dropped[mk.line] || lines_[mk.line].strength < a.strength)
+            return false;
+          return mk.distance(p) <= beside_radius;
         });
         beside += near;
       }
-      drop = 2 * beside > seen;
+      drop = 2 * beside > samples;
     }
     dropped[i] = drop;
   }

@@ -2,8 +2,11 @@
 // The topology's lines as they are found, before their LinePoints
 // (topology.h): shared by the zero lines (zero_lines.cpp) and the traced
 // lines (feature_lines.cpp).
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <optional>
+#include <type_traits>
 #include <unordered_map>
 #include <vector>
 
@@ -65,23 +68,34 @@ class PointGrid {
   PointGrid(double cell, const glm::dvec3& lo, const glm::dvec3& hi);
   void insert(const glm::dvec3& p, std::uint32_t item);
   /// Calls visit(item) for every item in the cells that the cube of half
-  /// width `radius` (at most the cell's width) about p meets: 8 at most.
+  /// width `radius` (at most the cell's width) about p meets: 8 at most. A
+  /// visit that returns bool stops the search by returning true; near then
+  /// returns true.
   template <class Visit>
-  void near(const glm::dvec3& p, double radius, Visit visit) const {
+  bool near(const glm::dvec3& p, double radius, Visit visit) const {
+    const auto call = [&](std::uint32_t item) {
+      if constexpr (std::is_same_v<std::invoke_result_t<Visit&, std::uint32_t>, bool>) {
+        return visit(item);
+      } else {
+        visit(item);
+        return false;
+      }
+    };
     const Cell lo = cell_of(p - glm::dvec3(radius)), hi = cell_of(p + glm::dvec3(radius));
     for (std::int64_t x = lo.x; x <= hi.x; ++x)
       for (std::int64_t y = lo.y; y <= hi.y; ++y)
         for (std::int64_t z = lo.z; z <= hi.z; ++z) {
+          const std::vector<std::uint32_t>* items = nullptr;
           if (!dense_.empty()) {
-            for (const std::uint32_t item :
-                 dense_[static_cast<std::size_t>((z * dims_[1] + y) * dims_[0] + x)])
-              visit(item);
-            continue;
+            items = &dense_[static_cast<std::size_t>((z * dims_[1] + y) * dims_[0] + x)];
+          } else if (const auto it = cells_.find(key(x, y, z)); it != cells_.end()) {
+            items = &it->second;
           }
-          const auto it = cells_.find(key(x, y, z));
-          if (it == cells_.end()) continue;
-          for (const std::uint32_t item : it->second) visit(item);
+          if (items)
+            for (const std::uint32_t item : *items)
+              if (call(item)) return true;
         }
+    return false;
   }
   /// The same within the cell's width.
   template <class Visit>
@@ -99,8 +113,23 @@ class PointGrid {
   struct Cell {
     std::int64_t x, y, z;
   };
-  [[nodiscard]] Cell cell_of(const glm::dvec3& p) const;
-  static std::uint64_t key(std::int64_t x, std::int64_t y, std::int64_t z);
+  [[nodiscard]] Cell cell_of(const glm::dvec3& p) const {
+    if (!dense_.empty()) {
+      const auto c = [&](int k) {
+        const double v = std::floor((p[k] - origin_[k]) / cell_);
+        return static_cast<std::int64_t>(std::clamp(v, 0.0, static_cast<double>(dims_[k] - 1)));
+      };
+      return {c(0), c(1), c(2)};
+    }
+    const auto c = [&](double v) {
+      return static_cast<std::int64_t>(std::clamp(std::floor(v / cell_), -1e15, 1e15));
+    };
+    return {c(p.x), c(p.y), c(p.z)};
+  }
+  static std::uint64_t key(std::int64_t x, std::int64_t y, std::int64_t z) {
+    const auto m = [](std::int64_t v) { return static_cast<std::uint64_t>(v) & 0x1fffff; };
+    return m(x) << 42 | m(y) << 21 | m(z);
+  }
   double cell_;
   glm::dvec3 origin_{0.0};
   std::int64_t dims_[3] = {0, 0, 0};

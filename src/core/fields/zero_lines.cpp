@@ -325,23 +325,4 @@ void PointGrid::insert(const glm::dvec3& p, std::uint32_t item) {
   cells_[key(c.x, c.y, c.z)].push_back(item);
 }
 
-PointGrid::Cell PointGrid::cell_of(const glm::dvec3& p) const {
-  if (!dense_.empty()) {
-    const auto c = [&](int k) {
-      const double v = std::floor((p[k] - origin_[k]) / cell_);
-      return static_cast<std::int64_t>(std::clamp(v, 0.0, static_cast<double>(dims_[k] - 1)));
-    };
-    return {c(0), c(1), c(2)};
-  }
-  const auto c = [&](double v) {
-    return static_cast<std::int64_t>(std::clamp(std::floor(v / cell_), -1e15, 1e15));
-  };
-  return {c(p.x), c(p.y), c(p.z)};
-}
-
-std::uint64_t PointGrid::key(std::int64_t x, std::int64_t y, std::int64_t z) {
-  const auto m = [](std::int64_t v) { return static_cast<std::uint64_t>(v) & 0x1fffff; };
-  return m(x) << 42 | m(y) << 21 | m(z);
-}
-
 }  // namespace ibfvs::detail

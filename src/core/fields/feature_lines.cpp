@@ -151,6 +151,10 @@ FlowTopology find_topology(const TriMesh& mesh, std::span<const glm::vec3> vecto
   t.lines.scale = s.scale;
   t.lines.mean_edge = field.mean_edge();
   if (field.triangle_count() == 0) return t;
+  // Every zero of the field, kept or not: where a skin-friction line ends.
+  std::vector<glm::dvec3> all_zeros;
+  all_zeros.reserve(t.critical.points.size());
+  for (const CriticalPoint& p : t.critical.points) all_zeros.emplace_back(p.position);
   std::vector<detail::RawLine> zeros = detail::find_zero_lines(field, s);
   t.critical.points = detail::simplify_points(std::move(t.critical.points), zeros, s,
                                               field.mean_edge(), t.critical);
@@ -161,7 +165,7 @@ FlowTopology find_topology(const TriMesh& mesh, std::span<const glm::vec3> vecto
   for (const CriticalPoint& p : t.critical.points) t.critical.index_sum += p.index;
   std::vector<detail::RawLine> raw;
   {
-    detail::LineFinder finder(field, s, options, t.critical.points);
+    detail::LineFinder finder(field, s, options, t.critical.points, all_zeros);
     for (detail::RawLine& z : zeros) finder.add(std::move(z));
     finder.separatrices();
     finder.open_lines();

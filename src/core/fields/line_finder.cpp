@@ -110,6 +110,12 @@ TraceResult LineFinder::follow(const SurfacePoint& start, int sense, LineKind ki
         r.point = *k;
         return false;
       }
+      // A zero that is no kept point (one of a pair closer than the scale,
+      // which cancel): the line ends there too, rather than turn about it.
+      if (left_origin && zero_near(p.position)) {
+        r.met = Met::Zero;
+        return false;
+      }
       // A line that passes a saddle within twice the scale and turns there
       // ran into it along its incoming separatrix and left along an
       // outgoing one: a connection at the scale, which the discrete field
@@ -288,10 +294,9 @@ double LineFinder::strength(const RawLine& line) const {
   // must be a line's length at least.
   // Nor what lies beside a line of zeros, where the directions flip.
   const auto near_point = [&](const glm::dvec3& x) {
-    bool near = false;
-    point_grid_.near(x, [&](std::uint32_t i) {
-      if (glm::length(glm::dvec3(points_[i].position) - x) <= 2.0 * s_.disk) near = true;
-    });
+    // (Every zero of the field: the kept points and those that cancel.)
+    bool near = zero_grid_.near(
+        x, [&](std::uint32_t i) { return glm::length(zeros_[i] - x) <= 2.0 * s_.disk; });
     if (!near && line.origin != LineOrigin::Zeros)
       line_grid_.near(x, 2.5 * f_.mean_edge(), [&](std::uint32_t m) {
         if (lines_[marks_[m].line].origin == LineOrigin::Zeros &&

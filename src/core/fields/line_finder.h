@@ -53,7 +53,7 @@ constexpr double kSeedRate = 2.0;
 enum class Mode { Separatrix, Open, Extension };
 
 // What ended a trace, beyond TraceEnd.
-enum class Met { Nothing, Point, Line, Other, Cycle, Cut };
+enum class Met { Nothing, Point, Line, Other, Cycle, Cut, Zero };
 
 struct TraceResult {
   Trace trace;
@@ -68,16 +68,21 @@ struct TraceResult {
 
 class LineFinder {
  public:
+  // `points`: the kept critical points; `zeros`: every zero of the field
+  // (cancelled ones too), where a skin-friction line ends.
   LineFinder(const SurfaceField& field, const Scales& scales, const TopologyOptions& options,
-             const std::vector<CriticalPoint>& points)
+             const std::vector<CriticalPoint>& points, const std::vector<glm::dvec3>& zeros)
       : f_(field),
         s_(scales),
         o_(options),
         points_(points),
+        zeros_(zeros),
+        zero_grid_(2.0 * scales.disk, field.lo(), field.hi()),
         point_grid_(2.0 * scales.disk, field.lo(), field.hi()),
         saddle_grid_(scales.connect, field.lo(), field.hi()),
         merge_grid_(scales.merge + field.mean_edge(), field.lo(), field.hi()),
         line_grid_(scales.seed_gap + field.mean_edge(), field.lo(), field.hi()) {
+    for (std::uint32_t i = 0; i < zeros_.size(); ++i) zero_grid_.insert(zeros_[i], i);
     for (std::uint32_t i = 0; i < points_.size(); ++i) {
       point_grid_.insert(glm::dvec3(points_[i].position), i);
       if (points_[i].kind == CriticalKind::Saddle)
@@ -134,6 +139,12 @@ class LineFinder {
       if (d <= best_d) best_d = d, best = i;
     });
     return best;
+  }
+
+  // Whether a zero of the field lies within the disk of p.
+  bool zero_near(const glm::dvec3& p) const {
+    return zero_grid_.near(p, s_.disk,
+                           [&](std::uint32_t i) { return glm::length(zeros_[i] - p) <= s_.disk; });
   }
 
   // The kept saddle within `radius` of p, if any (not `skip`).
@@ -223,9 +234,11 @@ class LineFinder {
   Scales s_;
   TopologyOptions o_;
   const std::vector<CriticalPoint>& points_;
-  // Lines' marks: for a trace's merge (cells as wide as the merge distance
-  // and a mark's length) and for the wider searches.
-  PointGrid point_grid_, saddle_grid_, merge_grid_, line_grid_;
+  const std::vector<glm::dvec3>& zeros_;
+  // The zeros, the points, and the lines' marks: for a trace's merge
+  // (cells as wide as the merge distance and a mark's length) and for the
+  // wider searches.
+  PointGrid zero_grid_, point_grid_, saddle_grid_, merge_grid_, line_grid_;
   std::vector<Mark> marks_;
   std::vector<RawLine> lines_;
   // Saddle-to-saddle connections found from their first saddle: (from, to).

@@ -99,8 +99,8 @@ class PointGrid {
   }
   /// The same within the cell's width.
   template <class Visit>
-  void near(const glm::dvec3& p, Visit visit) const {
-    near(p, cell_, visit);
+  bool near(const glm::dvec3& p, Visit visit) const {
+    return near(p, cell_, visit);
   }
   [[nodiscard]] double cell() const { return cell_; }
   /// The key of p's cell (unique within about 2 million cells an axis).

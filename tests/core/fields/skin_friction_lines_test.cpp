@@ -10,6 +10,8 @@
 // lines within an edge).
 #include <gtest/gtest.h>
 
+#include <complex>
+
 #include <algorithm>
 #include <map>
 #include <string>
@@ -126,6 +128,38 @@ TEST(SkinFrictionLines, NoLinesWhereThereAreNone) {
     const FlowTopology turning = find_topology(m, on_mesh(m, wavy_cycle(0.0)));
     EXPECT_TRUE(turning.lines.lines.empty()) << "turning, level " << level;
   }
+}
+
+TEST(SkinFrictionLines, ALineEndsAtAZeroThatCancelsRatherThanTurnAboutIt) {
+  // A uniform flow on a plate of size 1.4 with a saddle and an attracting
+  // focus 2e apart, closer than the scale (0.07: they cancel), as noise in
+  // a real result makes them: w = conj(z - e) (z + e) e^(i a), |z|^2 e^(i a)
+  // far off. It has no separation or attachment line. Traces into the
+  // focus ended nowhere: they turned about it, and their convergence into
+  // it counted as a line's (lines 0.17 to 0.45 long, and one of 7, five
+  // times the surface's size). A skin-friction line ends at a zero, and the
+  // convergence into a point is no line's.
+  for (const int n : {20, 40, 80})
+    for (const double degrees : {10.0, 30.0, 60.0})
+      for (const double e : {0.02, 0.03}) {
+        const TriMesh m = plate(n);
+        const std::complex<double> turn = std::polar(1.0, degrees * kPi / 180.0);
+        std::vector<glm::vec3> v;
+        for (const glm::vec3& p : m.positions) {
+          const std::complex<double> z(p.x + 0.013, p.y + 0.007);
+          const std::complex<double> w = std::conj(z - e) * (z + e) * turn;
+          v.emplace_back(static_cast<float>(w.real()), static_cast<float>(w.imag()), 0.0f);
+        }
+        const FlowTopology t = find_topology(m, v);
+        const std::string what = std::to_string(n) + " a side, turned " +
+                                 std::to_string(static_cast<int>(degrees)) + " degrees, e " +
+                                 std::to_string(e);
+        EXPECT_TRUE(t.critical.points.empty()) << what;
+        EXPECT_EQ(t.critical.cancelled, 2u) << what;
+        for (const FeatureLine& l : t.lines.lines)
+          ADD_FAILURE() << what << ": a " << kind_name(l.kind) << " (" << origin_name(l.origin)
+                        << ") " << l.length << " long, strength " << l.strength;
+      }
 }
 
 TEST(SkinFrictionLines, ScalingEachVectorChangesNoFeature) {

@@ -190,13 +190,14 @@ std::pair<double, std::size_t> line_height(const FlowTopology& t) {
 }
 
 TEST_F(TopologyOverlayGLTest, OnASeriesTheFeaturesMoveWithTheStepsAndKeepTheirIds) {
-  // Two steps: the limit cycle at y = 0, then at y = 0.3 (latitude 17.5
-  // degrees); four frames a step. Halfway through step 0 the line is drawn
-  // halfway (y = 0.15, as its reference there says), with the same id it
-  // has at step 1.
+  // Two steps: the limit cycle at y = 0, then at y = 0.15 (latitude 8.6
+  // degrees, within the two scales, 0.21, that a feature may move in a step
+  // and keep its id); four frames a step. Halfway through step 0 the line
+  // is drawn halfway (y = 0.075, as its reference there says), with the
+  // same id it has at step 1.
   const test::TempDir dir;
   write_ply(spiral_globe(0.0f), dir / "spiral_0.ply");
-  write_ply(spiral_globe(0.3f), dir / "spiral_1.ply");
+  write_ply(spiral_globe(0.15f), dir / "spiral_1.ply");
   Scene s = spiral_scene(Overlay::Topology);
   s.mesh = (dir / "spiral_*.ply").string();
   s.frames_per_step = 4;
@@ -217,8 +218,8 @@ TEST_F(TopologyOverlayGLTest, OnASeriesTheFeaturesMoveWithTheStepsAndKeepTheirId
     const auto [height, count] = line_height(seen[static_cast<std::size_t>(k)]);
     ASSERT_EQ(count, 1u) << "frame " << k;
     // Moving between the steps' lines, in proportion (the found lines lie within
-    // 0.01 of y = 0 and 0.3).
-    const double expected = k < 4 ? 0.075 * k : 0.3;
+    // 0.01 of y = 0 and 0.15).
+    const double expected = k < 4 ? 0.0375 * k : 0.15;
     EXPECT_NEAR(height, expected, 0.015) << "frame " << k;
     EXPECT_EQ(seen[static_cast<std::size_t>(k)].lines.lines[0].id, seen[0].lines.lines[0].id)
         << "frame " << k;

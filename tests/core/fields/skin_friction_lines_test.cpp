@@ -132,16 +132,16 @@ TEST(SkinFrictionLines, NoLinesWhereThereAreNone) {
 
 TEST(SkinFrictionLines, ALineEndsAtAZeroThatCancelsRatherThanTurnAboutIt) {
   // A uniform flow on a plate of size 1.4 with a saddle and an attracting
-  // focus 2e apart, closer than the scale (0.07: they cancel), as noise in
+  // focus 2e apart, closer than the scale (0.042: they cancel), as noise in
   // a real result makes them: w = conj(z - e) (z + e) e^(i a), |z|^2 e^(i a)
   // far off. It has no separation or attachment line. Traces into the
   // focus ended nowhere: they turned about it, and their convergence into
   // it counted as a line's (lines 0.17 to 0.45 long, and one of 7, five
-  // times the surface's size). A skin-friction line ends at a zero, and the
+  // times the surface's size, at the scale of 0.05). A skin-friction line ends at a zero, and the
   // convergence into a point is no line's.
-  for (const int n : {20, 40, 80})
+  for (const int n : {80, 120})
     for (const double degrees : {10.0, 30.0, 60.0})
-      for (const double e : {0.02, 0.03}) {
+      for (const double e : {0.012, 0.016, 0.02}) {
         const TriMesh m = plate(n);
         const std::complex<double> turn = std::polar(1.0, degrees * kPi / 180.0);
         std::vector<glm::vec3> v;

@@ -166,7 +166,7 @@ struct TopologyOptions {
   /// The scale, as a fraction of the surface's size (its bounding box's
   /// diagonal): a saddle and a node or focus closer than it cancel, and
   /// lines shorter than min_length of it are dropped.
-  double scale = 0.05;
+  double scale = 0.03;
   /// A line is kept where its neighbours converge onto it (or diverge) by at
   /// least e^min_strength along it (see FeatureLine::strength).
   double min_strength = 2.0;
@@ -216,7 +216,8 @@ FlowTopology find_topology(const TriMesh& mesh, std::span<const glm::vec3> vecto
 /// (`next_id`, counted up) otherwise. A point continues one of its index
 /// (saddles saddles; nodes, foci and centres each other, its own kind first)
 /// within `reach`; a line continues one of its kind that it lies along (at
-/// least half its points within `reach` of it, the nearest on average).
+/// least half its points within `reach` of it, the nearest on average; at
+/// most 32 of its points are measured).
 /// Each feature of `previous` is continued once: where one splits, the
 /// nearer part keeps its id; where two merge, the nearer one's id goes on.
 /// `reach`: the largest distance a feature moves in a step, in the mesh's

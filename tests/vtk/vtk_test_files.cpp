@@ -214,7 +214,8 @@ void expect_bad(const fs::path& path, const std::string& problem,
     const std::string what = e.what();
     EXPECT_EQ(what.rfind(path.string() + ": ", 0), 0u) << what;
     EXPECT_EQ(what.find('\n'), std::string::npos) << what;
-#ifdef __SANITIZE_ADDRESS__
+#if defined(__SANITIZE_ADDRESS__) || \
+    defined(IBFVS_ASAN_RUNTIME)  // the runtime, built with it or not
     // Under AddressSanitizer an allocation past the child's limit ends the
     // child with the sanitizer's own report (exit status 1), before VTK's
     // abort or our bad_alloc can say so.

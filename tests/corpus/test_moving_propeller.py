@@ -21,9 +21,12 @@ The measures are scripts/turn_measure.py's. Debian's Python with numpy runs
 it; ffmpeg decodes the pictures.
 Environment: IBFVS_EXE (the built ibfvs), set by CTest.
 """
+import hashlib
 import os
+import shutil
 import subprocess
 import sys
+import tempfile
 from pathlib import Path
 
 import numpy as np
@@ -38,13 +41,44 @@ STEP_DEGREES = np.degrees(158.0 * 0.00032)  # the tutorial's omega, a written st
 STEPS = 5
 
 
+def case_key(name):
+    """What the case is made from: the scripts and OpenFOAM's version (its
+    tutorials come with it)."""
+    h = hashlib.sha256(name.encode())
+    for script in ("cfd_transient.sh", "cfd_common.sh"):
+        h.update((ROOT / "scripts" / script).read_bytes())
+    version = subprocess.run(["dpkg-query", "-W", "-f=${Version}", "openfoam"],
+                             capture_output=True, text=True)
+    h.update(version.stdout.encode())
+    return h.hexdigest()[:16]
+
+
 @pytest.fixture(scope="module")
 def case(tmp_path_factory):
+    """The case as scripts/cfd_transient.sh makes it (about two minutes of
+    snappyHexMesh), kept under IBFVS_TEST_CACHE (default ~/.cache/ibfvs) by
+    what it is made from, so that a second run copies it: the meshing is
+    OpenFOAM's work, the reading and playing are what is tested."""
+    cache = Path(os.environ.get("IBFVS_TEST_CACHE", Path.home() / ".cache" / "ibfvs"))
+    kept = cache / ("propellerMotion-" + case_key("propellerMotion"))
     folder = tmp_path_factory.mktemp("propeller") / "propellerMotion"
+    if kept.is_dir():
+        shutil.copytree(kept, folder)
+        return folder / "propellerMotion.foam"
     done = subprocess.run([str(ROOT / "scripts" / "cfd_transient.sh"), "propellerMotion"],
                           env=dict(os.environ, IBFVS_CFD_DIR=str(folder)),
                           capture_output=True, text=True, timeout=900)
     assert done.returncode == 0, done.stdout[-2000:] + done.stderr[-2000:]
+    try:  # whole or absent: copied aside, then renamed
+        cache.mkdir(parents=True, exist_ok=True)
+        part = Path(tempfile.mkdtemp(dir=cache))
+        try:
+            shutil.copytree(folder, part / "case")
+            (part / "case").rename(kept)
+        finally:
+            shutil.rmtree(part, ignore_errors=True)
+    except OSError as e:
+        print("the case is not kept:", e)
     return folder / "propellerMotion.foam"
 
 

@@ -72,8 +72,9 @@ TEST(FramePlan, EverySamplerOfEveryPassIsPlannedAtItsUnit) {
   const auto check = [&](std::string_view pass, const std::vector<std::string>& sources) {
     const PlannedPass& plan = planned_pass(pass);
     for (const auto& [sampler, unit] : samplers(sources)) {
-      const auto read = std::find_if(plan.reads.begin(), plan.reads.end(),
-                                     [&](const PlannedRead& r) { return r.sampler == sampler; });
+      const auto read =
+          std::find_if(plan.reads.begin(), plan.reads.end(),
+                       [&, name = sampler](const PlannedRead& r) { return r.sampler == name; });
       ASSERT_NE(read, plan.reads.end()) << pass << " reads " << sampler << ", not in the plan";
       EXPECT_EQ(read->unit, unit) << pass << " " << sampler;
       seen[std::string(pass)].insert(sampler);

@@ -37,7 +37,10 @@ TriMesh spiral_globe(float c = 0.0f) {
   TriMesh m = make_globe(4);
   std::mt19937 rng(5);
   std::uniform_real_distribution<float> d(-0.01f, 0.01f);
-  for (glm::vec3& p : m.positions) p = glm::normalize(p + glm::vec3(d(rng), d(rng), d(rng)));
+  for (glm::vec3& p : m.positions) {
+    const float z = d(rng), y = d(rng), x = d(rng);  // one by one: the same with any compiler
+    p = glm::normalize(p + glm::vec3(x, y, z));
+  }
   m.normals.clear();
   const glm::vec3 axis(0.0f, 1.0f, 0.0f);
   m.vectors.clear();

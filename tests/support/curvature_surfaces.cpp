@@ -68,7 +68,8 @@ void allocate(TestSurface& s) {
 glm::dvec2 in_disc(std::mt19937& rng) {
   std::uniform_real_distribution<double> uni(-1.0, 1.0);
   for (;;) {
-    const glm::dvec2 d(uni(rng), uni(rng));
+    const double y = uni(rng), x = uni(rng);  // one by one: the same with any compiler
+    const glm::dvec2 d(x, y);
     if (glm::dot(d, d) <= 1.0) return d;
   }
 }
@@ -175,7 +176,8 @@ TestSurface random_sphere(float r, int points, std::uint32_t seed) {
   std::normal_distribution<double> gauss;
   std::vector<K::Point_3> pts;
   for (int i = 0; i < points; ++i) {
-    const glm::dvec3 d = glm::normalize(glm::dvec3(gauss(rng), gauss(rng), gauss(rng))) * double(r);
+    const double z = gauss(rng), y = gauss(rng), x = gauss(rng);  // one by one (any compiler)
+    const glm::dvec3 d = glm::normalize(glm::dvec3(x, y, z)) * double(r);
     const glm::vec3 f(d);  // the mesh holds floats: hull exactly those
     pts.emplace_back(f.x, f.y, f.z);
   }

@@ -32,7 +32,12 @@ void jitter(TriMesh& m, Back back, unsigned seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<float> d(-1.0f, 1.0f);
   const float amount = 0.2f * static_cast<float>(mean_edge(m));
-  for (glm::vec3& p : m.positions) p = back(p + amount * glm::vec3(d(rng), d(rng), d(rng)));
+  for (glm::vec3& p : m.positions) {
+    // One by one, z, y, x: a call's arguments have no order in C++ (GCC's
+    // was last first), and the mesh must not depend on the compiler.
+    const float z = d(rng), y = d(rng), x = d(rng);
+    p = back(p + amount * glm::vec3(x, y, z));
+  }
 }
 
 glm::vec3 tangent(const glm::vec3& v, const glm::vec3& normal) {

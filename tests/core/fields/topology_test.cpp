@@ -12,6 +12,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/fields/exact_fields.h"
 #include "ibfvs/core/fields/lonlat_grid.h"
 #include "ibfvs/core/mesh/procedural.h"
 #include "ibfvs/core/support/error.h"
@@ -19,26 +20,9 @@
 namespace ibfvs {
 namespace {
 
-double mean_edge(const TriMesh& m) {
-  double sum = 0.0;
-  for (const Triangle& t : m.triangles)
-    for (int k = 0; k < 3; ++k) sum += glm::length(m.positions[t[k]] - m.positions[t[(k + 1) % 3]]);
-  return sum / (3.0 * static_cast<double>(m.triangles.size()));
-}
-
 // Every vertex moved by up to a fifth of an edge, then back onto the surface.
-template <class Back>
-void jitter(TriMesh& m, Back back, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> d(-1.0f, 1.0f);
-  const float amount = 0.2f * static_cast<float>(mean_edge(m));
-  for (glm::vec3& p : m.positions) {
-    // One by one, z, y, x: a call's arguments have no order in C++ (GCC's
-    // was last first), and the mesh must not depend on the compiler.
-    const float z = d(rng), y = d(rng), x = d(rng);
-    p = back(p + amount * glm::vec3(x, y, z));
-  }
-}
+using exact::jitter;
+using exact::mean_edge;
 
 glm::vec3 tangent(const glm::vec3& v, const glm::vec3& normal) {
   return v - glm::dot(v, normal) * normal;
